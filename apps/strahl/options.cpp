@@ -1,0 +1,35 @@
+#include "options.h"
+
+#include <CLI/CLI.hpp>
+
+namespace strahl::cli {
+
+ParseResult parse_options(int argc, char** argv) {
+  Options o;
+  CLI::App app{"strahl — a Whitted-style ray tracer. Renders a scene file (.yaml/.json), or the lecture's scene "
+               "when none is given.",
+               "strahl"};
+  app.add_option("scene", o.scene, "Scene file (.yaml, .yml, .json); omitted: the built-in lecture scene");
+  app.add_option("-o,--output", o.output,
+                 "Output image; the format follows the extension: .png .jpg .ppm (8-bit sRGB), .pfm .exr (linear "
+                 "float). Default: <scene>.png");
+  app.add_option("--width", o.width, "Image width in pixels (overrides the scene)")->check(CLI::Range(1, 65536));
+  app.add_option("--height", o.height, "Image height in pixels (overrides the scene)")->check(CLI::Range(1, 65536));
+  app.add_option("--max-depth", o.max_depth, "Maximum recursion depth; camera rays are depth 1 (default 8)")
+      ->check(CLI::Range(1, 64));
+  app.add_option("--supersample", o.supersample, "N×N regular samples per pixel, box filter (default 1)")
+      ->check(CLI::Range(1, 64));
+  app.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  app.add_option("--tile-size", o.tile_size, "Tile side in pixels (default 32)")->check(CLI::Range(1, 4096));
+  app.add_flag("--linear", o.linear, "Store linear values in 8-bit images instead of sRGB (as POV-Ray's File_Gamma=1.0)");
+  app.add_flag("-q,--quiet", o.quiet, "No progress and no summary");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return {std::nullopt, code == 0 ? 0 : 1};
+  }
+  return {o, 0};
+}
+
+}  // namespace strahl::cli

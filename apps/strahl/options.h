@@ -1,0 +1,27 @@
+#pragma once
+// Command-line options of the `strahl` renderer.
+
+#include <optional>
+#include <string>
+
+namespace strahl::cli {
+
+struct Options {
+  std::string scene;   // empty: the built-in lecture scene
+  std::string output;  // empty: <scene name>.png in the current directory
+  std::optional<int> width, height, max_depth, supersample;
+  int threads = 0;
+  int tile_size = 32;
+  bool linear = false;
+  bool quiet = false;
+};
+
+// Parses argv. Returns the options, or an exit code (0 after --help, 1 for a usage error)
+// after printing the message.
+struct ParseResult {
+  std::optional<Options> options;
+  int exit_code = 0;
+};
+ParseResult parse_options(int argc, char** argv);
+
+}  // namespace strahl::cli

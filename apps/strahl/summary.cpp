@@ -1,0 +1,22 @@
+#include "summary.h"
+
+#include <fmt/format.h>
+
+namespace strahl::cli {
+
+std::string summary(const std::string& output, int width, int height, int supersample, int threads,
+                    const Timings& t, const RenderStats& s) {
+  const RayCounters& r = s.rays;
+  const double mrays = t.render > 0 ? double(r.total()) / t.render * 1e-6 : 0;
+  std::string out;
+  out += fmt::format("image       {} ({}x{}, {}x{} samples per pixel, {} threads)\n", output, width, height,
+                     supersample, supersample, threads);
+  out += fmt::format("time        load {:.3f} s, build {:.3f} s, render {:.3f} s, write {:.3f} s\n", t.load, t.build,
+                     t.render, t.write);
+  out += fmt::format("rays        {} total: {} camera, {} shadow, {} reflection, {} refraction\n", r.total(), r.camera,
+                     r.shadow, r.reflection, r.refraction);
+  out += fmt::format("throughput  {:.2f} Mrays/s\n", mrays);
+  return out;
+}
+
+}  // namespace strahl::cli

@@ -1,0 +1,15 @@
+# Warnings for every strahl target; -Werror in CI (STRAHL_WERROR=ON).
+add_library(strahl_warnings INTERFACE)
+target_compile_options(strahl_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor)
+if(STRAHL_WERROR)
+  target_compile_options(strahl_warnings INTERFACE -Werror)
+endif()
+
+add_library(strahl_optimise INTERFACE)
+if(STRAHL_NATIVE)
+  target_compile_options(strahl_optimise INTERFACE -march=native)
+endif()
+# GCC 12 reports false -Wrestrict positives inside std::string concatenation (GCC bug 105651).
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+  target_compile_options(strahl_warnings INTERFACE -Wno-restrict)
+endif()

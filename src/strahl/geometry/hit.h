@@ -1,0 +1,22 @@
+#pragma once
+// The nearest intersection found so far along a ray: which primitive, at which t.
+// Surface details (point, normal, material) are derived only for the final nearest hit.
+
+#include <cstdint>
+
+#include "strahl/math/config.h"
+
+namespace strahl {
+
+enum class ShapeKind : std::uint8_t { None, Sphere, Plane, Triangle };
+
+struct Hit {
+  Real t = kInfinity;
+  ShapeKind kind = ShapeKind::None;
+  std::uint32_t index = 0;  // into the RenderScene's array for `kind`
+  Real b1 = 0, b2 = 0;      // barycentric coordinates of triangle hits
+
+  STRAHL_HOST_DEVICE constexpr bool found() const { return kind != ShapeKind::None; }
+};
+
+}  // namespace strahl

@@ -1,0 +1,31 @@
+#pragma once
+// Axis-aligned bounding box and the slab test.
+
+#include <algorithm>
+#include <cmath>
+
+#include "strahl/math/ray.h"
+
+namespace strahl {
+
+struct Bounds {
+  Vec3 lo{kInfinity}, hi{-kInfinity};
+
+  STRAHL_HOST_DEVICE void extend(const Vec3& p) { lo = min(lo, p); hi = max(hi, p); }
+  STRAHL_HOST_DEVICE bool empty() const { return lo.x > hi.x; }
+};
+
+// Slab test with precomputed 1/direction: does the ray meet the box within (t_min, t_max)?
+STRAHL_HOST_DEVICE inline bool hits(const Bounds& b, const Vec3& origin, const Vec3& inv_dir, Real t_min, Real t_max) {
+  for (int a = 0; a < 3; ++a) {
+    Real t0 = (b.lo[a] - origin[a]) * inv_dir[a];
+    Real t1 = (b.hi[a] - origin[a]) * inv_dir[a];
+    if (t0 > t1) std::swap(t0, t1);
+    t_min = t0 > t_min ? t0 : t_min;  // NaN (0·inf) keeps the old bound
+    t_max = t1 < t_max ? t1 : t_max;
+    if (t_min > t_max) return false;
+  }
+  return true;
+}
+
+}  // namespace strahl

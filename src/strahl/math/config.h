@@ -1,0 +1,24 @@
+#pragma once
+// One place for the kernel's floating-point type and the host/device marker.
+
+#include <limits>
+
+#if defined(__CUDACC__)
+#define STRAHL_HOST_DEVICE __host__ __device__
+#else
+#define STRAHL_HOST_DEVICE
+#endif
+
+namespace strahl {
+
+// Radiance, geometry and ray parameters use this type everywhere; double keeps
+// scenes far from the origin (or scaled by 1e-3 .. 1e4) free of self-intersection.
+using Real = double;
+
+inline constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+inline constexpr Real kPi = Real(3.14159265358979323846);
+
+// Offset of secondary-ray origins from a surface, relative to the hit point's magnitude.
+inline constexpr Real kRayEpsilon = Real(1e-9);
+
+}  // namespace strahl

@@ -1,0 +1,24 @@
+#pragma once
+// The lecture's ray p(t) = e + t·d. Directions are kept normalised, so t is a distance.
+
+#include "strahl/math/vec3.h"
+
+namespace strahl {
+
+struct Ray {
+  Vec3 origin;
+  Vec3 direction;
+
+  STRAHL_HOST_DEVICE constexpr Vec3 at(Real t) const { return origin + direction * t; }
+};
+
+// A secondary ray leaving surface point `p` with geometric normal `n`: its origin is pushed off
+// the surface to the side the ray travels into, by an amount relative to |p|, so that it cannot
+// hit the surface it starts on (no shadow acne) at any scene scale.
+STRAHL_HOST_DEVICE inline Ray spawn_ray(const Vec3& p, const Vec3& n, const Vec3& direction) {
+  const Real eps = kRayEpsilon * (Real(1) + max_abs_component(p));
+  const Real side = dot(direction, n) >= 0 ? Real(1) : Real(-1);
+  return Ray{p + n * (side * eps), direction};
+}
+
+}  // namespace strahl

@@ -1,0 +1,68 @@
+#pragma once
+// Affine transforms for placing meshes: p' = M·p + t, normals by the inverse transpose of M.
+
+#include <cmath>
+
+#include "strahl/math/vec3.h"
+
+namespace strahl {
+
+struct Mat3 {
+  Vec3 row[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+  Vec3 operator*(const Vec3& v) const { return {dot(row[0], v), dot(row[1], v), dot(row[2], v)}; }
+  Mat3 operator*(const Mat3& o) const {
+    Mat3 r;
+    for (int i = 0; i < 3; ++i)
+      r.row[i] = Vec3(dot(row[i], Vec3(o.row[0].x, o.row[1].x, o.row[2].x)),
+                      dot(row[i], Vec3(o.row[0].y, o.row[1].y, o.row[2].y)),
+                      dot(row[i], Vec3(o.row[0].z, o.row[1].z, o.row[2].z)));
+    return r;
+  }
+  Mat3 transposed() const {
+    Mat3 r;
+    r.row[0] = {row[0].x, row[1].x, row[2].x};
+    r.row[1] = {row[0].y, row[1].y, row[2].y};
+    r.row[2] = {row[0].z, row[1].z, row[2].z};
+    return r;
+  }
+  Real determinant() const { return dot(row[0], cross(row[1], row[2])); }
+  // Inverse by cofactors; the caller checks the determinant is not zero.
+  Mat3 inverse() const {
+    const Real inv_det = Real(1) / determinant();
+    Mat3 cof;
+    cof.row[0] = cross(row[1], row[2]);
+    cof.row[1] = cross(row[2], row[0]);
+    cof.row[2] = cross(row[0], row[1]);
+    Mat3 r = cof.transposed();
+    for (Vec3& v : r.row) v *= inv_det;
+    return r;
+  }
+  static Mat3 scale(const Vec3& s) {
+    Mat3 m;
+    m.row[0] = {s.x, 0, 0}; m.row[1] = {0, s.y, 0}; m.row[2] = {0, 0, s.z};
+    return m;
+  }
+  // Rotation about a coordinate axis (0 = x, 1 = y, 2 = z) by `degrees`, right-handed.
+  static Mat3 rotation(int axis, Real degrees) {
+    const Real a = degrees * kPi / 180, c = std::cos(a), s = std::sin(a);
+    Mat3 m;
+    if (axis == 0) { m.row[1] = {0, c, -s}; m.row[2] = {0, s, c}; }
+    if (axis == 1) { m.row[0] = {c, 0, s}; m.row[2] = {-s, 0, c}; }
+    if (axis == 2) { m.row[0] = {c, -s, 0}; m.row[1] = {s, c, 0}; }
+    return m;
+  }
+};
+
+struct Transform {
+  Vec3 scale{1};
+  Vec3 rotate_degrees{0};  // applied about x, then y, then z
+  Vec3 translate{0};
+
+  Mat3 linear() const {
+    return Mat3::rotation(2, rotate_degrees.z) * Mat3::rotation(1, rotate_degrees.y) *
+           Mat3::rotation(0, rotate_degrees.x) * Mat3::scale(scale);
+  }
+};
+
+}  // namespace strahl

@@ -1,0 +1,18 @@
+#pragma once
+// Rays traced, by kind, kept per tile and summed at the end (no shared counters in the hot path).
+
+#include <cstdint>
+
+namespace strahl {
+
+struct RayCounters {
+  std::uint64_t camera = 0, shadow = 0, reflection = 0, refraction = 0;
+
+  constexpr std::uint64_t total() const { return camera + shadow + reflection + refraction; }
+  constexpr RayCounters& operator+=(const RayCounters& o) {
+    camera += o.camera; shadow += o.shadow; reflection += o.reflection; refraction += o.refraction;
+    return *this;
+  }
+};
+
+}  // namespace strahl

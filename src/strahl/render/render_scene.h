@@ -1,0 +1,42 @@
+#pragma once
+// The immutable, render-ready scene: flat arrays of shapes by kind, materials and lights.
+// Produced by compile() from a Scene; kernels read it through view().
+
+#include <vector>
+
+#include "strahl/render/scene_view.h"
+
+namespace strahl {
+
+struct RenderScene {
+  std::vector<kernel::Sphere> spheres;
+  std::vector<kernel::Plane> planes;
+  std::vector<kernel::Triangle> triangles;
+  std::vector<kernel::VertexNormals> vertex_normals;
+  std::vector<MeshRange> meshes;
+  std::vector<Material> materials;
+  std::vector<Light> lights;
+  Camera camera;
+  TraceSettings settings;
+  int supersample = 1;  // N×N regular samples per pixel
+
+  SceneView view() const {
+    SceneView v;
+    v.spheres = spheres.data();
+    v.sphere_count = static_cast<std::uint32_t>(spheres.size());
+    v.planes = planes.data();
+    v.plane_count = static_cast<std::uint32_t>(planes.size());
+    v.triangles = triangles.data();
+    v.vertex_normals = vertex_normals.data();
+    v.meshes = meshes.data();
+    v.mesh_count = static_cast<std::uint32_t>(meshes.size());
+    v.materials = materials.data();
+    v.lights = lights.data();
+    v.light_count = static_cast<std::uint32_t>(lights.size());
+    v.camera = camera;
+    v.settings = settings;
+    return v;
+  }
+};
+
+}  // namespace strahl

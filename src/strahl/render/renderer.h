@@ -1,0 +1,30 @@
+#pragma once
+// The CPU backend: the image cut into tiles, tiles rendered in parallel by oneTBB. Each pixel is
+// a pure function of the scene, so the image is bit-identical for any thread count or tile size.
+
+#include <functional>
+
+#include "strahl/image/image.h"
+#include "strahl/render/ray_counters.h"
+#include "strahl/render/render_scene.h"
+
+namespace strahl {
+
+struct RenderOptions {
+  int threads = 0;     // 0: all cores
+  int tile_size = 32;  // pixels along a tile's side
+};
+
+struct RenderStats {
+  RayCounters rays;
+  double seconds = 0;
+};
+
+// Called from worker threads after each finished tile with (pixels done, pixels in all);
+// must be thread-safe. Not called per ray.
+using ProgressCallback = std::function<void(long done, long total)>;
+
+Image render(const RenderScene& scene, const RenderOptions& options, RenderStats* stats = nullptr,
+             const ProgressCallback& progress = {});
+
+}  // namespace strahl

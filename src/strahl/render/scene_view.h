@@ -1,0 +1,47 @@
+#pragma once
+// The render-ready scene as plain pointers and counts: what kernel code (CPU now, CUDA later)
+// reads. Built from a RenderScene, which owns the arrays.
+
+#include <cstdint>
+
+#include "strahl/camera/camera.h"
+#include "strahl/geometry/plane.h"
+#include "strahl/geometry/sphere.h"
+#include "strahl/geometry/triangle.h"
+#include "strahl/math/bounds.h"
+#include "strahl/shading/light.h"
+#include "strahl/shading/material.h"
+
+namespace strahl {
+
+// A triangle mesh's share of the triangle array, with its bounds for a quick rejection.
+struct MeshRange {
+  Bounds bounds;
+  std::uint32_t first = 0, count = 0;
+};
+
+struct TraceSettings {
+  int max_depth = 8;          // camera rays are depth 1 (POV-Ray's max_trace_level)
+  Real min_weight = 1e-3;     // rays contributing less than this to the pixel are not traced
+  Vec3 background{0};         // radiance of rays that hit nothing
+  Vec3 ambient_light{1};      // scales every material's ambient term
+  Real medium_ior = 1;        // index of refraction of the space between objects
+};
+
+struct SceneView {
+  const kernel::Sphere* spheres = nullptr;
+  std::uint32_t sphere_count = 0;
+  const kernel::Plane* planes = nullptr;
+  std::uint32_t plane_count = 0;
+  const kernel::Triangle* triangles = nullptr;
+  const kernel::VertexNormals* vertex_normals = nullptr;
+  const MeshRange* meshes = nullptr;
+  std::uint32_t mesh_count = 0;
+  const Material* materials = nullptr;
+  const Light* lights = nullptr;
+  std::uint32_t light_count = 0;
+  Camera camera;
+  TraceSettings settings;
+};
+
+}  // namespace strahl

@@ -1,0 +1,100 @@
+#pragma once
+// Whitted-style recursive ray tracing (lecture 2.1–2.5): nearest hit, local illumination
+// (ambient + Lambert + Blinn-Phong per unshadowed light, all additive), then a mirror ray and a
+// refracted ray, each weighted; recursion stops at max_depth and when a ray's weight in the
+// pixel falls below min_weight.
+//
+// Colour at a hit with material m, colour C, shading normal N (towards the viewer), view
+// direction V, and per light the unit vector L, half vector H = (L + V)/|L + V|, radiance I and
+// shadow-ray transmittance S:
+//   local = (1 − T)·k_a·C·ambient_light
+//         + Σ_lights S·I·[ (1 − T)·k_d·C·max(0, N·L) + k_s·max(0, N·H)^shininess ]   (when N·L > 0)
+//   colour = local + k_r·trace(reflected) + T·tint·trace(refracted)
+// with T the transparency. Total internal reflection moves T into k_r; with Fresnel enabled a
+// Schlick fraction F of T moves to k_r. Highlights are not dimmed by transparency (glass shines).
+
+#include <cmath>
+
+#include "strahl/render/intersect_scene.h"
+#include "strahl/render/medium_stack.h"
+#include "strahl/render/ray_counters.h"
+#include "strahl/render/surface_point.h"
+#include "strahl/shading/optics.h"
+
+namespace strahl {
+
+STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
+                                                  const Vec3& view, RayCounters& counters) {
+  const Material& m = s.materials[sp.material];
+  const Vec3 c = surface_color(m, sp.texcoord);
+  const Real opacity = 1 - m.transparency;
+  Vec3 result = c * s.settings.ambient_light * (m.ambient * opacity);
+  for (std::uint32_t i = 0; i < s.light_count; ++i) {
+    const Light& light = s.lights[i];
+    const LightSample ls = sample_light(light, sp.p);
+    const Real n_dot_l = dot(n, ls.to_light);
+    if (n_dot_l <= 0) continue;  // light behind the surface
+    ++counters.shadow;
+    const Ray shadow_ray = spawn_ray(sp.p, sp.geometric_normal, ls.to_light);
+    const Vec3 tr = transmittance(s, shadow_ray, ls.distance);
+    if (is_black(tr)) continue;  // in shadow: ambient only
+    const Vec3 h = normalize(ls.to_light + view);
+    const Real n_dot_h = dot(n, h);
+    Vec3 contribution = c * (m.diffuse * opacity * n_dot_l);
+    if (n_dot_h > 0 && !is_black(m.specular)) contribution += m.specular * std::pow(n_dot_h, m.shininess);
+    result += contribution * light.radiance * tr;
+  }
+  return result;
+}
+
+// Radiance arriving along `ray`. `depth` is 1 for camera rays; `weight` is the ray's share of the pixel.
+STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int depth, Real weight,
+                                     const MediumStack& media, RayCounters& counters) {
+  const Hit hit = closest_hit(s, ray, 0, kInfinity);
+  if (!hit.found()) return s.settings.background;
+
+  const SurfacePoint sp = surface_at(s, ray, hit);
+  const Material& m = s.materials[sp.material];
+  // Does the ray arrive at the front (outside) of the surface? Normals then face the viewer.
+  const bool front = dot(ray.direction, sp.geometric_normal) < 0;
+  const Vec3 n = front ? sp.normal : -sp.normal;
+  const Vec3 view = -ray.direction;
+
+  Vec3 color = local_illumination(s, sp, n, view, counters);
+  if (depth >= s.settings.max_depth) return color;
+
+  Real kr = m.reflectivity;
+  Real kt = m.transparency;
+  Vec3 refracted_dir;
+  MediumStack next_media = media;
+  if (kt > 0) {
+    // Entering: from the current medium into the object; leaving: from the object to the outer one.
+    const Real n1 = front ? media.current() : m.ior;
+    const Real n2 = front ? m.ior : media.outer();
+    if (!refract(ray.direction, n, n1 / n2, refracted_dir)) {
+      kr += kt;  // total internal reflection: all transmitted light is reflected
+      kt = 0;
+    } else {
+      if (m.fresnel) {
+        const Real f = schlick(dot(view, n), n1, n2);
+        kr += kt * f;
+        kt *= 1 - f;
+      }
+      next_media = front ? media.entered(m.ior) : media.left();
+    }
+  }
+  if (kr > 0 && kr * weight >= s.settings.min_weight) {
+    ++counters.reflection;
+    const Ray r = spawn_ray(sp.p, sp.geometric_normal, reflect(ray.direction, n));
+    color += trace(s, r, depth + 1, weight * kr, media, counters) * kr;
+  }
+  if (kt > 0 && kt * weight >= s.settings.min_weight) {
+    ++counters.refraction;
+    const Ray r = spawn_ray(sp.p, sp.geometric_normal, refracted_dir);
+    const Vec3 tint = m.filter ? m.color : Vec3(1);
+    color += trace(s, r, depth + 1, weight * kt, next_media, counters) * tint * kt;
+  }
+  return color;
+}
+
+}  // namespace strahl

@@ -1,0 +1,192 @@
+#include <cmath>
+
+#include "strahl/render/render_scene.h"
+#include "strahl/scene/scene.h"
+#include "strahl/scene/validate.h"
+
+namespace strahl {
+
+namespace {
+
+// An orthonormal tangent frame of the plane, for 2D textures (checkerboard).
+void plane_frame(const Vec3& n, Vec3& tangent, Vec3& bitangent) {
+  const Vec3 a = std::fabs(n.x) < Real(0.9) ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  bitangent = normalize(cross(n, a));
+  tangent = cross(bitangent, n);
+}
+
+Camera build_camera(const CameraDescription& c, int nx, int ny) {
+  validate::finite(c.position, c.loc, "camera position");
+  validate::finite(c.look_at, c.loc, "camera look_at");
+  validate::non_zero(c.up, c.loc, "camera up");
+  const Vec3 view = c.look_at - c.position;
+  if (length_squared(view) == 0) throw Error(c.loc, "camera position and look_at coincide");
+  if (length_squared(cross(normalize(view), normalize(c.up))) < Real(1e-12))
+    throw Error(c.loc, "camera up is parallel to the viewing direction");
+  Camera cam;
+  cam.eye = c.position;
+  cam.basis = Frame::look_at(c.position, c.look_at, c.up);
+  cam.nx = nx;
+  cam.ny = ny;
+  if (c.explicit_image_plane) {
+    for (Real v : {c.l, c.r, c.b, c.t}) validate::finite(v, c.loc, "image plane bound");
+    validate::positive(c.d, c.loc, "image plane distance d");
+    if (!(c.l < c.r) || !(c.b < c.t)) throw Error(c.loc, "image plane needs l < r and b < t");
+    cam.l = c.l; cam.r = c.r; cam.b = c.b; cam.t = c.t; cam.d = c.d;
+  } else {
+    if (!(c.fov_degrees > 0 && c.fov_degrees < 180)) throw Error(c.loc, "camera fov must lie in (0, 180) degrees");
+    const Real half = std::tan(c.fov_degrees * kPi / 360);
+    const Real aspect = Real(nx) / Real(ny);
+    cam.d = 1;
+    if (c.fov_axis == CameraDescription::FovAxis::Horizontal) {
+      cam.r = half; cam.t = half / aspect;
+    } else {
+      cam.t = half; cam.r = half * aspect;
+    }
+    cam.l = -cam.r;
+    cam.b = -cam.t;
+  }
+  return cam;
+}
+
+}  // namespace
+
+void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
+  validate::finite(center, loc, "sphere center");
+  validate::positive(radius, loc, "sphere radius");
+  out.spheres.push_back({center, radius, material_index});
+}
+
+void Plane::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
+  validate::non_zero(normal, loc, "plane normal");
+  validate::finite(distance, loc, "plane distance");
+  kernel::Plane p;
+  const Real len = length(normal);
+  p.normal = normal / len;
+  p.distance = distance / len;
+  plane_frame(p.normal, p.tangent, p.bitangent);
+  p.material = material_index;
+  out.planes.push_back(p);
+}
+
+namespace {
+// Appends the triangle unless it is degenerate; returns whether it did.
+bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t material,
+                   std::int32_t normals, std::uint32_t object_id) {
+  const Vec3 e1 = b - a, e2 = c - a;
+  if (!(length_squared(cross(e1, e2)) > 0)) return false;
+  out.triangles.push_back({a, e1, e2, material, normals, object_id});
+  return true;
+}
+void add_mesh_range(RenderScene& out, std::uint32_t first) {
+  MeshRange range;
+  range.first = first;
+  range.count = static_cast<std::uint32_t>(out.triangles.size()) - first;
+  for (std::uint32_t i = range.first; i < range.first + range.count; ++i) {
+    const kernel::Triangle& t = out.triangles[i];
+    range.bounds.extend(t.v0);
+    range.bounds.extend(t.v0 + t.e1);
+    range.bounds.extend(t.v0 + t.e2);
+  }
+  if (range.count > 0) out.meshes.push_back(range);
+}
+}  // namespace
+
+void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
+  validate::finite(v0, loc, "triangle vertex");
+  validate::finite(v1, loc, "triangle vertex");
+  validate::finite(v2, loc, "triangle vertex");
+  const auto first = static_cast<std::uint32_t>(out.triangles.size());
+  if (!push_triangle(out, v0, v1, v2, material_index, -1, object_id))
+    throw Error(loc, "degenerate triangle (its vertices are collinear)");
+  add_mesh_range(out, first);
+}
+
+void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
+  validate::finite(transform.scale, loc, "mesh scale");
+  validate::finite(transform.rotate_degrees, loc, "mesh rotate");
+  validate::finite(transform.translate, loc, "mesh translate");
+  const Mat3 m = transform.linear();
+  if (m.determinant() == 0) throw Error(loc, "mesh scale must not be zero");
+  const Mat3 normal_matrix = m.inverse().transposed();
+  std::vector<Vec3> positions(data.positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    validate::finite(data.positions[i], loc, "mesh vertex");
+    positions[i] = m * data.positions[i] + transform.translate;
+  }
+  const auto first = static_cast<std::uint32_t>(out.triangles.size());
+  for (const MeshData::Face& f : data.faces) {
+    for (std::uint32_t v : f.v)
+      if (v >= positions.size()) throw Error(loc, "mesh face refers to a vertex that does not exist");
+    std::int32_t normals = -1;
+    if (f.n[0] >= 0 && f.n[1] >= 0 && f.n[2] >= 0) {
+      for (std::int32_t n : f.n)
+        if (std::size_t(n) >= data.normals.size()) throw Error(loc, "mesh face refers to a normal that does not exist");
+      const auto xf = [&](std::int32_t n) {
+        const Vec3 v = normal_matrix * data.normals[std::size_t(n)];
+        return length_squared(v) > 0 && is_finite(v) ? normalize(v) : Vec3(0);
+      };
+      normals = static_cast<std::int32_t>(out.vertex_normals.size());
+      out.vertex_normals.push_back({xf(f.n[0]), xf(f.n[1]), xf(f.n[2])});
+    }
+    if (!push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material_index, normals,
+                       object_id) &&
+        normals >= 0)
+      out.vertex_normals.pop_back();
+  }
+  add_mesh_range(out, first);
+}
+
+RenderScene compile(const Scene& scene) {
+  const RenderSettings& s = scene.settings;
+  validate::int_range(s.width, 1, 65536, s.loc, "width");
+  validate::int_range(s.height, 1, 65536, s.loc, "height");
+  // 12 bytes a pixel for the film: refuse what would not fit in memory before allocating it.
+  if (double(s.width) * s.height > double(1u << 28)) throw Error(s.loc, "resolution too large (over 268 million pixels)");
+  validate::int_range(s.max_depth, 1, 64, s.loc, "max_depth");
+  validate::int_range(s.supersample, 1, 64, s.loc, "supersample");
+  validate::in_range(s.min_weight, 0, 1, s.loc, "min_weight");
+  validate::non_negative(s.background, s.loc, "background");
+  validate::non_negative(s.ambient_light, s.loc, "ambient_light");
+  validate::positive(s.medium_ior, s.loc, "medium_ior");
+
+  RenderScene out;
+  out.camera = build_camera(scene.camera, s.width, s.height);
+  out.settings = {s.max_depth, s.min_weight, s.background, s.ambient_light, s.medium_ior};
+  out.supersample = s.supersample;
+
+  std::uint32_t object_id = 0;
+  for (const auto& object : scene.objects()) {
+    validate::material(object->material, object->loc);
+    const auto material_index = static_cast<std::uint32_t>(out.materials.size());
+    out.materials.push_back(object->material);
+    object->compile_into(out, material_index, object_id++);
+  }
+  for (std::size_t i = 0; i < scene.lights().size(); ++i) {
+    Light light = scene.lights()[i];
+    const FileLoc& loc = scene.light_locs()[i];
+    validate::non_negative(light.radiance, loc, "light colour × intensity");
+    if (light.kind == LightKind::Point) {
+      validate::finite(light.position, loc, "light position");
+    } else {
+      validate::non_zero(light.direction, loc, "light direction");
+      light.direction = normalize(light.direction);
+    }
+    out.lights.push_back(light);
+  }
+  return out;
+}
+
+Scene lecture_scene() {
+  Scene scene;
+  scene.addSceneObject(new Plane(Vec3(0.0, 1.0, 0.0), 0.0, Vec3(0.3, 0.3, 0.3)));
+  scene.addSceneObject(new Sphere(Vec3(0.05, 0.3, 0.0), 0.3, Vec3(0.8, 0.2, 0.2)));
+  scene.addSceneObject(new Sphere(Vec3(0.4, 0.1, 0.1), 0.1, Vec3(0.0, 1.0, 0.0)));
+  scene.addSceneObject(new Sphere(Vec3(-0.35, 0.25, -0.15), 0.25, Vec3(0.5, 0.5, 0.1)));
+  scene.addSceneObject(new Sphere(Vec3(-0.35, 0.15, 0.3), 0.15, Vec3(0.0, 0.0, 1.0)));
+  scene.addSceneObject(new Sphere(Vec3(0.15, 0.6, -1.0), 0.6, Vec3(0.2, 0.4, 0.5)));
+  scene.addLightSource(Vec3(1.0, 1.5, 1.0));
+  return scene;
+}
+
+}  // namespace strahl

@@ -1,0 +1,177 @@
+#pragma once
+// The editable, user-facing scene (the lecture's C++ API and what scene files load into).
+// compile() turns it into the immutable RenderScene.
+//
+//   Scene* scene = new Scene();
+//   scene->addSceneObject(new Plane(Vec3(0.0, 1.0, 0.0), 0.0, Vec3(0.3, 0.3, 0.3)));
+//   scene->addSceneObject(new Sphere(Vec3(0.05, 0.3, 0.0), 0.3, Vec3(0.8, 0.2, 0.2)));
+//   scene->addLightSource(Vec3(1.0, 1.5, 1.0));
+//
+// or with value types:  Scene s; s.add(Sphere{{0, 1, 0}, 0.5, glass}); s.add(point_light({1, 2, 3}));
+
+#include <concepts>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "strahl/math/transform.h"
+#include "strahl/scene/mesh_data.h"
+#include "strahl/shading/light.h"
+#include "strahl/shading/material.h"
+#include "strahl/util/error.h"
+
+namespace strahl {
+
+struct RenderScene;
+
+// Material with the given colour and the default finish.
+inline Material material_with_color(const Vec3& color) {
+  Material m;
+  m.color = color;
+  return m;
+}
+
+class SceneObject {
+ public:
+  explicit SceneObject(const Material& m) : material(m) {}
+  virtual ~SceneObject() = default;
+
+  // Appends the kernel shapes and checks the values (throws strahl::Error naming `loc`).
+  virtual void compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const = 0;
+
+  Material material;
+  FileLoc loc;  // where a scene file defined it, if it did
+};
+
+class Sphere : public SceneObject {
+ public:
+  Sphere(const Vec3& center_, Real radius_, const Vec3& color) : Sphere(center_, radius_, material_with_color(color)) {}
+  Sphere(const Vec3& center_, Real radius_, const Material& m) : SceneObject(m), center(center_), radius(radius_) {}
+  void compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const override;
+
+  Vec3 center;
+  Real radius;
+};
+
+// The plane N·p = d (N need not be unit length; it is normalised, and d scaled with it).
+class Plane : public SceneObject {
+ public:
+  Plane(const Vec3& normal_, Real d, const Vec3& color) : Plane(normal_, d, material_with_color(color)) {}
+  Plane(const Vec3& normal_, Real d, const Material& m) : SceneObject(m), normal(normal_), distance(d) {}
+  void compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const override;
+
+  Vec3 normal;
+  Real distance;
+};
+
+// One triangle; its front face is the one from which v0 → v1 → v2 runs counter-clockwise.
+class Triangle : public SceneObject {
+ public:
+  Triangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& color) : Triangle(a, b, c, material_with_color(color)) {}
+  Triangle(const Vec3& a, const Vec3& b, const Vec3& c, const Material& m) : SceneObject(m), v0(a), v1(b), v2(c) {}
+  void compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const override;
+
+  Vec3 v0, v1, v2;
+};
+
+// A triangle mesh, placed by a transform. Degenerate (zero-area) faces are dropped at compile time.
+class Mesh : public SceneObject {
+ public:
+  Mesh(MeshData data_, const Material& m, const Transform& t = {}) : SceneObject(m), data(std::move(data_)), transform(t) {}
+  void compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const override;
+
+  MeshData data;
+  Transform transform;
+};
+
+inline Light point_light(const Vec3& position, const Vec3& color = Vec3(1), Real intensity = 1) {
+  Light l;
+  l.kind = LightKind::Point;
+  l.position = position;
+  l.radiance = color * intensity;
+  return l;
+}
+
+// `direction` is the way the light travels (from the light into the scene).
+inline Light directional_light(const Vec3& direction, const Vec3& color = Vec3(1), Real intensity = 1) {
+  Light l;
+  l.kind = LightKind::Directional;
+  l.direction = direction;
+  l.radiance = color * intensity;
+  return l;
+}
+
+// The lecture's camera: eye, look-at point and up vector give {u, v, w}; the image plane is
+// either a field of view (with the aspect ratio from the resolution) or explicit l, r, b, t, d.
+struct CameraDescription {
+  enum class FovAxis { Horizontal, Vertical };
+  Vec3 position{0, 0.8, 2.2};
+  Vec3 look_at{0, 0.25, 0};
+  Vec3 up{0, 1, 0};
+  Real fov_degrees = 50;
+  FovAxis fov_axis = FovAxis::Horizontal;
+  bool explicit_image_plane = false;
+  Real l = -1, r = 1, b = -1, t = 1, d = 1;
+  FileLoc loc;
+};
+
+struct RenderSettings {
+  int width = 1280;
+  int height = 720;
+  int max_depth = 8;
+  Real min_weight = 1e-3;
+  int supersample = 1;
+  Vec3 background{0};
+  Vec3 ambient_light{1};
+  Real medium_ior = 1;
+  FileLoc loc;
+};
+
+class Scene {
+ public:
+  Scene() = default;
+  Scene(Scene&&) = default;
+  Scene& operator=(Scene&&) = default;
+
+  // The lecture's API. The scene takes ownership of `object`.
+  void addSceneObject(SceneObject* object) { objects_.emplace_back(object); }
+  // A white point light of intensity 1.
+  void addLightSource(const Vec3& position) { add(point_light(position)); }
+  int getNumLightSources() const { return static_cast<int>(lights_.size()); }
+  Vec3 getLightSource(int i) const { return lights_.at(static_cast<std::size_t>(i)).position; }
+
+  // Value-type API.
+  template <std::derived_from<SceneObject> T>
+  T& add(T object) {
+    auto owned = std::make_unique<T>(std::move(object));
+    T& ref = *owned;
+    objects_.push_back(std::move(owned));
+    return ref;
+  }
+  void add(const Light& light, const FileLoc& loc = {}) {
+    lights_.push_back(light);
+    light_locs_.push_back(loc);
+  }
+
+  const std::vector<std::unique_ptr<SceneObject>>& objects() const { return objects_; }
+  const std::vector<Light>& lights() const { return lights_; }
+  const std::vector<FileLoc>& light_locs() const { return light_locs_; }
+
+  CameraDescription camera;
+  RenderSettings settings;
+
+ private:
+  std::vector<std::unique_ptr<SceneObject>> objects_;
+  std::vector<Light> lights_;
+  std::vector<FileLoc> light_locs_;
+};
+
+// Validates everything (throws strahl::Error with the location of the offending definition)
+// and builds the render-ready scene.
+RenderScene compile(const Scene& scene);
+
+// The lecture's scene (five spheres, a plane, one light) with the benchmark's camera and finish.
+Scene lecture_scene();
+
+}  // namespace strahl

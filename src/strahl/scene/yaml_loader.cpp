@@ -1,0 +1,334 @@
+// Reads YAML/JSON scene files into a Scene. Strict: unknown keys, wrong types and impossible
+// values are errors naming file:line:column of the offending node.
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <fstream>
+#include <initializer_list>
+#include <map>
+#include <sstream>
+#include <string_view>
+
+#include "strahl/scene/obj_loader.h"
+#include "strahl/scene/scene_file.h"
+#include "strahl/scene/validate.h"
+
+namespace strahl {
+namespace fs = std::filesystem;
+
+bool named_ior(const std::string& name, Real& ior) {
+  static const std::map<std::string, Real> kIors = {{"vacuum", 1.0},  {"air", 1.0003},    {"water", 1.333},
+                                                    {"ice", 1.31},    {"acrylic", 1.491}, {"glass", 1.5},
+                                                    {"diamond", 2.419}};
+  const auto it = kIors.find(name);
+  if (it == kIors.end()) return false;
+  ior = it->second;
+  return true;
+}
+
+namespace {
+
+using Keys = std::initializer_list<std::string_view>;
+
+class Reader {
+ public:
+  Reader(std::string name, fs::path base_dir) : name_(std::move(name)), base_dir_(std::move(base_dir)) {}
+
+  Scene read(const YAML::Node& root) {
+    Scene scene;
+    if (root.IsNull()) fail(root, "the scene file is empty");
+    map(root, "scene");
+    keys(root, {"camera", "render", "materials", "lights", "objects"}, "scene");
+    if (const YAML::Node n = root["render"]) render(n, scene.settings);
+    if (const YAML::Node n = root["camera"]) camera(n, scene.camera);
+    if (const YAML::Node n = root["materials"]) {
+      map(n, "materials");
+      for (const auto& kv : n) materials_[scalar(kv.first, "material name")] = material(kv.second);
+    }
+    if (const YAML::Node n = root["lights"]) {
+      sequence(n, "lights");
+      for (const YAML::Node& l : n) light(l, scene);
+    }
+    if (const YAML::Node n = root["objects"]) {
+      sequence(n, "objects");
+      for (const YAML::Node& o : n) object(o, scene);
+    }
+    if (scene.objects().empty()) fail(root, "the scene has no objects");
+    return scene;
+  }
+
+ private:
+  FileLoc loc(const YAML::Node& n) const {
+    const YAML::Mark m = n.Mark();
+    return FileLoc{name_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0};
+  }
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& message) const { throw Error(loc(n), message); }
+
+  void map(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsMap()) fail(n, what + " must be a map of keys to values");
+  }
+  void sequence(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsSequence()) fail(n, what + " must be a list");
+  }
+  void keys(const YAML::Node& n, Keys allowed, const std::string& what) const {
+    for (const auto& kv : n) {
+      const std::string key = kv.first.Scalar();
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        std::string list;
+        for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
+        fail(kv.first, "unknown key '" + key + "' in " + what + " (allowed: " + list + ")");
+      }
+    }
+  }
+  YAML::Node required(const YAML::Node& n, const char* key, const std::string& what) const {
+    const YAML::Node v = n[key];
+    if (!v) fail(n, what + " needs '" + key + "'");
+    return v;
+  }
+  std::string scalar(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsScalar()) fail(n, what + " must be a single value");
+    return n.Scalar();
+  }
+  Real number(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsScalar()) fail(n, what + " must be a number");
+    double v = 0;
+    if (!YAML::convert<double>::decode(n, v)) fail(n, what + " must be a number (got '" + n.Scalar() + "')");
+    if (!std::isfinite(v)) fail(n, what + " must be a finite number");
+    return v;
+  }
+  int integer(const YAML::Node& n, const std::string& what, long lo, long hi) const {
+    if (!n.IsScalar()) fail(n, what + " must be a whole number");
+    long long v = 0;
+    if (!YAML::convert<long long>::decode(n, v)) fail(n, what + " must be a whole number (got '" + n.Scalar() + "')");
+    validate::int_range(static_cast<long>(std::clamp<long long>(v, -(1ll << 40), 1ll << 40)), lo, hi, loc(n), what);
+    return static_cast<int>(v);
+  }
+  bool boolean(const YAML::Node& n, const std::string& what) const {
+    bool v = false;
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) fail(n, what + " must be true or false");
+    return v;
+  }
+  Vec3 vec3(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsSequence() || n.size() != 3) fail(n, what + " must be a list of three numbers [x, y, z]");
+    return {number(n[0], what), number(n[1], what), number(n[2], what)};
+  }
+  // A colour: [r, g, b] or one number for grey; components must not be negative.
+  Vec3 color(const YAML::Node& n, const std::string& what) const {
+    const Vec3 c = n.IsScalar() ? Vec3(number(n, what)) : vec3(n, what);
+    validate::non_negative(c, loc(n), what);
+    return c;
+  }
+  Real non_negative(const YAML::Node& n, const std::string& what) const {
+    const Real v = number(n, what);
+    validate::non_negative(v, loc(n), what);
+    return v;
+  }
+  Real positive(const YAML::Node& n, const std::string& what) const {
+    const Real v = number(n, what);
+    validate::positive(v, loc(n), what);
+    return v;
+  }
+  Real unit(const YAML::Node& n, const std::string& what) const {
+    const Real v = number(n, what);
+    validate::in_range(v, 0, 1, loc(n), what);
+    return v;
+  }
+  Real ior(const YAML::Node& n) const {
+    Real v = 0;
+    if (n.IsScalar() && named_ior(n.Scalar(), v)) return v;
+    if (n.IsScalar() && !YAML::convert<double>::decode(n, v))
+      fail(n, "unknown ior '" + n.Scalar() + "' (a number or one of vacuum, air, water, ice, acrylic, glass, diamond)");
+    return positive(n, "ior");
+  }
+
+  void render(const YAML::Node& n, RenderSettings& s) const {
+    map(n, "render");
+    keys(n, {"width", "height", "max_depth", "min_weight", "supersample", "background", "ambient_light", "medium_ior"},
+         "render");
+    s.loc = loc(n);
+    if (const auto v = n["width"]) s.width = integer(v, "width", 1, 65536);
+    if (const auto v = n["height"]) s.height = integer(v, "height", 1, 65536);
+    if (const auto v = n["max_depth"]) s.max_depth = integer(v, "max_depth", 1, 64);
+    if (const auto v = n["min_weight"]) s.min_weight = unit(v, "min_weight");
+    if (const auto v = n["supersample"]) s.supersample = integer(v, "supersample", 1, 64);
+    if (const auto v = n["background"]) s.background = color(v, "background");
+    if (const auto v = n["ambient_light"]) s.ambient_light = color(v, "ambient_light");
+    if (const auto v = n["medium_ior"]) s.medium_ior = ior(v);
+  }
+
+  void camera(const YAML::Node& n, CameraDescription& c) const {
+    map(n, "camera");
+    keys(n, {"position", "look_at", "up", "fov", "fov_axis", "image_plane"}, "camera");
+    c.loc = loc(n);
+    if (const auto v = n["position"]) c.position = vec3(v, "camera position");
+    if (const auto v = n["look_at"]) c.look_at = vec3(v, "camera look_at");
+    if (const auto v = n["up"]) {
+      c.up = vec3(v, "camera up");
+      validate::non_zero(c.up, loc(v), "camera up");
+    }
+    if (const auto v = n["fov"]) {
+      c.fov_degrees = number(v, "fov");
+      if (!(c.fov_degrees > 0 && c.fov_degrees < 180)) fail(v, "fov must lie in (0, 180) degrees");
+    }
+    if (const auto v = n["fov_axis"]) {
+      const std::string axis = scalar(v, "fov_axis");
+      if (axis == "horizontal") c.fov_axis = CameraDescription::FovAxis::Horizontal;
+      else if (axis == "vertical") c.fov_axis = CameraDescription::FovAxis::Vertical;
+      else fail(v, "fov_axis must be 'horizontal' or 'vertical'");
+    }
+    if (const auto p = n["image_plane"]) {
+      if (n["fov"] || n["fov_axis"]) fail(p, "give either fov or image_plane, not both");
+      map(p, "image_plane");
+      keys(p, {"l", "r", "b", "t", "d"}, "image_plane");
+      c.explicit_image_plane = true;
+      c.l = number(required(p, "l", "image_plane"), "l");
+      c.r = number(required(p, "r", "image_plane"), "r");
+      c.b = number(required(p, "b", "image_plane"), "b");
+      c.t = number(required(p, "t", "image_plane"), "t");
+      c.d = positive(required(p, "d", "image_plane"), "d");
+      if (!(c.l < c.r)) fail(p, "image_plane needs l < r");
+      if (!(c.b < c.t)) fail(p, "image_plane needs b < t");
+    }
+    const Vec3 view = c.look_at - c.position;
+    if (length_squared(view) == 0) fail(n, "camera position and look_at coincide");
+    if (length_squared(cross(normalize(view), normalize(c.up))) < 1e-12)
+      fail(n, "camera up is parallel to the viewing direction");
+  }
+
+  Material material(const YAML::Node& n) const {
+    map(n, "material");
+    keys(n, {"color", "ambient", "diffuse", "specular", "shininess", "reflectivity", "transparency", "ior", "fresnel",
+             "filter", "checker"},
+         "material");
+    Material m;
+    if (const auto v = n["color"]) m.color = color(v, "color");
+    if (const auto v = n["ambient"]) m.ambient = non_negative(v, "ambient");
+    if (const auto v = n["diffuse"]) m.diffuse = non_negative(v, "diffuse");
+    if (const auto v = n["specular"]) m.specular = color(v, "specular");
+    if (const auto v = n["shininess"]) m.shininess = non_negative(v, "shininess");
+    if (const auto v = n["reflectivity"]) m.reflectivity = unit(v, "reflectivity");
+    if (const auto v = n["transparency"]) m.transparency = unit(v, "transparency");
+    if (const auto v = n["ior"]) m.ior = ior(v);
+    if (const auto v = n["fresnel"]) m.fresnel = boolean(v, "fresnel");
+    if (const auto v = n["filter"]) m.filter = boolean(v, "filter");
+    if (const auto c = n["checker"]) {
+      map(c, "checker");
+      keys(c, {"size", "color"}, "checker");
+      m.checker_size = positive(required(c, "size", "checker"), "checker size");
+      if (const auto v = c["color"]) m.checker_color = color(v, "checker color");
+    }
+    return m;
+  }
+
+  // `material: name` refers to the materials section; a map defines one in place.
+  Material object_material(const YAML::Node& object) const {
+    const YAML::Node n = object["material"];
+    if (!n) return Material{};
+    if (n.IsScalar()) {
+      const auto it = materials_.find(n.Scalar());
+      if (it == materials_.end()) fail(n, "unknown material '" + n.Scalar() + "'");
+      return it->second;
+    }
+    return material(n);
+  }
+
+  void light(const YAML::Node& n, Scene& scene) const {
+    map(n, "light");
+    const std::string type = scalar(required(n, "type", "light"), "light type");
+    const Vec3 c = n["color"] ? color(n["color"], "light color") : Vec3(1);
+    const Real intensity = n["intensity"] ? non_negative(n["intensity"], "intensity") : Real(1);
+    if (type == "point") {
+      keys(n, {"type", "position", "color", "intensity"}, "point light");
+      scene.add(point_light(vec3(required(n, "position", "point light"), "light position"), c, intensity), loc(n));
+    } else if (type == "directional") {
+      keys(n, {"type", "direction", "color", "intensity"}, "directional light");
+      const YAML::Node d = required(n, "direction", "directional light");
+      const Vec3 dir = vec3(d, "light direction");
+      validate::non_zero(dir, loc(d), "light direction");
+      scene.add(directional_light(dir, c, intensity), loc(n));
+    } else {
+      fail(n["type"], "unknown light type '" + type + "' (point or directional)");
+    }
+  }
+
+  void object(const YAML::Node& n, Scene& scene) const {
+    map(n, "object");
+    const std::string type = scalar(required(n, "type", "object"), "object type");
+    SceneObject* added = nullptr;
+    if (type == "sphere") {
+      keys(n, {"type", "center", "radius", "material"}, "sphere");
+      const Vec3 center = vec3(required(n, "center", "sphere"), "sphere center");
+      const Real radius = positive(required(n, "radius", "sphere"), "sphere radius");
+      added = &scene.add(Sphere(center, radius, object_material(n)));
+    } else if (type == "plane") {
+      keys(n, {"type", "normal", "distance", "material"}, "plane");
+      const YAML::Node nn = required(n, "normal", "plane");
+      const Vec3 normal = vec3(nn, "plane normal");
+      validate::non_zero(normal, loc(nn), "plane normal");
+      const Real distance = n["distance"] ? number(n["distance"], "plane distance") : Real(0);
+      added = &scene.add(Plane(normal, distance, object_material(n)));
+    } else if (type == "triangle") {
+      keys(n, {"type", "vertices", "material"}, "triangle");
+      const YAML::Node v = required(n, "vertices", "triangle");
+      if (!v.IsSequence() || v.size() != 3) fail(v, "triangle vertices must be a list of three points");
+      const Vec3 a = vec3(v[0], "vertex"), b = vec3(v[1], "vertex"), c = vec3(v[2], "vertex");
+      if (!(length_squared(cross(b - a, c - a)) > 0)) fail(v, "degenerate triangle (its vertices are collinear)");
+      added = &scene.add(Triangle(a, b, c, object_material(n)));
+    } else if (type == "mesh") {
+      keys(n, {"type", "file", "material", "scale", "rotate", "translate"}, "mesh");
+      const YAML::Node f = required(n, "file", "mesh");
+      const fs::path path = base_dir_ / scalar(f, "mesh file");
+      Transform t;
+      if (const auto v = n["scale"]) {
+        t.scale = v.IsScalar() ? Vec3(number(v, "scale")) : vec3(v, "scale");
+        if (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0) fail(v, "mesh scale must not be zero");
+      }
+      if (const auto v = n["rotate"]) t.rotate_degrees = vec3(v, "rotate");
+      if (const auto v = n["translate"]) t.translate = vec3(v, "translate");
+      const Material m = object_material(n);
+      MeshData data;
+      try {
+        data = load_obj(path);
+      } catch (const Error& e) {
+        fail(f, std::string("mesh: ") + e.what());
+      }
+      added = &scene.add(Mesh(std::move(data), m, t));
+    } else {
+      fail(n["type"], "unknown object type '" + type + "' (sphere, plane, triangle or mesh)");
+    }
+    added->loc = loc(n);
+  }
+
+  std::string name_;
+  fs::path base_dir_;
+  std::map<std::string, Material> materials_;
+};
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& name, const fs::path& base_dir) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw Error(FileLoc{name, e.mark.line + 1, e.mark.column + 1}, "syntax error: " + e.msg);
+  }
+  return Reader(name, base_dir).read(root);
+}
+
+Scene load_scene(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".yaml" && ext != ".yml" && ext != ".json")
+    throw Error(FileLoc{path.string()}, "unknown scene format '" + ext + "' (use .yaml, .yml or .json)");
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error(FileLoc{path.string()}, "is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(FileLoc{path.string()}, "cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path.string(), path.parent_path());
+}
+
+}  // namespace strahl

@@ -1,0 +1,38 @@
+#pragma once
+// The lecture's surface description: colour, ambient, Lambert diffuse, Blinn-Phong specular,
+// mirror reflection and transparency/refraction. Defaults are the finish of the benchmark scene
+// (POV-Ray `finish { ambient 0.1 diffuse 0.7 specular 0.6 roughness 0.01 }`).
+
+#include <cmath>
+
+#include "strahl/math/vec3.h"
+
+namespace strahl {
+
+struct Material {
+  Vec3 color{0.8, 0.8, 0.8};  // diffuse and ambient colour C
+  Real ambient = 0.1;         // k_a: ambient = k_a · C · ambient light
+  Real diffuse = 0.7;         // k_d: Lambert = k_d · C · max(0, N·L) · light
+  Vec3 specular{0.6};         // k_s (a colour): Blinn-Phong = k_s · max(0, N·H)^shininess · light
+  Real shininess = 100;       // Blinn-Phong exponent (the lecture uses 120; POV-Ray's 1/roughness)
+  Real reflectivity = 0;      // weight of the mirror ray, 0..1
+  Real transparency = 0;      // the lecture's 1 − α: weight of the refracted ray, 0..1
+  Real ior = 1;               // index of refraction of the object's interior
+  bool fresnel = false;       // Schlick: reflection grows towards grazing angles, refraction shrinks
+  bool filter = false;        // transmitted light (refraction and shadows) is tinted by `color`
+  // Procedural checkerboard: squares of `checker_size` alternating `color` and `checker_color`
+  // (0 = no checkerboard). Planes use their own 2D frame, other shapes a 3D (solid) checker.
+  Real checker_size = 0;
+  Vec3 checker_color{0.1};
+};
+
+// Colour C at a point with plane coordinates (u, v) or, for solids, position p.
+STRAHL_HOST_DEVICE inline Vec3 surface_color(const Material& m, const Vec3& texcoord) {
+  if (m.checker_size <= 0) return m.color;
+  const Real s = Real(1) / m.checker_size;
+  const long sum = static_cast<long>(std::floor(texcoord.x * s)) + static_cast<long>(std::floor(texcoord.y * s)) +
+                   static_cast<long>(std::floor(texcoord.z * s));
+  return (sum & 1) ? m.checker_color : m.color;
+}
+
+}  // namespace strahl
