@@ -38,6 +38,19 @@ STRAHL_HOST_DEVICE inline Real intersect(const Sphere& s, const Ray& ray, Real t
   return kInfinity;
 }
 
+// How many times the segment (t_min, t_max) of the ray crosses the sphere's surface: 0, 1 or 2.
+STRAHL_HOST_DEVICE inline int crossings(const Sphere& s, const Ray& ray, Real t_min, Real t_max) {
+  const Vec3 f = ray.origin - s.center;
+  const Real b = -dot(f, ray.direction);
+  const Vec3 l = f + ray.direction * b;
+  const Real r2 = s.radius * s.radius;
+  const Real discriminant = r2 - dot(l, l);
+  if (discriminant < 0) return 0;
+  const Real q = b + std::copysign(std::sqrt(discriminant), b);
+  const Real t0 = q != 0 ? (dot(f, f) - r2) / q : 0, t1 = q;
+  return int(t0 > t_min && t0 < t_max) + int(t1 > t_min && t1 < t_max);
+}
+
 // Outward unit normal at a surface point: (p − c)/R, as in the lecture.
 STRAHL_HOST_DEVICE inline Vec3 normal_at(const Sphere& s, const Vec3& p) { return (p - s.center) / s.radius; }
 

@@ -36,8 +36,9 @@ STRAHL_HOST_DEVICE inline Hit closest_hit(const SceneView& s, const Ray& ray, Re
   return hit;
 }
 
-// What an occluder lets through of the light: nothing when opaque, its transparency (tinted by
-// its colour when it filters) when transparent. Each object counts once, however thick it is.
+// What one crossing of an occluder's surface lets through of the light: nothing when opaque,
+// its transparency (tinted by its colour when it filters) when transparent. A shadow ray crossing
+// a sphere or a closed mesh passes two surfaces and is attenuated twice (as POV-Ray does).
 STRAHL_HOST_DEVICE inline bool attenuate(const Material& m, Vec3& transmittance) {
   if (m.transparency <= 0) return false;
   transmittance = transmittance * (m.filter ? m.color * m.transparency : Vec3(m.transparency));
@@ -45,13 +46,12 @@ STRAHL_HOST_DEVICE inline bool attenuate(const Material& m, Vec3& transmittance)
 }
 
 // Light reaching a point along a shadow ray of length `distance` (a unit ray towards the light):
-// 0 when an opaque object lies in between, the product of the occluders' transmittances otherwise.
+// 0 when an opaque surface lies in between, the product of the crossings' transmittances otherwise.
 STRAHL_HOST_DEVICE inline Vec3 transmittance(const SceneView& s, const Ray& ray, Real distance) {
   Vec3 tr{1};
   for (std::uint32_t i = 0; i < s.sphere_count; ++i) {
-    if (kernel::intersect(s.spheres[i], ray, 0, distance) < kInfinity &&
-        !attenuate(s.materials[s.spheres[i].material], tr))
-      return Vec3(0);
+    for (int k = kernel::crossings(s.spheres[i], ray, 0, distance); k > 0; --k)
+      if (!attenuate(s.materials[s.spheres[i].material], tr)) return Vec3(0);
   }
   for (std::uint32_t i = 0; i < s.plane_count; ++i) {
     if (kernel::intersect(s.planes[i], ray, 0, distance) < kInfinity &&
@@ -64,10 +64,9 @@ STRAHL_HOST_DEVICE inline Vec3 transmittance(const SceneView& s, const Ray& ray,
       const MeshRange& mesh = s.meshes[m];
       if (!hits(mesh.bounds, ray.origin, inv_dir, 0, distance)) continue;
       for (std::uint32_t i = mesh.first; i < mesh.first + mesh.count; ++i) {
-        if (kernel::intersect(s.triangles[i], ray, 0, distance).t < kInfinity) {
-          if (!attenuate(s.materials[s.triangles[i].material], tr)) return Vec3(0);
-          break;  // the mesh counts once
-        }
+        if (kernel::intersect(s.triangles[i], ray, 0, distance).t < kInfinity &&
+            !attenuate(s.materials[s.triangles[i].material], tr))
+          return Vec3(0);
       }
     }
   }
