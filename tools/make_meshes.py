@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""Writes the small example meshes under scenes/meshes/ (run once from the repository root):
+
+  torus.obj        a torus about the y axis (major radius 1, minor 0.35), 20 x 10 segments,
+                   400 triangles with vertex normals (smooth shading)
+  icosahedron.obj  a regular icosahedron of circumradius 1, 20 triangles, no normals (flat shading)
+
+Faces are wound counter-clockwise seen from outside, so their geometric normals point outwards."""
+import math
+
+
+def fix_winding(verts, faces, outward):
+    """Swaps two corners of every face whose winding disagrees with outward(face)."""
+    fixed = []
+    for f in faces:
+        a, b, c = (verts[i] for i in f)
+        e1 = [b[k] - a[k] for k in range(3)]
+        e2 = [c[k] - a[k] for k in range(3)]
+        n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+        o = outward(f)
+        fixed.append(f if sum(n[k] * o[k] for k in range(3)) > 0 else (f[0], f[2], f[1]))
+    return fixed
+
+
+def write(path, header, verts, faces, normals=None):
+    with open(path, "w") as out:
+        out.write("".join("# " + line + "\n" for line in header))
+        for v in verts:
+            out.write("v %.6f %.6f %.6f\n" % tuple(v))
+        for n in normals or []:
+            out.write("vn %.6f %.6f %.6f\n" % tuple(n))
+        for f in faces:
+            if normals:
+                out.write("f " + " ".join("%d//%d" % (i + 1, i + 1) for i in f) + "\n")
+            else:
+                out.write("f " + " ".join(str(i + 1) for i in f) + "\n")
+
+
+def torus(big_r=1.0, small_r=0.35, nu=20, nv=10):
+    verts, normals, faces = [], [], []
+    for i in range(nu):
+        u = 2 * math.pi * i / nu
+        for j in range(nv):
+            v = 2 * math.pi * j / nv
+            n = (math.cos(v) * math.cos(u), math.sin(v), math.cos(v) * math.sin(u))
+            verts.append(((big_r + small_r * math.cos(v)) * math.cos(u), small_r * math.sin(v),
+                          (big_r + small_r * math.cos(v)) * math.sin(u)))
+            normals.append(n)
+    idx = lambda i, j: (i % nu) * nv + (j % nv)
+    for i in range(nu):
+        for j in range(nv):
+            a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
+            faces += [(a, b, c), (a, c, d)]
+    outward = lambda f: [sum(normals[i][k] for i in f) for k in range(3)]
+    return verts, normals, fix_winding(verts, faces, outward)
+
+
+def icosahedron():
+    p = (1 + math.sqrt(5)) / 2
+    raw = [(-1, p, 0), (1, p, 0), (-1, -p, 0), (1, -p, 0), (0, -1, p), (0, 1, p),
+           (0, -1, -p), (0, 1, -p), (p, 0, -1), (p, 0, 1), (-p, 0, -1), (-p, 0, 1)]
+    s = 1 / math.sqrt(1 + p * p)
+    verts = [tuple(c * s for c in v) for v in raw]
+    # The 20 faces: vertex triples at the edge length (2 before scaling) from one another.
+    near = lambda a, b: abs(sum((verts[a][k] - verts[b][k]) ** 2 for k in range(3)) - 4 * s * s) < 1e-9
+    faces = [(a, b, c) for a in range(12) for b in range(a + 1, 12) for c in range(b + 1, 12)
+             if near(a, b) and near(b, c) and near(a, c)]
+    assert len(faces) == 20
+    outward = lambda f: [sum(verts[i][k] for i in f) for k in range(3)]
+    return verts, fix_winding(verts, faces, outward)
+
+
+if __name__ == "__main__":
+    v, n, f = torus()
+    write("scenes/meshes/torus.obj", ["torus about the y axis: major radius 1, minor radius 0.35, 20 x 10 segments,",
+                                      "%d triangles with vertex normals (written by tools/make_meshes.py)" % len(f)],
+          v, f, n)
+    v, f = icosahedron()
+    write("scenes/meshes/icosahedron.obj", ["regular icosahedron, circumradius 1, 20 triangles, no normals",
+                                            "(flat shaded; written by tools/make_meshes.py)"], v, f)
