@@ -6,6 +6,9 @@ if(STRAHL_WERROR)
 endif()
 
 add_library(strahl_optimise INTERFACE)
+# Nothing reads errno after maths calls; without it sqrt() needs no libm call for negative
+# arguments and loops over shapes vectorise.
+target_compile_options(strahl_optimise INTERFACE -fno-math-errno)
 if(STRAHL_NATIVE)
   target_compile_options(strahl_optimise INTERFACE -march=native)
 endif()

@@ -7,6 +7,8 @@
 #include <ImfOutputFile.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -34,12 +36,18 @@ std::string lower_extension(const fs::path& path) {
   return ext;
 }
 
+// 8-bit encoding, in parallel: the sRGB curve costs a pow per channel (~0.1 s at 1080p).
 std::vector<unsigned char> to_bytes(const Image& image, bool linear) {
-  std::vector<unsigned char> bytes;
-  bytes.reserve(image.pixels().size() * 3);
-  for (const Rgb& p : image.pixels()) {
-    for (float v : {p.r, p.g, p.b}) bytes.push_back(to_byte(linear ? v : linear_to_srgb(v)));
-  }
+  const std::vector<Rgb>& pixels = image.pixels();
+  std::vector<unsigned char> bytes(pixels.size() * 3);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pixels.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Rgb& p = pixels[i];
+      bytes[3 * i + 0] = to_byte(linear ? p.r : linear_to_srgb(p.r));
+      bytes[3 * i + 1] = to_byte(linear ? p.g : linear_to_srgb(p.g));
+      bytes[3 * i + 2] = to_byte(linear ? p.b : linear_to_srgb(p.b));
+    }
+  });
   return bytes;
 }
 
@@ -89,6 +97,7 @@ void write_by_extension(const Image& image, const fs::path& path, const std::str
   if (ext == ".ppm") return write_ppm(image, path, linear);
   const std::vector<unsigned char> bytes = to_bytes(image, linear);
   int ok = 0;
+  stbi_write_png_compression_level = 4;  // stb's default (8) costs twice the time for ~5% smaller files
   if (ext == ".png") ok = stbi_write_png(path.c_str(), image.width(), image.height(), 3, bytes.data(), image.width() * 3);
   if (ext == ".jpg" || ext == ".jpeg") ok = stbi_write_jpg(path.c_str(), image.width(), image.height(), 3, bytes.data(), 95);
   if (!ok) throw Error(path.string() + ": cannot write");
