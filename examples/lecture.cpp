@@ -4,10 +4,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "strahl/image/image_io.h"
-#include "strahl/render/render_scene.h"
-#include "strahl/render/renderer.h"
-#include "strahl/scene/scene.h"
+#include "strahl/strahl.h"
 
 using namespace strahl;
 

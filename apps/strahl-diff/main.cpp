@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "usage: strahl-diff IMAGE_A IMAGE_B [DIFF_IMAGE]\n");
     return 1;
   }
+  if (argc == 4 && !strahl::is_supported_image_extension(argv[3])) {
+    fmt::print(stderr, "strahl-diff: error: {}: unknown image format\n", argv[3]);
+    return 1;
+  }
   try {
     const strahl::Image a = clamped(strahl::read_image(argv[1])), b = clamped(strahl::read_image(argv[2]));
     const double e = strahl::rmse(a, b);
@@ -44,7 +48,7 @@ int main(int argc, char** argv) {
     fmt::print("rmse {:.3e}  psnr {:.2f} dB  max {:.4f}  pixels differing by more than 1/255: {} of {}\n", e,
                strahl::psnr(a, b), worst, over, a.pixels().size());
     if (argc == 4) strahl::write_image(diff, argv[3], {true});
-  } catch (const strahl::Error& err) {
+  } catch (const std::exception& err) {
     fmt::print(stderr, "strahl-diff: error: {}\n", err.what());
     return 2;
   }

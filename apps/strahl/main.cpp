@@ -28,7 +28,7 @@ int run(const strahl::cli::Options& o) {
   const std::string output =
       !o.output.empty() ? o.output : (o.scene.empty() ? "lecture" : fs::path(o.scene).stem().string()) + ".png";
   if (!is_supported_image_extension(output))
-    throw Error(output + ": unknown image format (use .png, .jpg, .ppm, .pfm or .exr)");
+    throw Error(output + ": unknown image format (use .png, .jpg/.jpeg, .ppm, .pfm or .exr)");
 
   auto t = std::chrono::steady_clock::now();
   Scene scene = o.scene.empty() ? lecture_scene() : load_scene(o.scene);

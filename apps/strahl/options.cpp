@@ -11,7 +11,7 @@ ParseResult parse_options(int argc, char** argv) {
                "strahl"};
   app.add_option("scene", o.scene, "Scene file (.yaml, .yml, .json); omitted: the built-in lecture scene");
   app.add_option("-o,--output", o.output,
-                 "Output image; the format follows the extension: .png .jpg .ppm (8-bit sRGB), .pfm .exr (linear "
+                 "Output image; the format follows the extension: .png .jpg/.jpeg .ppm (8-bit sRGB), .pfm .exr (linear "
                  "float). Default: <scene>.png");
   app.add_option("--width", o.width, "Image width in pixels (overrides the scene)")->check(CLI::Range(1, 65536));
   app.add_option("--height", o.height, "Image height in pixels (overrides the scene)")->check(CLI::Range(1, 65536));

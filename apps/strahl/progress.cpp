@@ -28,7 +28,6 @@ void Progress::update(long done, long total) {
     bar.resize(kWidth, ' ');
     fmt::print(stderr, "\r[{}] {:5.1f}%  {:.1f} s elapsed, ETA {:.1f} s ", bar, 100 * fraction, elapsed, eta);
     std::fflush(stderr);
-    drawn_ = true;
   } else {
     const int decile = int(fraction * 10);
     if (decile <= last_decile_) return;
@@ -39,7 +38,14 @@ void Progress::update(long done, long total) {
 
 void Progress::finish() {
   std::lock_guard lock(mutex_);
-  if (enabled_ && terminal_ && drawn_) fmt::print(stderr, "\n");
+  if (!enabled_) return;
+  // Updates skipped while another thread held the lock may include the last one: end at 100%.
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (terminal_) {
+    fmt::print(stderr, "\r[{}] 100.0%  {:.1f} s elapsed, ETA 0.0 s \n", std::string(40, '='), elapsed);
+  } else if (last_decile_ < 10) {
+    fmt::print(stderr, "rendering: 100%  {:.1f} s elapsed, ETA 0.0 s\n", elapsed);
+  }
 }
 
 }  // namespace strahl::cli

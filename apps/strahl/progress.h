@@ -19,7 +19,6 @@ class Progress {
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_draw_;
   int last_decile_ = 0;  // the first line comes at 10%
-  bool drawn_ = false;
 };
 
 }  // namespace strahl::cli

@@ -170,7 +170,7 @@ bool is_supported_image_extension(const fs::path& path) {
 void write_image(const Image& image, const fs::path& path, const WriteOptions& options) {
   if (!is_supported_image_extension(path))
     throw Error(path.string() + ": unknown image format '" + path.extension().string() +
-                "' (use .png, .jpg, .ppm, .pfm or .exr)");
+                "' (use .png, .jpg/.jpeg, .ppm, .pfm or .exr)");
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw Error(path.string() + ": directory '" + dir.string() + "' does not exist");

@@ -1,7 +1,6 @@
 #pragma once
 // Axis-aligned bounding box and the slab test.
 
-#include <algorithm>
 #include <cmath>
 
 #include "strahl/math/ray.h"
@@ -20,7 +19,7 @@ STRAHL_HOST_DEVICE inline bool hits(const Bounds& b, const Vec3& origin, const V
   for (int a = 0; a < 3; ++a) {
     Real t0 = (b.lo[a] - origin[a]) * inv_dir[a];
     Real t1 = (b.hi[a] - origin[a]) * inv_dir[a];
-    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > t1) { const Real tmp = t0; t0 = t1; t1 = tmp; }
     t_min = t0 > t_min ? t0 : t_min;  // NaN (0·inf) keeps the old bound
     t_max = t1 < t_max ? t1 : t_max;
     if (t_min > t_max) return false;

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <utility>
 
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/scene.h"
@@ -114,8 +115,15 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
     validate::finite(data.positions[i], loc, "mesh vertex");
     positions[i] = m * data.positions[i] + transform.translate;
   }
+  // A mirroring transform (negative determinant) would turn the faces inside out: swap two
+  // vertices of each face so that front faces stay outside.
+  const bool mirrored = m.determinant() < 0;
   const auto first = static_cast<std::uint32_t>(out.triangles.size());
-  for (const MeshData::Face& f : data.faces) {
+  for (MeshData::Face f : data.faces) {
+    if (mirrored) {
+      std::swap(f.v[1], f.v[2]);
+      std::swap(f.n[1], f.n[2]);
+    }
     for (std::uint32_t v : f.v)
       if (v >= positions.size()) throw Error(loc, "mesh face refers to a vertex that does not exist");
     std::int32_t normals = -1;

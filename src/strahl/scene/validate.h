@@ -3,12 +3,20 @@
 // at the offending value's line and column). Each throws strahl::Error.
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "strahl/shading/material.h"
 #include "strahl/util/error.h"
 
 namespace strahl::validate {
+
+// Shortest readable form of a number for messages: 0.5, -1, 1e+06.
+inline std::string str(Real v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
 
 inline void finite(Real v, const FileLoc& loc, const std::string& what) {
   if (!std::isfinite(v)) throw Error(loc, what + " must be a finite number");
@@ -18,17 +26,17 @@ inline void finite(const Vec3& v, const FileLoc& loc, const std::string& what) {
 }
 inline void positive(Real v, const FileLoc& loc, const std::string& what) {
   finite(v, loc, what);
-  if (!(v > 0)) throw Error(loc, what + " must be positive (got " + std::to_string(v) + ")");
+  if (!(v > 0)) throw Error(loc, what + " must be positive (got " + str(v) + ")");
 }
 inline void non_negative(Real v, const FileLoc& loc, const std::string& what) {
   finite(v, loc, what);
-  if (v < 0) throw Error(loc, what + " must not be negative (got " + std::to_string(v) + ")");
+  if (v < 0) throw Error(loc, what + " must not be negative (got " + str(v) + ")");
 }
 inline void in_range(Real v, Real lo, Real hi, const FileLoc& loc, const std::string& what) {
   finite(v, loc, what);
   if (v < lo || v > hi)
-    throw Error(loc, what + " must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
-                         std::to_string(v) + ")");
+    throw Error(loc, what + " must lie in [" + str(lo) + ", " + str(hi) + "] (got " +
+                         str(v) + ")");
 }
 inline void non_negative(const Vec3& v, const FileLoc& loc, const std::string& what) {
   finite(v, loc, what);
@@ -40,8 +48,8 @@ inline void non_zero(const Vec3& v, const FileLoc& loc, const std::string& what)
 }
 inline void int_range(long v, long lo, long hi, const FileLoc& loc, const std::string& what) {
   if (v < lo || v > hi)
-    throw Error(loc, what + " must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
-                         std::to_string(v) + ")");
+    throw Error(loc, what + " must lie in [" + str(lo) + ", " + str(hi) + "] (got " +
+                         str(v) + ")");
 }
 
 inline void material(const Material& m, const FileLoc& loc) {

@@ -1,0 +1,9 @@
+#pragma once
+// Everything a program using strahl as a library needs: the scene API, compile(), render() and
+// image output.
+
+#include "strahl/image/image_io.h"
+#include "strahl/render/render_scene.h"
+#include "strahl/render/renderer.h"
+#include "strahl/scene/scene.h"
+#include "strahl/scene/scene_file.h"
