@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/scene_file.h"
@@ -44,7 +45,11 @@ class Reader {
     if (const YAML::Node n = root["camera"]) camera(n, scene.camera);
     if (const YAML::Node n = root["materials"]) {
       map(n, "materials");
-      for (const auto& kv : n) materials_[scalar(kv.first, "material name")] = material(kv.second);
+      for (const auto& kv : n) {
+        const std::string name = scalar(kv.first, "material name");
+        if (materials_.count(name)) fail(kv.first, "material '" + name + "' is defined twice");
+        materials_[name] = material(kv.second);
+      }
     }
     if (const YAML::Node n = root["lights"]) {
       sequence(n, "lights");
@@ -72,8 +77,12 @@ class Reader {
     if (!n.IsSequence()) fail(n, what + " must be a list");
   }
   void keys(const YAML::Node& n, Keys allowed, const std::string& what) const {
+    std::vector<std::string> seen;
     for (const auto& kv : n) {
       const std::string key = kv.first.Scalar();
+      // yaml-cpp keeps the first of repeated keys; a repeated key is almost always a mistake.
+      if (std::find(seen.begin(), seen.end(), key) != seen.end()) fail(kv.first, "repeated key '" + key + "' in " + what);
+      seen.push_back(key);
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
         std::string list;
         for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
