@@ -36,6 +36,7 @@ int run(const strahl::cli::Options& o) {
   if (o.height) scene.settings.height = *o.height;
   if (o.max_depth) scene.settings.max_depth = *o.max_depth;
   if (o.supersample) scene.settings.supersample = *o.supersample;
+  if (o.accel) scene.settings.accel = *accel_from_name(*o.accel);
   timings.load = seconds_since(t);
 
   t = std::chrono::steady_clock::now();
@@ -56,7 +57,7 @@ int run(const strahl::cli::Options& o) {
   if (!o.quiet) {
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
     fmt::print("{}", cli::summary(output, image.width(), image.height(), render_scene.supersample, threads, timings,
-                                  stats));
+                                  stats, render_scene));
   }
   return 0;
 }

@@ -2,7 +2,17 @@
 
 #include <CLI/CLI.hpp>
 
+#include "strahl/accel/accel.h"
+
 namespace strahl::cli {
+
+namespace {
+std::vector<std::string> accel_list() {
+  std::vector<std::string> names;
+  for (AccelKind k : {AccelKind::Naive, AccelKind::Bvh}) names.emplace_back(accel_name(k));
+  return names;
+}
+}  // namespace
 
 ParseResult parse_options(int argc, char** argv) {
   Options o;
@@ -19,6 +29,8 @@ ParseResult parse_options(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   app.add_option("--supersample", o.supersample, "N×N regular samples per pixel, box filter (default 1)")
       ->check(CLI::Range(1, 64));
+  app.add_option("--accel", o.accel, "Acceleration structure: " + accel_names() + " (default bvh)")
+      ->check(CLI::IsMember(accel_list()));
   app.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   app.add_option("--tile-size", o.tile_size, "Tile side in pixels (default 32)")->check(CLI::Range(1, 4096));
   app.add_flag("--linear", o.linear, "Store linear values in 8-bit images instead of sRGB (as POV-Ray's File_Gamma=1.0)");

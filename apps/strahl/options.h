@@ -10,6 +10,7 @@ struct Options {
   std::string scene;   // empty: the built-in lecture scene
   std::string output;  // empty: <scene name>.png in the current directory
   std::optional<int> width, height, max_depth, supersample;
+  std::optional<std::string> accel;
   int threads = 0;
   int tile_size = 32;
   bool linear = false;

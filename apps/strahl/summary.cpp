@@ -5,12 +5,19 @@
 namespace strahl::cli {
 
 std::string summary(const std::string& output, int width, int height, int supersample, int threads,
-                    const Timings& t, const RenderStats& s) {
+                    const Timings& t, const RenderStats& s, const RenderScene& scene) {
   const RayCounters& r = s.rays;
   const double mrays = t.render > 0 ? double(r.total()) / t.render * 1e-6 : 0;
   std::string out;
   out += fmt::format("image       {} ({}x{}, {}x{} samples per pixel, {} threads)\n", output, width, height,
                      supersample, supersample, threads);
+  const AccelBuildStats& a = scene.accel.stats;
+  out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} lights\n", scene.spheres.size(),
+                     scene.planes.size(), scene.triangles.size(), scene.lights.size());
+  out += fmt::format("accel       {}: {} nodes, {} leaves, depth {}, {:.1f} MiB ({:.1f} bytes per primitive), "
+                     "built in {:.3f} s\n",
+                     accel_name(scene.accel.kind), a.nodes, a.leaves, a.max_depth, double(a.bytes) / (1 << 20),
+                     a.primitives > 0 ? double(a.bytes) / double(a.primitives) : 0.0, a.seconds);
   out += fmt::format("time        load {:.3f} s, build {:.3f} s, render {:.3f} s, write {:.3f} s\n", t.load, t.build,
                      t.render, t.write);
   out += fmt::format("rays        {} total: {} camera, {} shadow, {} reflection, {} refraction\n", r.total(), r.camera,

@@ -12,6 +12,6 @@ struct Timings {
 };
 
 std::string summary(const std::string& output, int width, int height, int supersample, int threads,
-                    const Timings& t, const RenderStats& stats);
+                    const Timings& t, const RenderStats& stats, const RenderScene& scene);
 
 }  // namespace strahl::cli

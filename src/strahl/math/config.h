@@ -9,6 +9,15 @@
 #define STRAHL_HOST_DEVICE
 #endif
 
+// For the few hot kernel functions the compiler declines to inline on its own (traversals).
+#if defined(__CUDACC__)
+#define STRAHL_FORCE_INLINE __forceinline__
+#elif defined(__GNUC__)
+#define STRAHL_FORCE_INLINE inline __attribute__((always_inline))
+#else
+#define STRAHL_FORCE_INLINE inline
+#endif
+
 namespace strahl {
 
 // Radiance, geometry and ray parameters use this type everywhere; double keeps

@@ -13,12 +13,17 @@ struct RenderScene {
   std::vector<kernel::Plane> planes;
   std::vector<kernel::Triangle> triangles;
   std::vector<kernel::VertexNormals> vertex_normals;
-  std::vector<MeshRange> meshes;
+  Accel accel;  // built by compile() over spheres and triangles
   std::vector<Material> materials;
   std::vector<Light> lights;
   Camera camera;
   TraceSettings settings;
   int supersample = 1;  // N×N regular samples per pixel
+
+  PrimitiveSet primitives() const {
+    return {spheres.data(), static_cast<std::uint32_t>(spheres.size()), triangles.data(),
+            static_cast<std::uint32_t>(triangles.size())};
+  }
 
   SceneView view() const {
     SceneView v;
@@ -27,9 +32,9 @@ struct RenderScene {
     v.planes = planes.data();
     v.plane_count = static_cast<std::uint32_t>(planes.size());
     v.triangles = triangles.data();
+    v.triangle_count = static_cast<std::uint32_t>(triangles.size());
     v.vertex_normals = vertex_normals.data();
-    v.meshes = meshes.data();
-    v.mesh_count = static_cast<std::uint32_t>(meshes.size());
+    v.accel = accel.view(primitives());
     v.materials = materials.data();
     v.lights = lights.data();
     v.light_count = static_cast<std::uint32_t>(lights.size());

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "strahl/accel/accel.h"
 #include "strahl/camera/camera.h"
 #include "strahl/geometry/plane.h"
 #include "strahl/geometry/sphere.h"
@@ -13,12 +14,6 @@
 #include "strahl/shading/material.h"
 
 namespace strahl {
-
-// A triangle mesh's share of the triangle array, with its bounds for a quick rejection.
-struct MeshRange {
-  Bounds bounds;
-  std::uint32_t first = 0, count = 0;
-};
 
 struct TraceSettings {
   int max_depth = 8;          // camera rays are depth 1 (POV-Ray's max_trace_level)
@@ -34,9 +29,9 @@ struct SceneView {
   const kernel::Plane* planes = nullptr;
   std::uint32_t plane_count = 0;
   const kernel::Triangle* triangles = nullptr;
+  std::uint32_t triangle_count = 0;
   const kernel::VertexNormals* vertex_normals = nullptr;
-  const MeshRange* meshes = nullptr;
-  std::uint32_t mesh_count = 0;
+  AccelView accel;  // over spheres and triangles; planes are tested one by one
   const Material* materials = nullptr;
   const Light* lights = nullptr;
   std::uint32_t light_count = 0;

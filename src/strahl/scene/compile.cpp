@@ -79,28 +79,14 @@ bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c
   out.triangles.push_back({a, e1, e2, material, normals, object_id});
   return true;
 }
-void add_mesh_range(RenderScene& out, std::uint32_t first) {
-  MeshRange range;
-  range.first = first;
-  range.count = static_cast<std::uint32_t>(out.triangles.size()) - first;
-  for (std::uint32_t i = range.first; i < range.first + range.count; ++i) {
-    const kernel::Triangle& t = out.triangles[i];
-    range.bounds.extend(t.v0);
-    range.bounds.extend(t.v0 + t.e1);
-    range.bounds.extend(t.v0 + t.e2);
-  }
-  if (range.count > 0) out.meshes.push_back(range);
-}
 }  // namespace
 
 void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
   validate::finite(v0, loc, "triangle vertex");
   validate::finite(v1, loc, "triangle vertex");
   validate::finite(v2, loc, "triangle vertex");
-  const auto first = static_cast<std::uint32_t>(out.triangles.size());
   if (!push_triangle(out, v0, v1, v2, material_index, -1, object_id))
     throw Error(loc, "degenerate triangle (its vertices are collinear)");
-  add_mesh_range(out, first);
 }
 
 void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
@@ -118,7 +104,6 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   // A mirroring transform (negative determinant) would turn the faces inside out: swap two
   // vertices of each face so that front faces stay outside.
   const bool mirrored = m.determinant() < 0;
-  const auto first = static_cast<std::uint32_t>(out.triangles.size());
   for (MeshData::Face f : data.faces) {
     if (mirrored) {
       std::swap(f.v[1], f.v[2]);
@@ -142,7 +127,6 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
         normals >= 0)
       out.vertex_normals.pop_back();
   }
-  add_mesh_range(out, first);
 }
 
 RenderScene compile(const Scene& scene) {
@@ -182,6 +166,7 @@ RenderScene compile(const Scene& scene) {
     }
     out.lights.push_back(light);
   }
+  out.accel = build_accel(s.accel, out.primitives());
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "strahl/accel/accel.h"
 #include "strahl/math/transform.h"
 #include "strahl/scene/mesh_data.h"
 #include "strahl/shading/light.h"
@@ -125,6 +126,7 @@ struct RenderSettings {
   Vec3 background{0};
   Vec3 ambient_light{1};
   Real medium_ior = 1;
+  AccelKind accel = AccelKind::Bvh;
   FileLoc loc;
 };
 

@@ -153,7 +153,8 @@ class Reader {
 
   void render(const YAML::Node& n, RenderSettings& s) const {
     map(n, "render");
-    keys(n, {"width", "height", "max_depth", "min_weight", "supersample", "background", "ambient_light", "medium_ior"},
+    keys(n, {"width", "height", "max_depth", "min_weight", "supersample", "background", "ambient_light", "medium_ior",
+             "accel"},
          "render");
     s.loc = loc(n);
     if (const auto v = n["width"]) s.width = integer(v, "width", 1, 65536);
@@ -164,6 +165,11 @@ class Reader {
     if (const auto v = n["background"]) s.background = color(v, "background");
     if (const auto v = n["ambient_light"]) s.ambient_light = color(v, "ambient_light");
     if (const auto v = n["medium_ior"]) s.medium_ior = ior(v);
+    if (const auto v = n["accel"]) {
+      const std::optional<AccelKind> kind = accel_from_name(scalar(v, "accel"));
+      if (!kind) fail(v, "unknown accel '" + v.Scalar() + "' (" + accel_names() + ")");
+      s.accel = *kind;
+    }
   }
 
   void camera(const YAML::Node& n, CameraDescription& c) const {

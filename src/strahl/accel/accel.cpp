@@ -1,0 +1,49 @@
+#include "strahl/accel/accel.h"
+
+#include <array>
+#include <chrono>
+
+namespace strahl {
+
+namespace {
+constexpr std::array<std::pair<AccelKind, std::string_view>, 2> kNames = {{
+    {AccelKind::Naive, "naive"},
+    {AccelKind::Bvh, "bvh"},
+}};
+}  // namespace
+
+std::string_view accel_name(AccelKind kind) {
+  for (const auto& [k, name] : kNames)
+    if (k == kind) return name;
+  return "?";
+}
+
+std::optional<AccelKind> accel_from_name(std::string_view name) {
+  for (const auto& [k, n] : kNames)
+    if (n == name) return k;
+  return std::nullopt;
+}
+
+std::string accel_names() {
+  std::string out;
+  for (const auto& [k, name] : kNames) out += (out.empty() ? "" : ", ") + std::string(name);
+  return out;
+}
+
+Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
+  Accel a;
+  a.kind = kind;
+  const auto start = std::chrono::steady_clock::now();
+  switch (kind) {
+    case AccelKind::Naive: {
+      a.stats.primitives = a.stats.primitive_references = prims.size();
+      a.stats.nodes = a.stats.leaves = prims.size() > 0 ? 1 : 0;
+      break;
+    }
+    case AccelKind::Bvh: a.bvh = build_bvh(prims, &a.stats); break;
+  }
+  a.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return a;
+}
+
+}  // namespace strahl

@@ -1,0 +1,103 @@
+#pragma once
+// The interchangeable acceleration structures over a scene's bounded primitives (spheres and
+// triangles): the lecture's naive loop, a BVH (default), a kd-tree and an octree. Kernel code
+// dispatches on AccelKind with a switch; each structure has one traversal (see traversal.h) that
+// every query — nearest hit, any hit, shadow transmittance — runs through.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "strahl/accel/build_stats.h"
+#include "strahl/accel/bvh.h"
+#include "strahl/accel/naive.h"
+
+namespace strahl {
+
+enum class AccelKind : std::uint8_t { Naive, Bvh };
+
+std::string_view accel_name(AccelKind kind);
+std::optional<AccelKind> accel_from_name(std::string_view name);
+// "naive, bvh" — for messages and --help.
+std::string accel_names();
+
+// What kernels read: the kind and the plain-data view of the structure built.
+struct AccelView {
+  AccelKind kind = AccelKind::Bvh;
+  PrimitiveSet prims;
+  BvhView bvh;
+};
+
+// Owns whichever structure was built.
+// Owns whichever structure was built. It holds primitive indices, not pointers, so the scene that
+// owns both may be moved or copied.
+struct Accel {
+  AccelKind kind = AccelKind::Bvh;
+  Bvh bvh;
+  AccelBuildStats stats;
+
+  AccelView view(const PrimitiveSet& prims) const { return {kind, prims, bvh.view()}; }
+};
+
+Accel build_accel(AccelKind kind, const PrimitiveSet& prims);
+
+template <class Visitor>
+STRAHL_HOST_DEVICE inline void traverse(const AccelView& a, const Ray& ray, Real t_min, Real t_max, Visitor& visit) {
+  switch (a.kind) {
+    case AccelKind::Naive: traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit); break;
+    case AccelKind::Bvh: traverse(a.bvh, ray, t_min, t_max, visit); break;
+  }
+}
+
+// ---- the queries, as visitors ----
+
+// Nearest hit: primitive and t (and barycentrics for triangles).
+struct NearestHit {
+  std::uint32_t prim = 0;
+  kernel::TriangleHit hit;  // t = kInfinity: none
+};
+
+STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+  NearestHit result;
+  auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
+    const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, t_min, t_far);
+    if (h.t < t_far) {
+      t_far = h.t;
+      result.prim = prim;
+      result.hit = h;
+    }
+    return false;
+  };
+  traverse(a, ray, t_min, t_max, visit);
+  return result;
+}
+
+// Any hit in (t_min, t_max)? Stops at the first one found.
+STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+  bool found = false;
+  auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
+    found = intersect_primitive(a.prims, prim, ray, t_min, t_far).t < kInfinity;
+    return found;
+  };
+  traverse(a, ray, t_min, t_max, visit);
+  return found;
+}
+
+// Every surface crossing in (t_min, t_max): calls cross(prim, crossings) and stops when it returns
+// true. Crossings are counted only inside the reporting leaf's interval, so a primitive listed in
+// several leaves is counted once.
+template <class Cross>
+STRAHL_HOST_DEVICE inline void for_each_crossing(const AccelView& a, const Ray& ray, Real t_min, Real t_max,
+                                                 Cross& cross) {
+  auto visit = [&](std::uint32_t prim, Real leaf_lo, Real leaf_hi, Real& t_far) {
+    const Real lo = leaf_lo > t_min ? leaf_lo : t_min;
+    const Real hi = leaf_hi < t_far ? leaf_hi : t_far;
+    if (!(lo < hi)) return false;
+    const int n = primitive_crossings(a.prims, prim, ray, lo, hi);
+    return n > 0 && cross(prim, n);
+  };
+  traverse(a, ray, t_min, t_max, visit);
+}
+
+}  // namespace strahl
