@@ -1,0 +1,155 @@
+// The `strahl` command line: exit codes 0 (rendered), 1 (usage error), 2 (scene or I/O error),
+// and an existing output image left untouched when a run fails.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "strahl/image/image_io.h"
+#include "strahl/scene/scene_file.h"
+#include "test_helpers.h"
+
+namespace strahl {
+namespace {
+
+const char* kGoodScene = R"(camera: {position: [0, 1, 3], look_at: [0, 0, 0], fov: 40}
+render: {width: 320, height: 240}
+lights:
+  - {type: point, position: [2, 3, 2]}
+objects:
+  - {type: plane, normal: [0, 1, 0], distance: -1}
+  - {type: sphere, center: [0, 0, 0], radius: 1, material: {color: [0.9, 0.2, 0.1]}}
+)";
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    test::write_text(dir_ / "scene.yaml", kGoodScene);
+    test::write_text(dir_ / "bad.yaml", "objects:\n  - {type: sphere, center: [0, 0, 0], radius: -1}\n");
+  }
+
+  // Runs the CLI in the temporary directory with `args`; returns its exit status.
+  int run(const std::string& args) {
+    const std::string command = "cd '" + dir_.path().string() + "' && '" STRAHL_CLI "' " + args + " > '" +
+                                (dir_ / "log.txt").string() + "' 2>&1";
+    const int status = std::system(command.c_str());
+    if (status == -1 || !WIFEXITED(status)) return -1;
+    return WEXITSTATUS(status);
+  }
+  std::string log() const { return test::read_text(dir_ / "log.txt"); }
+
+  test::TempDir dir_;
+};
+
+TEST_F(Cli, RendersASmallSceneAndExitsZero) {
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 -q -o out.png"), 0) << log();
+  ASSERT_TRUE(fs::exists(dir_ / "out.png"));
+  const Image img = read_image(dir_ / "out.png");
+  EXPECT_EQ(img.width(), 16);
+  EXPECT_EQ(img.height(), 12);
+  // The red sphere is in the middle of the picture.
+  const Rgb centre = img.at(8, 6);
+  EXPECT_GT(centre.r, centre.g);
+  EXPECT_GT(centre.r, 0.1f);
+}
+
+TEST_F(Cli, FloatOutputMatchesTheLibraryRender) {
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --supersample 2 -q -o out.pfm"), 0) << log();
+  Scene s = load_scene(dir_ / "scene.yaml");
+  s.settings.width = 16;
+  s.settings.height = 12;
+  s.settings.supersample = 2;
+  EXPECT_TRUE(read_image(dir_ / "out.pfm") == test::render_image(s));
+}
+
+TEST_F(Cli, RendersTheBuiltInLectureSceneWithoutAFile) {
+  ASSERT_EQ(run("--width 16 --height 9 --threads 2 -o lecture.ppm"), 0) << log();
+  EXPECT_TRUE(fs::exists(dir_ / "lecture.ppm"));
+  EXPECT_NE(log().find("rays"), std::string::npos) << "the summary is printed unless --quiet";
+}
+
+TEST_F(Cli, DefaultOutputNameFollowsTheScene) {
+  ASSERT_EQ(run("scene.yaml --width 8 --height 8 -q"), 0) << log();
+  EXPECT_TRUE(fs::exists(dir_ / "scene.png"));
+}
+
+TEST_F(Cli, HelpExitsZero) { EXPECT_EQ(run("--help"), 0) << log(); }
+
+TEST_F(Cli, UsageErrorsExitOne) {
+  EXPECT_EQ(run("scene.yaml --bogus -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --width 0 -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --width -5 -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --width abc -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --height 0 -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --max-depth 0 -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --supersample 0 -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --threads 0 -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --tile-size 0 -o out.png"), 1) << log();
+  EXPECT_EQ(run("scene.yaml other.yaml -o out.png"), 1) << log();
+  EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+}
+
+TEST_F(Cli, AccelerationStructureOption) {
+  ASSERT_EQ(run("scene.yaml --width 12 --height 8 --accel naive -q -o naive.pfm"), 0) << log();
+  ASSERT_EQ(run("scene.yaml --width 12 --height 8 --accel bvh -q -o bvh.pfm"), 0) << log();
+  EXPECT_TRUE(read_image(dir_ / "naive.pfm") == read_image(dir_ / "bvh.pfm"));
+  EXPECT_EQ(run("scene.yaml --width 12 --height 8 --accel octopus -q -o x.pfm"), 1) << log();
+  EXPECT_FALSE(fs::exists(dir_ / "x.pfm"));
+}
+
+TEST_F(Cli, MissingSceneFileExitsTwo) {
+  EXPECT_EQ(run("absent.yaml --width 8 --height 8 -o out.png"), 2) << log();
+  EXPECT_NE(log().find("absent.yaml"), std::string::npos) << log();
+  EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+}
+
+TEST_F(Cli, BadSceneExitsTwoAndNamesTheLocation) {
+  EXPECT_EQ(run("bad.yaml --width 8 --height 8 -o out.png"), 2) << log();
+  EXPECT_NE(log().find("bad.yaml:2:"), std::string::npos) << log();
+  EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+}
+
+TEST_F(Cli, YamlSyntaxErrorExitsTwo) {
+  test::write_text(dir_ / "broken.yaml", "objects: [ {type: sphere\n");
+  EXPECT_EQ(run("broken.yaml --width 8 --height 8 -o out.png"), 2) << log();
+}
+
+TEST_F(Cli, UnknownOutputExtensionExitsTwo) {
+  EXPECT_EQ(run("scene.yaml --width 8 --height 8 -o out.xyz"), 2) << log();
+  EXPECT_EQ(run("scene.yaml --width 8 --height 8 -o out"), 2) << log();
+  EXPECT_FALSE(fs::exists(dir_ / "out.xyz"));
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(Cli, UnwritableOutputDirectoryExitsTwo) {
+  EXPECT_EQ(run("scene.yaml --width 8 --height 8 -o no/such/dir/out.png"), 2) << log();
+  test::write_text(dir_ / "plainfile", "x");
+  EXPECT_EQ(run("scene.yaml --width 8 --height 8 -o plainfile/out.png"), 2) << log();
+}
+
+TEST_F(Cli, FailedRunLeavesAnExistingImageUntouched) {
+  ASSERT_EQ(run("scene.yaml --width 8 --height 8 -q -o out.png"), 0) << log();
+  const std::string before = test::read_text(dir_ / "out.png");
+  ASSERT_FALSE(before.empty());
+  EXPECT_EQ(run("bad.yaml --width 8 --height 8 -o out.png"), 2) << log();
+  EXPECT_EQ(run("absent.yaml --width 8 --height 8 -o out.png"), 2) << log();
+  EXPECT_EQ(run("scene.yaml --width 0 -o out.png"), 1) << log();
+  EXPECT_EQ(test::read_text(dir_ / "out.png"), before);
+  // Nothing else was left behind (no temporary files).
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_.path())) ++files;
+  EXPECT_EQ(files, 4) << "scene.yaml, bad.yaml, log.txt, out.png";
+}
+
+TEST_F(Cli, ExistingOutputIsReplacedBySuccessfulRun) {
+  test::write_text(dir_ / "out.ppm", "not an image");
+  ASSERT_EQ(run("scene.yaml --width 8 --height 4 -q -o out.ppm"), 0) << log();
+  const Image img = read_image(dir_ / "out.ppm");
+  EXPECT_EQ(img.width(), 8);
+  EXPECT_EQ(img.height(), 4);
+}
+
+}  // namespace
+}  // namespace strahl
