@@ -99,6 +99,19 @@ TEST_F(Cli, AccelerationStructureOption) {
   EXPECT_FALSE(fs::exists(dir_ / "x.pfm"));
 }
 
+TEST_F(Cli, EqualsFormOfOptions) {
+  ASSERT_EQ(run("scene.yaml --width=10 --height=6 -q --output=eq.ppm"), 0) << log();
+  EXPECT_EQ(read_image(dir_ / "eq.ppm").width(), 10);
+}
+
+TEST_F(Cli, OverriddenResolutionIsCheckedLikeTheFilesOwn) {
+  // 65536 × 65536 passes the option parser but exceeds 2^28 pixels: a scene error naming the
+  // render section (line 2 of scene.yaml).
+  EXPECT_EQ(run("scene.yaml --width 65536 --height 65536 -q -o big.png"), 2) << log();
+  EXPECT_NE(log().find("scene.yaml:2:"), std::string::npos) << log();
+  EXPECT_FALSE(fs::exists(dir_ / "big.png"));
+}
+
 TEST_F(Cli, MissingSceneFileExitsTwo) {
   EXPECT_EQ(run("absent.yaml --width 8 --height 8 -o out.png"), 2) << log();
   EXPECT_NE(log().find("absent.yaml"), std::string::npos) << log();
@@ -149,6 +162,37 @@ TEST_F(Cli, ExistingOutputIsReplacedBySuccessfulRun) {
   const Image img = read_image(dir_ / "out.ppm");
   EXPECT_EQ(img.width(), 8);
   EXPECT_EQ(img.height(), 4);
+}
+
+// ---- strahl-diff ----
+
+class Diff : public Cli {
+ protected:
+  int diff(const std::string& args) {
+    const std::string command = "cd '" + dir_.path().string() + "' && '" STRAHL_DIFF "' " + args + " > '" +
+                                (dir_ / "log.txt").string() + "' 2>&1";
+    const int status = std::system(command.c_str());
+    if (status == -1 || !WIFEXITED(status)) return -1;
+    return WEXITSTATUS(status);
+  }
+};
+
+TEST_F(Diff, ComparesImagesAndReportsExitCodes) {
+  Image a(4, 2), b(4, 2), c(3, 2);
+  b.at(1, 1) = Rgb{0.5f, 0, 0};
+  write_image(a, dir_ / "a.pfm");
+  write_image(b, dir_ / "b.pfm");
+  write_image(c, dir_ / "c.pfm");
+  EXPECT_EQ(diff("a.pfm a.pfm"), 0) << log();
+  EXPECT_NE(log().find("psnr inf"), std::string::npos) << log();
+  EXPECT_EQ(diff("a.pfm b.pfm d.pfm"), 0) << log();
+  EXPECT_NE(log().find("pixels differing by more than 1/255: 1 of 8"), std::string::npos) << log();
+  const Image d = read_image(dir_ / "d.pfm");
+  EXPECT_FLOAT_EQ(d.at(1, 1).r, 5.0f);  // |A − B| × 10
+  EXPECT_FLOAT_EQ(d.at(0, 0).r, 0.0f);
+  EXPECT_EQ(diff("a.pfm"), 1) << log();
+  EXPECT_EQ(diff("a.pfm c.pfm"), 2) << log();
+  EXPECT_EQ(diff("a.pfm absent.pfm"), 2) << log();
 }
 
 }  // namespace

@@ -122,6 +122,41 @@ TEST(Recursion, RayThroughGlassSphereFollowsSnellsLaw) {
   EXPECT_VEC_NEAR(test::pixel(s), target_color, 1e-12);
 }
 
+// Nearest positive root of the ray o + t·d (unit d) with a sphere, in long double.
+Real sphere_root(const Vec3& o, const Vec3& d, const Vec3& c, Real r) {
+  const long double b = dot(o - c, d), cc = dot(o - c, o - c) - r * r;
+  const long double disc = b * b - cc;
+  const long double t0 = -b - std::sqrt(disc), t1 = -b + std::sqrt(disc);
+  return Real(t0 > 1e-9L ? t0 : t1);
+}
+
+TEST(Recursion, NestedMediaUseTheRightPairsOfIndices) {
+  // A glass ball (1.5) inside a water ball (1.333), concentric, in air (medium_ior 1.0003). The
+  // off-centre camera ray crosses air→water, water→glass, glass→water, water→air.
+  const Vec3 c(0, 0, -6);
+  const Real air = 1.0003, water = 1.333, glass = 1.5;
+  Vec3 o(0.9, 0, 0), d(0, 0, -1);
+  struct Step { Real r; bool entering; Real n1, n2; };
+  for (const Step& st : {Step{2, true, air, water}, Step{1, true, water, glass}, Step{1, false, glass, water},
+                         Step{2, false, water, air}}) {
+    const Vec3 p = o + d * sphere_root(o, d, c, st.r);
+    const Vec3 outward = (p - c) / st.r;
+    d = snell(d, st.entering ? outward : -outward, st.n1 / st.n2);
+    o = p;
+  }
+  ASSERT_GT(std::acos(-d.z), deg(5)) << "the test needs a clearly bent ray";
+  const Vec3 target_color(0.3, 0.9, 0.6);
+  Scene s;
+  s.settings.medium_ior = air;
+  test::one_ray_camera(s, {0.9, 0, 0}, {0.9, 0, -1});
+  s.add(Sphere(c, 2, test::clear_glass(water)));
+  s.add(Sphere(c, 1, test::clear_glass(glass)));
+  s.add(Sphere(o + d * 4, 0.05, test::emissive_like(target_color)));
+  RayCounters counters;
+  EXPECT_VEC_NEAR(test::pixel(s, 0, 0, &counters), target_color, 1e-12);
+  EXPECT_EQ(counters.refraction, 4u);
+}
+
 // Camera inside glass (the half-space below y = 0, ior n) looking up at `theta` from the
 // normal; above the surface a ceiling (colour B), below a floor (colour A). Refracted rays see
 // B; totally reflected ones see A.
@@ -205,6 +240,28 @@ TEST(Recursion, FilteringGlassTintsPerSurfaceCrossing) {
   clear.add(Sphere({0, 0, -3}, 1, glass));
   clear.add(Plane({0, 0, 1}, -10, test::emissive_like(Vec3(1))));
   EXPECT_VEC_NEAR(test::pixel(clear), Vec3(1), 1e-14);
+}
+
+TEST(Recursion, ReflectedRaysThatMissEverythingSeeTheBackground) {
+  Scene s;
+  test::one_ray_camera(s, {0, 0, 0}, {0, 0, -1});
+  s.add(Sphere({0, 0, -3}, 1, test::mirror(0.75, {0.1, 0.1, 0.1})));
+  s.settings.background = {0.2, 0.4, 0.8};
+  // Local 0.1 (ambient 1 × colour 0.1) plus 0.75 × background, reflected straight back.
+  EXPECT_VEC_NEAR(test::pixel(s), Vec3(0.1, 0.1, 0.1) + Vec3(0.2, 0.4, 0.8) * 0.75, 1e-15);
+}
+
+TEST(Recursion, FilterTintUsesTheColourNotTheCheckerColour) {
+  Material glass = test::clear_glass(1);
+  glass.color = {1, 0.5, 0.25};
+  glass.filter = true;
+  glass.checker_size = 0.01;
+  glass.checker_color = {0, 1, 0};
+  Scene s;
+  test::one_ray_camera(s, {0, 0, 0}, {0, 0, -1});
+  s.add(Sphere({0, 0, -3}, 1, glass));
+  s.add(Plane({0, 0, 1}, -10, test::emissive_like(Vec3(1))));
+  EXPECT_VEC_NEAR(test::pixel(s), Vec3(1, 0.25, 0.0625), 1e-14);
 }
 
 // Mirror plane y = 0 under two spheres, versus no mirror and the spheres' mirror images added:

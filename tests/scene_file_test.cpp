@@ -248,6 +248,50 @@ TEST(SceneFile, AccelerationStructure) {
   EXPECT_TRUE(error_at("render:\n  accel: octopus\n" + kSphere, "octopus", "octopus"));
 }
 
+TEST(SceneFile, ValueSyntax) {
+  // Booleans: true/false and YAML's yes/no, but not 1/0.
+  EXPECT_TRUE(parse_scene("materials:\n  m: {fresnel: yes}\n" + kSphere, "test.yaml", ".").objects().size() == 1);
+  EXPECT_TRUE(error_at("materials:\n  m: {fresnel: 1}\n" + kSphere, "1}", "fresnel"));
+  // Whole numbers refuse 640.0 and 1e3; numbers take scientific notation.
+  EXPECT_TRUE(error_at("render:\n  width: 640.0\n" + kSphere, "640.0", "width"));
+  EXPECT_TRUE(error_at("render:\n  width: 1e3\n" + kSphere, "1e3", "width"));
+  const Scene s = parse_scene("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1.5e-3}\n", "test.yaml", ".");
+  EXPECT_EQ(dynamic_cast<const Sphere&>(*s.objects()[0]).radius, 1.5e-3);
+  // A grey colour as one number.
+  const Scene g = parse_scene("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: {color: 0.25}}\n",
+                              "test.yaml", ".");
+  EXPECT_EQ(g.objects()[0]->material.color, Vec3(0.25));
+  // Anchors and aliases reuse a whole value.
+  const Scene a = parse_scene("materials:\n  m: &red {color: [1, 0, 0]}\n"
+                              "objects:\n  - {type: sphere, center: &c [1, 2, 3], radius: 1, material: *red}\n"
+                              "  - {type: sphere, center: *c, radius: 2}\n",
+                              "test.yaml", ".");
+  ASSERT_EQ(a.objects().size(), 2u);
+  EXPECT_EQ(a.objects()[0]->material.color, Vec3(1, 0, 0));
+  EXPECT_EQ(dynamic_cast<const Sphere&>(*a.objects()[1]).center, Vec3(1, 2, 3));
+  // Materials may be defined below the objects that use them.
+  EXPECT_EQ(parse_scene("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: m}\n"
+                        "materials:\n  m: {color: 0.5}\n",
+                        "test.yaml", ".")
+                .objects()[0]
+                ->material.color,
+            Vec3(0.5));
+}
+
+TEST(SceneFile, CompileTimeChecksPointAtTheDefiningMap) {
+  // A resolution over 2^28 pixels (e.g. after a command-line override) is found by compile();
+  // the error names the render section.
+  Scene s = parse_scene(kSphere + "render:\n  width: 100\n  height: 100\n", "test.yaml", ".");
+  s.settings.width = 65536;
+  s.settings.height = 65536;
+  try {
+    compile(s);
+    FAIL() << "no error for 2^32 pixels";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("test.yaml:4:3:", 0), 0u) << e.what();
+  }
+}
+
 TEST(SceneFile, NamedIndicesOfRefraction) {
   const std::string text = "materials:\n"
                            "  a: {ior: air}\n  b: {ior: ice}\n  c: {ior: acrylic}\n  d: {ior: diamond}\n  e: {ior: vacuum}\n"

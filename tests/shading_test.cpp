@@ -257,6 +257,77 @@ TEST(Shading, CheckerColourIsShadedLikeTheBaseColour) {
   EXPECT_VEC_NEAR(test::pixel(s), c * 0.1 + c * (0.7 / std::sqrt(2.0)), 1e-14);
 }
 
+TEST(Shading, OneShadowRayPerLightFacingThePoint) {
+  Scene s = base_scene(test::phong(kColor, 0.1, 0.7, Vec3(0), 1));
+  s.add(point_light({3, 0, 1}));            // faces P
+  s.add(point_light({-1, 2, 2}));           // faces P
+  s.add(directional_light({0, 0, 1}));      // behind P: no shadow ray
+  RayCounters counters;
+  test::pixel(s, 0, 0, &counters);
+  EXPECT_EQ(counters.camera, 1u);
+  EXPECT_EQ(counters.shadow, 2u);
+  EXPECT_EQ(counters.reflection + counters.refraction, 0u);
+}
+
+TEST(Shading, HalfTransparentPlaneOrTriangleAttenuatesOnce) {
+  Material half = test::phong(Vec3(1), 0.1, 0.7, Vec3(0), 1);
+  half.transparency = 0.5;
+  const Vec3 expected = kColor * 0.1 + kColor * (0.7 / std::sqrt(2.0)) * 0.5;
+  Scene plane = base_scene(test::phong(kColor, 0.1, 0.7, Vec3(0), 1));
+  plane.add(point_light({3, 0, 1}));
+  plane.add(Plane({1, 0, 0}, 1, half));  // x = 1, between P and the light
+  EXPECT_VEC_NEAR(test::pixel(plane), expected, 1e-14);
+  Scene tri = base_scene(test::phong(kColor, 0.1, 0.7, Vec3(0), 1));
+  tri.add(point_light({3, 0, 1}));
+  tri.add(Triangle({1.5, -1, -1.5}, {1.5, 1, -1.5}, {1.5, 0, 1}, half));
+  EXPECT_VEC_NEAR(test::pixel(tri), expected, 1e-14);
+}
+
+// Colour of the floor y = 0 straight below (x, z), seen by a one-ray camera from above.
+Vec3 floor_color(const Material& m, Real x, Real z) {
+  Scene s;
+  test::one_ray_camera(s, {x, 1, z}, {x, 0, z}, {0, 0, -1});
+  s.add(Plane({0, 1, 0}, 0, m));
+  return test::pixel(s);
+}
+
+TEST(Shading, PlaneCheckerEdgesLieAtWholeMultiplesOfTheSize) {
+  // On a floor the squares follow x and z, with edges at multiples of `size` (here 0.5).
+  Material m = test::emissive_like({0.9, 0.8, 0.7});
+  m.checker_size = 0.5;
+  m.checker_color = {0.1, 0.2, 0.3};
+  const Vec3 a = floor_color(m, 0.26, 0.25);
+  EXPECT_TRUE(floor_color(m, 0.49, 0.25) == a);
+  EXPECT_TRUE(floor_color(m, 0.26, 0.01) == a);
+  EXPECT_TRUE(floor_color(m, 0.26, 0.49) == a);
+  EXPECT_FALSE(floor_color(m, 0.51, 0.25) == a);   // across x = 0.5
+  EXPECT_FALSE(floor_color(m, 0.26, 0.51) == a);   // across z = 0.5
+  EXPECT_FALSE(floor_color(m, -0.01, 0.25) == a);  // across x = 0
+  EXPECT_FALSE(floor_color(m, 0.26, -0.01) == a);  // across z = 0
+  EXPECT_TRUE(floor_color(m, 0.51, 0.51) == a);   // diagonal neighbour
+  EXPECT_TRUE(floor_color(m, 1.26, -0.74) == a);  // two squares along x, two along z
+  EXPECT_TRUE(a == Vec3(0.9, 0.8, 0.7) || a == Vec3(0.1, 0.2, 0.3));
+}
+
+TEST(Shading, WallCheckerFollowsXAndY) {
+  // A wall z = −3 facing +z: squares in x and y, edges at multiples of 1.
+  Material m = test::emissive_like(Vec3(1));
+  m.checker_size = 1;
+  m.checker_color = Vec3(0);
+  const auto wall = [&](Real x, Real y) {
+    Scene s;
+    test::one_ray_camera(s, {x, y, 0}, {x, y, -1});
+    s.add(Plane({0, 0, 1}, -3, m));
+    return test::pixel(s);
+  };
+  const Vec3 a = wall(0.5, 0.5);
+  EXPECT_TRUE(wall(0.98, 0.02) == a);
+  EXPECT_FALSE(wall(1.02, 0.5) == a);
+  EXPECT_FALSE(wall(0.5, 1.02) == a);
+  EXPECT_FALSE(wall(0.5, -0.02) == a);
+  EXPECT_TRUE(wall(1.5, 1.5) == a);
+}
+
 TEST(Shading, SupersamplingAveragesSubpixelRays) {
   // 2×2 samples of one pixel at s_u, s_v = ±0.5; a large white triangle covers x < 0 only, so
   // two samples see white and two the black background.

@@ -252,6 +252,43 @@ TEST_F(MeshTest, MirroringTransformKeepsFrontFacesFacingTheSameWay) {
   EXPECT_VEC_NEAR(surface_at(rs.view(), ray, hit).normal, normalize(Vec3(-0.5, 0.25, 0.25)), 1e-14);
 }
 
+TEST_F(MeshTest, TransformOrderIsScaleThenRotateXYZThenTranslate) {
+  // p' = R_z·R_y·R_x·S·p + t. rotate [90, 0, 0] turns +y into +z.
+  const fs::path obj = write_obj("tri.obj", kNormalTriangleObj);  // (0,0,0), (1,0,0), (0,1,0)
+  const auto placed = [&](const Transform& t) {
+    Scene s;
+    s.add(Mesh(load_obj(obj), Material{}, t));
+    const RenderScene rs = compile(s);
+    const kernel::Triangle& tri = rs.triangles.at(0);
+    return std::pair{tri.v0 + tri.e1, tri.v0 + tri.e2};
+  };
+  Transform rx;
+  rx.rotate_degrees = {90, 0, 0};
+  EXPECT_VEC_NEAR(placed(rx).second, Vec3(0, 0, 1), 1e-15);
+  // Scale (2,1,1), then 90° about z: (1,0,0) → (2,0,0) → (0,2,0); then translate.
+  Transform sz;
+  sz.scale = {2, 1, 1};
+  sz.rotate_degrees = {0, 0, 90};
+  sz.translate = {1, 1, 1};
+  EXPECT_VEC_NEAR(placed(sz).first, Vec3(1, 3, 1), 1e-15);
+  EXPECT_VEC_NEAR(placed(sz).second, Vec3(0, 1, 1), 1e-15);
+  // 90° about x, then 90° about z: (1,0,0) → (1,0,0) → (0,1,0); (0,1,0) → (0,0,1) → (0,0,1).
+  Transform xz;
+  xz.rotate_degrees = {90, 0, 90};
+  EXPECT_VEC_NEAR(placed(xz).first, Vec3(0, 1, 0), 1e-15);
+  EXPECT_VEC_NEAR(placed(xz).second, Vec3(0, 0, 1), 1e-15);
+  // 90° about y takes +z to +x: (0,0,1)… use (1,0,0) → (0,0,−1).
+  Transform ry;
+  ry.rotate_degrees = {0, 90, 0};
+  EXPECT_VEC_NEAR(placed(ry).first, Vec3(0, 0, -1), 1e-15);
+}
+
+TEST_F(MeshTest, ZeroAreaFacesAreDropped) {
+  Scene s;
+  s.add(Mesh(load_obj(write_obj("deg.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n")), Material{}));
+  EXPECT_EQ(compile(s).triangles.size(), 1u);
+}
+
 TEST_F(MeshTest, FacesWithoutNormalsAreFlatShaded) {
   Scene s;
   s.add(Mesh(load_obj(write_obj("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")), Material{}));
