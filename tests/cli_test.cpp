@@ -142,6 +142,14 @@ TEST_F(Cli, UnwritableOutputDirectoryExitsTwo) {
   EXPECT_EQ(run("scene.yaml --width 8 --height 8 -o plainfile/out.png"), 2) << log();
 }
 
+TEST_F(Cli, OutputPathThatIsADirectoryExitsTwoAndLeavesNoTemporaries) {
+  fs::create_directory(dir_ / "taken.png");
+  EXPECT_EQ(run("scene.yaml --width 8 --height 8 -q -o taken.png"), 2) << log();
+  EXPECT_TRUE(fs::is_directory(dir_ / "taken.png"));
+  for (const auto& e : fs::directory_iterator(dir_.path()))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
 TEST_F(Cli, FailedRunLeavesAnExistingImageUntouched) {
   ASSERT_EQ(run("scene.yaml --width 8 --height 8 -q -o out.png"), 0) << log();
   const std::string before = test::read_text(dir_ / "out.png");

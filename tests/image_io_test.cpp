@@ -79,6 +79,22 @@ TEST_F(ImageIo, PfmRowOrderIsBottomUpOnDisk) {
   EXPECT_EQ(bytes.rfind("PF\n2 2\n", 0), 0u);
 }
 
+TEST_F(ImageIo, ReadsGreyAndBigEndianPfm) {
+  // "Pf" is one channel; a positive scale means big-endian floats. Rows run bottom-up.
+  std::string bytes = "Pf\n1 2\n1.0\n";
+  for (float v : {0.25f, 2.5f}) {  // bottom row, then top row
+    unsigned char b[4];
+    std::memcpy(b, &v, 4);
+    bytes += std::string{char(b[3]), char(b[2]), char(b[1]), char(b[0])};
+  }
+  test::write_text(dir_ / "g.pfm", bytes);
+  const Image img = read_image(dir_ / "g.pfm");
+  ASSERT_EQ(img.width(), 1);
+  ASSERT_EQ(img.height(), 2);
+  EXPECT_TRUE(img.at(0, 0) == (Rgb{2.5f, 2.5f, 2.5f}));
+  EXPECT_TRUE(img.at(0, 1) == (Rgb{0.25f, 0.25f, 0.25f}));
+}
+
 TEST_F(ImageIo, LinearPngAndPpmRoundTripWithinOneStep) {
   const Image img = ldr_test_image();
   for (const char* name : {"a.png", "a.ppm"}) {
