@@ -17,7 +17,11 @@ namespace {
 
 constexpr int kBins = 16;
 constexpr std::uint32_t kMaxLeafSize = 8;
-constexpr std::uint32_t kParallelThreshold = 4096;  // subtrees smaller than this build on one thread
+constexpr std::uint32_t kParallelThreshold = 4096;
+// Past this depth the build splits at the median, which at least halves every node: with at most
+// 2^32 primitives the tree is then at most 64 deep, which the traversal stack relies on
+// (bvh.h). SAH alone can peel off one primitive per level (geometrically spaced spheres).
+constexpr std::size_t kMaxSahDepth = 32;  // subtrees smaller than this build on one thread
 // SAH costs relative to one primitive test.
 constexpr Real kTraversalCost = 1.0;
 
@@ -46,7 +50,7 @@ struct Builder {
   const std::vector<Vec3>& centroids;
   std::vector<std::uint32_t>& index;
 
-  std::unique_ptr<BuildNode> build(std::uint32_t begin, std::uint32_t end) {
+  std::unique_ptr<BuildNode> build(std::uint32_t begin, std::uint32_t end, std::size_t depth) {
     auto node = std::make_unique<BuildNode>();
     Bounds bounds, centroid_bounds;
     for (std::uint32_t i = begin; i < end; ++i) {
@@ -108,7 +112,15 @@ struct Builder {
     if (count <= kMaxLeafSize && (best_axis < 0 || leaf_cost <= split_cost)) return make_leaf();
 
     std::uint32_t mid;
-    if (best_axis >= 0) {
+    if (depth >= kMaxSahDepth) {
+      // Median split on the widest centroid axis.
+      const Vec3 extent = centroid_bounds.empty() ? Vec3(0) : centroid_bounds.hi - centroid_bounds.lo;
+      const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+      mid = begin + count / 2;
+      std::nth_element(index.data() + begin, index.data() + mid, index.data() + end,
+                       [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+      node->axis = std::uint8_t(axis);
+    } else if (best_axis >= 0) {
       const Real lo = centroid_bounds.lo[best_axis];
       const Real scale = kBins / (centroid_bounds.hi[best_axis] - lo);
       auto* split = std::partition(index.data() + begin, index.data() + end, [&](std::uint32_t p) {
@@ -123,10 +135,11 @@ struct Builder {
     }
     if (mid == begin || mid == end) mid = begin + count / 2;
     if (count > kParallelThreshold) {
-      tbb::parallel_invoke([&] { node->left = build(begin, mid); }, [&] { node->right = build(mid, end); });
+      tbb::parallel_invoke([&] { node->left = build(begin, mid, depth + 1); },
+                           [&] { node->right = build(mid, end, depth + 1); });
     } else {
-      node->left = build(begin, mid);
-      node->right = build(mid, end);
+      node->left = build(begin, mid, depth + 1);
+      node->right = build(mid, end, depth + 1);
     }
     return node;
   }
@@ -165,7 +178,7 @@ Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
       }
     });
     Builder builder{bounds, centroids, bvh.prims};
-    const std::unique_ptr<BuildNode> root = builder.build(0, n);
+    const std::unique_ptr<BuildNode> root = builder.build(0, n, 1);
     bvh.nodes.reserve(2 * std::size_t(n));
     flatten(*root, bvh.nodes, 1, stats);
     bvh.nodes.shrink_to_fit();

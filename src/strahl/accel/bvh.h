@@ -45,7 +45,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const BvhView& bvh, const R
   }
   const Vec3 inv_dir = reciprocal(ray.direction);
   const int negative[3] = {inv_dir.x < 0, inv_dir.y < 0, inv_dir.z < 0};
-  std::uint32_t stack[64];
+  std::uint32_t stack[64];  // the build keeps the tree at most 64 deep (bvh.cpp, kMaxSahDepth)
   int top = 0;
   std::uint32_t node = 0;
   for (;;) {
