@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <initializer_list>
 #include <map>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "strahl/scene/obj_loader.h"
+#include "strahl/scene/ply_loader.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/validate.h"
 
@@ -29,6 +31,15 @@ bool named_ior(const std::string& name, Real& ior) {
 }
 
 namespace {
+
+// A mesh file by its extension (case-insensitive): .obj or .ply.
+MeshData load_mesh(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".obj") return load_obj(path);
+  if (ext == ".ply") return load_ply(path);
+  throw Error(FileLoc{path.string()}, "unknown mesh format '" + path.extension().string() + "' (use .obj or .ply)");
+}
 
 using Keys = std::initializer_list<std::string_view>;
 
@@ -304,7 +315,7 @@ class Reader {
       const Material m = object_material(n);
       MeshData data;
       try {
-        data = load_obj(path);
+        data = load_mesh(path);
       } catch (const Error& e) {
         fail(f, std::string("mesh: ") + e.what());
       }

@@ -1,0 +1,818 @@
+// A PLY reader written for strahl: the header is parsed into elements and properties, every
+// element count is checked against the bytes left in the file, then one templated walker reads
+// the body from either an ascii source (one element per line, std::from_chars) or a bounded
+// binary source (little- or big-endian). Nothing reads past the end of the file contents.
+
+#include "strahl/scene/ply_loader.h"
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <type_traits>
+#include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+#include "strahl/util/error.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+
+enum class Type : std::uint8_t { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+struct TypeName {
+  std::string_view name;
+  Type type;
+};
+constexpr TypeName kTypeNames[] = {
+    {"char", Type::Int8},     {"int8", Type::Int8},      {"uchar", Type::UInt8},    {"uint8", Type::UInt8},
+    {"short", Type::Int16},   {"int16", Type::Int16},    {"ushort", Type::UInt16},  {"uint16", Type::UInt16},
+    {"int", Type::Int32},     {"int32", Type::Int32},    {"uint", Type::UInt32},    {"uint32", Type::UInt32},
+    {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
+
+bool parse_type(std::string_view s, Type& t) {
+  for (const TypeName& n : kTypeNames)
+    if (n.name == s) {
+      t = n.type;
+      return true;
+    }
+  return false;
+}
+
+const char* type_name(Type t) {
+  switch (t) {
+    case Type::Int8: return "char";
+    case Type::UInt8: return "uchar";
+    case Type::Int16: return "short";
+    case Type::UInt16: return "ushort";
+    case Type::Int32: return "int";
+    case Type::UInt32: return "uint";
+    case Type::Float32: return "float";
+    case Type::Float64: return "double";
+  }
+  return "?";
+}
+
+std::size_t size_of(Type t) {
+  switch (t) {
+    case Type::Int8:
+    case Type::UInt8: return 1;
+    case Type::Int16:
+    case Type::UInt16: return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32: return 4;
+    case Type::Float64: return 8;
+  }
+  return 1;
+}
+
+// The range of an integer type (as doubles, which hold every 32-bit integer exactly).
+void int_range(Type t, double& lo, double& hi) {
+  switch (t) {
+    case Type::Int8: lo = -128, hi = 127; return;
+    case Type::UInt8: lo = 0, hi = 255; return;
+    case Type::Int16: lo = -32768, hi = 32767; return;
+    case Type::UInt16: lo = 0, hi = 65535; return;
+    case Type::Int32: lo = -2147483648.0, hi = 2147483647.0; return;
+    case Type::UInt32: lo = 0, hi = 4294967295.0; return;
+    case Type::Float32:
+    case Type::Float64: break;
+  }
+  lo = -HUGE_VAL, hi = HUGE_VAL;
+}
+
+// What the reader does with a property.
+enum class Role : std::uint8_t { X, Y, Z, NX, NY, NZ, Indices, Skip };
+
+struct Property {
+  std::string name;
+  Type type = Type::Float32;  // the item type of a list
+  bool list = false;
+  Type count_type = Type::UInt8;
+  long long line = 0;
+  Role role = Role::Skip;
+};
+
+struct Element {
+  std::string name;
+  long long count = 0;
+  long long line = 0;
+  std::vector<Property> properties;
+};
+
+enum class Format { Ascii, BinaryLittleEndian, BinaryBigEndian };
+
+struct Header {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+  std::size_t body_offset = 0;  // the first byte after the end_header line
+  long long body_line = 0;      // the line number of the first body line
+  int vertex = -1;  // indices into elements
+  int face = -1;
+  bool normals = false;  // the vertex element has nx, ny and nz
+};
+
+std::string number_str(double v) {
+  if (std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e18) return std::to_string(static_cast<long long>(v));
+  return std::to_string(v);
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+std::vector<std::string_view> split(std::string_view line) {
+  std::vector<std::string_view> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && is_space(line[i])) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !is_space(line[i])) ++i;
+    if (i > start) tokens.push_back(line.substr(start, i - start));
+  }
+  return tokens;
+}
+
+// Large buffers here are written once, front to back. On Linux, transparent huge pages save most
+// of their page faults (a 10-million-triangle file fills about 750 MB), which in a virtual
+// machine cost more than the parsing. Only advice: nothing changes where it is not taken.
+void advise_huge_pages([[maybe_unused]] const void* data, [[maybe_unused]] std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
+  const auto first = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t begin = (first + kHuge - 1) & ~(kHuge - 1);
+  const std::uintptr_t end = (first + bytes) & ~(kHuge - 1);
+  if (end > begin) static_cast<void>(madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE));
+#endif
+}
+
+// The whole file in memory; its size is what was actually read.
+struct Bytes {
+  std::unique_ptr<char[]> data;
+  std::size_t size = 0;
+  std::string_view view() const { return {data.get(), size}; }
+};
+
+Bytes read_file(const fs::path& path) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw Error(FileLoc{file}, "cannot open mesh file");
+  const std::uintmax_t expected = fs::file_size(path, ec);
+  if (ec) throw Error(FileLoc{file}, "cannot open mesh file");
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
+  if (!f) throw Error(FileLoc{file}, "cannot open mesh file");
+  Bytes bytes;
+  try {
+    bytes.data = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(expected) + 1);
+  } catch (const std::bad_alloc&) {
+    throw Error(FileLoc{file}, "the file is too large to read into memory (" + std::to_string(expected) + " bytes)");
+  }
+  advise_huge_pages(bytes.data.get(), static_cast<std::size_t>(expected));
+  // The file may have shrunk since file_size(); what was read is what counts.
+  bytes.size = std::fread(bytes.data.get(), 1, static_cast<std::size_t>(expected), f.get());
+  if (std::ferror(f.get())) throw Error(FileLoc{file}, "cannot read mesh file");
+  return bytes;
+}
+
+class Parser {
+ public:
+  Parser(std::string file, std::string_view data) : file_(std::move(file)), data_(data) {}
+
+  [[noreturn]] void fail(long long line, const std::string& message) const {
+    throw Error(FileLoc{file_, static_cast<int>(std::clamp<long long>(line, 0, INT_MAX))}, message);
+  }
+  [[noreturn]] void fail(const std::string& message) const { throw Error(FileLoc{file_}, message); }
+
+  Header header() const {
+    Header h;
+    std::size_t pos = 0;
+    long long line = 0;
+    std::string_view text;
+    const auto next_line = [&]() {
+      if (pos >= data_.size()) return false;
+      const std::size_t nl = data_.find('\n', pos);
+      const std::size_t end = nl == std::string_view::npos ? data_.size() : nl;
+      text = data_.substr(pos, end - pos);
+      pos = nl == std::string_view::npos ? data_.size() : nl + 1;
+      ++line;
+      return true;
+    };
+    if (!next_line() || split(text) != std::vector<std::string_view>{"ply"})
+      fail(1, "not a PLY file (the first line must be 'ply')");
+
+    bool have_format = false;
+    bool ended = false;
+    while (!ended && next_line()) {
+      // Comments may hold anything: look at the keyword only.
+      std::size_t k = 0;
+      while (k < text.size() && is_space(text[k])) ++k;
+      std::size_t k_end = k;
+      while (k_end < text.size() && !is_space(text[k_end])) ++k_end;
+      const std::string_view keyword = text.substr(k, k_end - k);
+      if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
+      const std::vector<std::string_view> t = split(text);
+      if (keyword == "format") {
+        if (have_format) fail(line, "the header has a second 'format' line");
+        if (t.size() != 3) fail(line, "expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
+        if (t[1] == "ascii") h.format = Format::Ascii;
+        else if (t[1] == "binary_little_endian") h.format = Format::BinaryLittleEndian;
+        else if (t[1] == "binary_big_endian") h.format = Format::BinaryBigEndian;
+        else
+          fail(line, "unknown PLY format '" + std::string(t[1]) +
+                         "' (ascii, binary_little_endian or binary_big_endian)");
+        if (t[2] != "1.0" && t[2] != "1") fail(line, "unsupported PLY version '" + std::string(t[2]) + "' (only 1.0)");
+        have_format = true;
+      } else if (keyword == "element") {
+        if (t.size() != 3) fail(line, "expected 'element <name> <count>'");
+        Element e;
+        e.name = std::string(t[1]);
+        e.line = line;
+        e.count = element_count(t[2], e.name, line);
+        h.elements.push_back(std::move(e));
+      } else if (keyword == "property") {
+        if (h.elements.empty()) fail(line, "'property' before the first 'element'");
+        Property p;
+        p.line = line;
+        if (t.size() >= 2 && t[1] == "list") {
+          if (t.size() != 5) fail(line, "expected 'property list <count type> <item type> <name>'");
+          p.list = true;
+          if (!parse_type(t[2], p.count_type)) fail(line, "unknown property type '" + std::string(t[2]) + "'");
+          if (!parse_type(t[3], p.type)) fail(line, "unknown property type '" + std::string(t[3]) + "'");
+          p.name = std::string(t[4]);
+        } else {
+          if (t.size() != 3) fail(line, "expected 'property <type> <name>' or 'property list <count type> <item type> <name>'");
+          if (!parse_type(t[1], p.type)) fail(line, "unknown property type '" + std::string(t[1]) + "'");
+          p.name = std::string(t[2]);
+        }
+        h.elements.back().properties.push_back(std::move(p));
+      } else if (keyword == "end_header") {
+        if (t.size() != 1) fail(line, "unexpected text after 'end_header'");
+        ended = true;
+      } else {
+        fail(line, "unknown header line '" + std::string(keyword) +
+                       "' (expected format, element, property, comment, obj_info or end_header)");
+      }
+    }
+    if (!ended) fail(line, "the header has no 'end_header' line");
+    if (!have_format) fail(line, "the header has no 'format' line");
+    h.body_offset = pos;
+    h.body_line = line + 1;
+
+    if (h.elements.size() > INT_MAX) fail(line, "too many elements");
+    for (std::size_t i = 0; i < h.elements.size(); ++i) {
+      Element& e = h.elements[i];
+      if (e.count > 0 && e.properties.empty())
+        fail(e.line, "element '" + e.name + "' has " + std::to_string(e.count) + " entries but no properties");
+      if (e.name == "vertex") assign_vertex_roles(h, e, static_cast<int>(i));
+      else if (e.name == "face") assign_face_roles(h, e, static_cast<int>(i));
+    }
+    if (h.vertex < 0) fail(line, "the file has no 'vertex' element");
+    if (h.face < 0) fail(line, "the file has no 'face' element (a PLY point cloud cannot be rendered)");
+    check_sizes(h);
+    return h;
+  }
+
+ private:
+  long long element_count(std::string_view s, const std::string& name, long long line) const {
+    long long count = 0;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), count);
+    if (ec == std::errc::result_out_of_range) fail(line, "element '" + name + "' count " + std::string(s) + " is too large");
+    if (ec != std::errc() || ptr != s.data() + s.size())
+      fail(line, "element '" + name + "' count must be a whole number (got '" + std::string(s) + "')");
+    if (count < 0) fail(line, "element '" + name + "' has a negative count (" + std::string(s) + ")");
+    return count;
+  }
+
+  void assign_vertex_roles(Header& h, Element& e, int index) const {
+    if (h.vertex >= 0) fail(e.line, "the header has a second 'vertex' element");
+    h.vertex = index;
+    if (e.count > INT_MAX) fail(e.line, "too many vertices (" + std::to_string(e.count) + "; at most 2147483647)");
+    static constexpr std::string_view kNames[] = {"x", "y", "z", "nx", "ny", "nz"};
+    Property* found[6] = {};
+    for (Property& p : e.properties)
+      for (int i = 0; i < 6; ++i)
+        if (p.name == kNames[i]) {
+          if (found[i]) fail(p.line, "property '" + p.name + "' appears twice in element 'vertex'");
+          if (p.list) fail(p.line, "property '" + p.name + "' of element 'vertex' must be a single value, not a list");
+          found[i] = &p;
+        }
+    for (int i = 0; i < 3; ++i)
+      if (!found[i])
+        fail(e.line, "element 'vertex' has no property '" + std::string(kNames[i]) + "' (x, y and z are required)");
+    for (int i = 0; i < 3; ++i) found[i]->role = static_cast<Role>(i);
+    // Normals are used only when all three components are there.
+    h.normals = found[3] && found[4] && found[5];
+    if (h.normals)
+      for (int i = 3; i < 6; ++i) found[i]->role = static_cast<Role>(i);
+  }
+
+  void assign_face_roles(Header& h, Element& e, int index) const {
+    if (h.face >= 0) fail(e.line, "the header has a second 'face' element");
+    h.face = index;
+    Property* indices = nullptr;
+    for (Property& p : e.properties)
+      if (p.name == "vertex_indices" || p.name == "vertex_index") {
+        if (indices) fail(p.line, "element 'face' has a second list of vertex indices ('" + p.name + "')");
+        if (!p.list) fail(p.line, "property '" + p.name + "' of element 'face' must be a list");
+        indices = &p;
+      }
+    if (!indices) fail(e.line, "element 'face' has no list property 'vertex_indices' (or 'vertex_index')");
+    indices->role = Role::Indices;
+  }
+
+  // The fewest bytes one entry of `e` can take: binary scalars at their size, lists at their
+  // count's size (vertex index lists with three items), ascii values at one character and a
+  // separator each.
+  static std::uint64_t min_entry_bytes(const Header& h, const Element& e) {
+    std::uint64_t bytes = 0, values = 0;
+    for (const Property& p : e.properties) {
+      const std::uint64_t items = p.role == Role::Indices ? 3 : 0;
+      bytes += p.list ? size_of(p.count_type) + items * size_of(p.type) : size_of(p.type);
+      values += 1 + (p.list ? items : 0);
+    }
+    return h.format == Format::Ascii ? 2 * values : bytes;
+  }
+
+  // Before anything is allocated: can the data after the header hold what the header declares?
+  void check_sizes(const Header& h) const {
+    // An ascii body may lack the last newline: allow one byte more.
+    const std::uint64_t body = data_.size() - h.body_offset + (h.format == Format::Ascii ? 1 : 0);
+    std::uint64_t used = 0;
+    for (const Element& e : h.elements) {
+      if (e.count == 0) continue;
+      const std::uint64_t per_entry = min_entry_bytes(h, e);  // ≥ 1: e has properties
+      const std::uint64_t left = body - used;
+      const std::uint64_t fits = left / per_entry;
+      if (static_cast<std::uint64_t>(e.count) > fits)
+        fail(e.line, "element '" + e.name + "' declares " + std::to_string(e.count) +
+                         " entries, but the file is too short for them: " + std::to_string(left) +
+                         " bytes of data are left and each entry takes at least " + std::to_string(per_entry) +
+                         " (the file is truncated or the count is wrong)");
+      used += static_cast<std::uint64_t>(e.count) * per_entry;
+    }
+  }
+
+  std::string file_;
+  std::string_view data_;
+};
+
+// An ascii body: one element entry per line (blank lines are skipped), values separated by
+// spaces or tabs.
+class AsciiSource {
+ public:
+  AsciiSource(const Parser& parser, std::string_view body, long long first_line)
+      : parser_(parser), body_(body), line_(first_line - 1) {}
+
+  void begin(const std::string& what, long long index, long long count) {
+    what_ = &what;
+    index_ = index;
+    for (;;) {
+      if (pos_ >= body_.size())
+        parser_.fail(line_, "unexpected end of file: the header declares " + std::to_string(count) + " '" + what +
+                                "' entries, the file has " + std::to_string(index));
+      const std::size_t nl = body_.find('\n', pos_);
+      const std::size_t end = nl == std::string_view::npos ? body_.size() : nl;
+      cur_ = body_.data() + pos_;
+      end_ = body_.data() + end;
+      pos_ = nl == std::string_view::npos ? body_.size() : nl + 1;
+      ++line_;
+      while (cur_ != end_ && is_space(*cur_)) ++cur_;
+      if (cur_ != end_) return;
+    }
+  }
+
+  void end() {
+    while (cur_ != end_ && is_space(*cur_)) ++cur_;
+    if (cur_ != end_)
+      fail("too many values for " + *what_ + " " + std::to_string(index_) + " (the header declares fewer)");
+  }
+
+  double number(Type t) { return parse(token(), t); }
+  void skip(Type) { token(); }
+  void skip_items(Type t, std::uint64_t n) {
+    for (std::uint64_t i = 0; i < n; ++i) skip(t);
+  }
+  void need_items(Type, std::uint64_t) {}  // ascii items are read one by one, none allocated ahead
+
+  void finish() {
+    for (std::size_t i = pos_; i < body_.size(); ++i) {
+      if (body_[i] == '\n') ++line_;
+      else if (!is_space(body_[i])) parser_.fail(line_ + 1, "unexpected data after the last element");
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& message) const { parser_.fail(line_, message); }
+
+ private:
+  std::string_view token() {
+    while (cur_ != end_ && is_space(*cur_)) ++cur_;
+    if (cur_ == end_) fail("too few values for " + *what_ + " " + std::to_string(index_));
+    const char* start = cur_;
+    while (cur_ != end_ && !is_space(*cur_)) ++cur_;
+    return {start, static_cast<std::size_t>(cur_ - start)};
+  }
+
+  double parse(std::string_view s, Type t) const {
+    const char* b = s.data();
+    const char* e = b + s.size();
+    if (e - b >= 2 && *b == '+' && b[1] != '-' && b[1] != '+') ++b;  // from_chars takes no '+'
+    const auto bad = [&]() {
+      fail("'" + std::string(s) + "' is not a valid " + type_name(t) + " (in " + *what_ + " " +
+           std::to_string(index_) + ")");
+    };
+    const auto out_of_range = [&]() {
+      fail("value " + std::string(s) + " is out of range for " + type_name(t) + " (in " + *what_ + " " +
+           std::to_string(index_) + ")");
+    };
+    if (t == Type::Float32) {
+      float v = 0;
+      const auto r = std::from_chars(b, e, v);
+      if (r.ec == std::errc::result_out_of_range) out_of_range();
+      if (r.ec != std::errc() || r.ptr != e) bad();
+      return v;
+    }
+    double v = 0;
+    if (t == Type::Float64) {
+      const auto r = std::from_chars(b, e, v);
+      if (r.ec == std::errc::result_out_of_range) out_of_range();
+      if (r.ec != std::errc() || r.ptr != e) bad();
+      return v;
+    }
+    long long i = 0;
+    const auto r = std::from_chars(b, e, i);
+    if (r.ec == std::errc() && r.ptr == e) {
+      v = static_cast<double>(i);
+    } else if (r.ec == std::errc::result_out_of_range) {
+      out_of_range();
+    } else {
+      // Some writers give whole numbers as "3.0".
+      const auto rd = std::from_chars(b, e, v);
+      if (rd.ec != std::errc() || rd.ptr != e || !std::isfinite(v) || v != std::floor(v)) bad();
+    }
+    double lo = 0, hi = 0;
+    int_range(t, lo, hi);
+    if (!(v >= lo && v <= hi)) out_of_range();
+    return v;
+  }
+
+  const Parser& parser_;
+  std::string_view body_;
+  std::size_t pos_ = 0;
+  long long line_;
+  const char* cur_ = nullptr;
+  const char* end_ = nullptr;
+  const std::string* what_ = nullptr;
+  long long index_ = 0;
+};
+
+template <class T>
+T load_raw(const unsigned char* p, bool swap) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, p, sizeof(T));
+  if (swap) std::reverse(b, b + sizeof(T));
+  T v;
+  std::memcpy(&v, b, sizeof(T));
+  return v;
+}
+
+// A binary body, read through a cursor that never passes the end of the file contents.
+class BinarySource {
+ public:
+  BinarySource(const Parser& parser, std::string_view data, std::size_t offset, bool big_endian)
+      : parser_(parser),
+        begin_(reinterpret_cast<const unsigned char*>(data.data())),
+        p_(begin_ + offset),
+        end_(begin_ + data.size()),
+        swap_(big_endian != (std::endian::native == std::endian::big)) {}
+
+  void begin(const std::string& what, long long index, long long count) {
+    what_ = &what;
+    index_ = index;
+    count_ = count;
+    entry_ = p_;
+  }
+  void end() {}
+
+  double number(Type t) {
+    const std::size_t n = size_of(t);
+    need(n);
+    const double v = load(p_, t);
+    p_ += n;
+    return v;
+  }
+  void skip(Type t) {
+    const std::size_t n = size_of(t);
+    need(n);
+    p_ += n;
+  }
+  void need_items(Type t, std::uint64_t n) {
+    if (n > static_cast<std::uint64_t>(end_ - p_) / size_of(t)) truncated();
+  }
+  void skip_items(Type t, std::uint64_t n) {
+    need_items(t, n);
+    p_ += n * size_of(t);
+  }
+  void finish() {}  // bytes after the last element are ignored
+
+  // For the fast paths, which read whole entries (or a whole element) at once.
+  // The size of one entry of an element of scalars only; 0 if it has a list.
+  static std::uint64_t fixed_stride(const Element& e) {
+    std::uint64_t stride = 0;
+    for (const Property& p : e.properties) {
+      if (p.list) return 0;
+      stride += size_of(p.type);
+    }
+    return stride;
+  }
+  // The next n bytes, or a truncation error.
+  const unsigned char* take(std::uint64_t n) {
+    if (n > static_cast<std::uint64_t>(end_ - p_)) truncated();
+    const unsigned char* p = p_;
+    p_ += n;
+    return p;
+  }
+  const unsigned char* take_items(Type t, std::uint64_t n) {
+    need_items(t, n);
+    return take(n * size_of(t));
+  }
+  // Which entry a later fail() names.
+  void at(long long index, const unsigned char* entry) {
+    index_ = index;
+    entry_ = entry;
+  }
+  const unsigned char* position() const { return p_; }
+  double value(const unsigned char* p, Type t) const { return load(p, t); }
+  // An integer type's value.
+  std::int64_t integer(const unsigned char* p, Type t) const {
+    switch (t) {
+      case Type::Int8: return load_raw<std::int8_t>(p, swap_);
+      case Type::UInt8: return load_raw<std::uint8_t>(p, swap_);
+      case Type::Int16: return load_raw<std::int16_t>(p, swap_);
+      case Type::UInt16: return load_raw<std::uint16_t>(p, swap_);
+      case Type::Int32: return load_raw<std::int32_t>(p, swap_);
+      case Type::UInt32: return load_raw<std::uint32_t>(p, swap_);
+      case Type::Float32:
+      case Type::Float64: break;
+    }
+    return -1;
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    parser_.fail(message + " (at byte " + std::to_string(entry_ - begin_) + ")");
+  }
+
+ private:
+  void need(std::size_t n) {
+    if (static_cast<std::size_t>(end_ - p_) < n) truncated();
+  }
+  [[noreturn]] void truncated() const {
+    parser_.fail("unexpected end of file at byte " + std::to_string(end_ - begin_) + ": the header declares " +
+                 std::to_string(count_) + " '" + *what_ + "' entries, the file ends in entry " +
+                 std::to_string(index_));
+  }
+  double load(const unsigned char* p, Type t) const {
+    switch (t) {
+      case Type::Int8: return load_raw<std::int8_t>(p, swap_);
+      case Type::UInt8: return load_raw<std::uint8_t>(p, swap_);
+      case Type::Int16: return load_raw<std::int16_t>(p, swap_);
+      case Type::UInt16: return load_raw<std::uint16_t>(p, swap_);
+      case Type::Int32: return load_raw<std::int32_t>(p, swap_);
+      case Type::UInt32: return load_raw<std::uint32_t>(p, swap_);
+      case Type::Float32: return static_cast<double>(load_raw<float>(p, swap_));
+      case Type::Float64: return load_raw<double>(p, swap_);
+    }
+    return 0;
+  }
+
+  const Parser& parser_;
+  const unsigned char* begin_;
+  const unsigned char* p_;
+  const unsigned char* end_;
+  bool swap_;
+  const unsigned char* entry_ = nullptr;
+  const std::string* what_ = nullptr;
+  long long index_ = 0, count_ = 0;
+};
+
+// The length of a list: a whole number ≥ 0 whatever its type.
+template <class Source>
+std::uint64_t list_length(Source& src, const Property& p) {
+  const double n = src.number(p.count_type);
+  if (!(n >= 0 && n <= 4294967295.0) || n != std::floor(n))
+    src.fail("list '" + p.name + "' has length " + number_str(n) + " (a whole number from 0 to 4294967295 is needed)");
+  return static_cast<std::uint64_t>(n);
+}
+
+template <class Source>
+void skip_element(Source& src, const Element& e) {
+  if constexpr (std::is_same_v<Source, BinarySource>) {
+    // Scalars only: skipped in one step.
+    if (const std::uint64_t stride = BinarySource::fixed_stride(e)) {
+      src.begin(e.name, 0, e.count);
+      src.take(static_cast<std::uint64_t>(e.count) * stride);  // cannot overflow: check_sizes() passed
+      return;
+    }
+  }
+  for (long long i = 0; i < e.count; ++i) {
+    src.begin(e.name, i, e.count);
+    for (const Property& p : e.properties) {
+      if (p.list) src.skip_items(p.type, list_length(src, p));
+      else src.skip(p.type);
+    }
+    src.end();
+  }
+}
+
+// Checks and stores vertex i: v holds x, y, z, nx, ny, nz.
+template <class Source>
+void store_vertex(Source& src, long long i, const double (&v)[6], bool normals, MeshData& mesh) {
+  if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+    src.fail("vertex " + std::to_string(i) + " has a coordinate that is not a finite number");
+  mesh.positions.emplace_back(v[0], v[1], v[2]);  // entries come in order: i == size()
+  if (normals) {
+    if (!std::isfinite(v[3]) || !std::isfinite(v[4]) || !std::isfinite(v[5]))
+      src.fail("vertex " + std::to_string(i) + " has a normal that is not finite");
+    mesh.normals.emplace_back(v[3], v[4], v[5]);
+  }
+}
+
+template <class Source>
+void read_vertices(Source& src, const Element& e, bool normals, MeshData& mesh) {
+  if constexpr (std::is_same_v<Source, BinarySource>) {
+    // Scalars only (the usual case): fixed offsets in entries of a fixed size.
+    if (const std::uint64_t stride = BinarySource::fixed_stride(e)) {
+      struct Field {
+        std::size_t offset;
+        Type type;
+        int slot;
+      };
+      Field fields[6];
+      int used = 0;
+      std::size_t offset = 0;
+      for (const Property& p : e.properties) {
+        if (p.role != Role::Skip) fields[used++] = {offset, p.type, static_cast<int>(p.role)};
+        offset += size_of(p.type);
+      }
+      src.begin(e.name, 0, e.count);
+      const unsigned char* entry = src.take(static_cast<std::uint64_t>(e.count) * stride);
+      for (long long i = 0; i < e.count; ++i, entry += stride) {
+        double v[6] = {};
+        for (int f = 0; f < used; ++f) v[fields[f].slot] = src.value(entry + fields[f].offset, fields[f].type);
+        src.at(i, entry);
+        store_vertex(src, i, v, normals, mesh);
+      }
+      return;
+    }
+  }
+  for (long long i = 0; i < e.count; ++i) {
+    src.begin(e.name, i, e.count);
+    double v[6] = {};
+    for (const Property& p : e.properties) {
+      if (p.list) src.skip_items(p.type, list_length(src, p));
+      else if (p.role == Role::Skip) src.skip(p.type);
+      else v[static_cast<int>(p.role)] = src.number(p.type);
+    }
+    src.end();
+    store_vertex(src, i, v, normals, mesh);
+  }
+}
+
+// A fan around the first corner: (0, 1, 2), (0, 2, 3), …
+void add_fan(const std::vector<std::uint32_t>& corners, bool normals, MeshData& mesh) {
+  for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
+    MeshData::Face f;
+    f.v = {corners[0], corners[k], corners[k + 1]};
+    if (normals)
+      for (std::size_t c = 0; c < 3; ++c) f.n[c] = static_cast<std::int32_t>(f.v[c]);
+    mesh.faces.push_back(f);
+  }
+}
+
+bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+template <class Source>
+[[noreturn]] void bad_corner(Source& src, long long face, const std::string& index, long long vertex_count) {
+  src.fail("face " + std::to_string(face) + " refers to vertex " + index + ", but the file has " +
+           std::to_string(vertex_count) + " vertices (numbered from 0)");
+}
+
+template <class Source>
+void read_faces(Source& src, const Element& e, long long vertex_count, bool normals, MeshData& mesh) {
+  std::vector<std::uint32_t> corners;
+  if constexpr (std::is_same_v<Source, BinarySource>) {
+    // Only an index list of integers (the usual case): no conversions through double.
+    if (e.properties.size() == 1 && is_integer(e.properties[0].count_type) && is_integer(e.properties[0].type)) {
+      const Property& p = e.properties[0];
+      const std::size_t count_size = size_of(p.count_type), index_size = size_of(p.type);
+      const auto vertices = static_cast<std::uint64_t>(vertex_count);
+      src.begin(e.name, 0, e.count);
+      for (long long i = 0; i < e.count; ++i) {
+        src.at(i, src.position());
+        const std::int64_t n = src.integer(src.take(count_size), p.count_type);
+        if (n < 0)
+          src.fail("list '" + p.name + "' has length " + std::to_string(n) +
+                   " (a whole number from 0 to 4294967295 is needed)");
+        if (n < 3)
+          src.fail("face " + std::to_string(i) + " has " + std::to_string(n) + " vertices (a face needs at least 3)");
+        const unsigned char* q = src.take_items(p.type, static_cast<std::uint64_t>(n));
+        corners.resize(static_cast<std::size_t>(n));
+        for (std::size_t k = 0; k < corners.size(); ++k, q += index_size) {
+          const std::int64_t index = src.integer(q, p.type);
+          // A negative index wraps to a huge unsigned one.
+          if (static_cast<std::uint64_t>(index) >= vertices) bad_corner(src, i, std::to_string(index), vertex_count);
+          corners[k] = static_cast<std::uint32_t>(index);
+        }
+        add_fan(corners, normals, mesh);
+      }
+      return;
+    }
+  }
+  const double vertices = static_cast<double>(vertex_count);
+  for (long long i = 0; i < e.count; ++i) {
+    src.begin(e.name, i, e.count);
+    for (const Property& p : e.properties) {
+      if (!p.list) {
+        src.skip(p.type);
+        continue;
+      }
+      const std::uint64_t n = list_length(src, p);
+      if (p.role != Role::Indices) {
+        src.skip_items(p.type, n);
+        continue;
+      }
+      if (n < 3)
+        src.fail("face " + std::to_string(i) + " has " + std::to_string(n) + " vertices (a face needs at least 3)");
+      src.need_items(p.type, n);
+      corners.clear();
+      for (std::uint64_t k = 0; k < n; ++k) {
+        const double index = src.number(p.type);
+        if (!(index >= 0 && index < vertices) || index != std::floor(index))
+          bad_corner(src, i, number_str(index), vertex_count);
+        corners.push_back(static_cast<std::uint32_t>(index));
+      }
+      add_fan(corners, normals, mesh);
+    }
+    src.end();
+  }
+}
+
+template <class Source>
+void read_body(Source& src, const Header& h, MeshData& mesh) {
+  const long long vertex_count = h.elements[std::size_t(h.vertex)].count;
+  for (std::size_t i = 0; i < h.elements.size(); ++i) {
+    const Element& e = h.elements[i];
+    if (int(i) == h.vertex) read_vertices(src, e, h.normals, mesh);
+    else if (int(i) == h.face) read_faces(src, e, vertex_count, h.normals, mesh);
+    else skip_element(src, e);
+  }
+  src.finish();
+}
+
+}  // namespace
+
+MeshData load_ply(const std::filesystem::path& path) {
+  const Bytes bytes = read_file(path);
+  return parse_ply(bytes.view(), path.string());
+}
+
+MeshData parse_ply(std::string_view bytes, const std::string& name) {
+  const Parser parser(name, bytes);
+  const Header h = parser.header();
+
+  MeshData mesh;
+  // The counts passed check_sizes(): these allocations are bounded by the file's size.
+  const auto vertex_count = static_cast<std::size_t>(h.elements[std::size_t(h.vertex)].count);
+  const auto face_count = static_cast<std::size_t>(h.elements[std::size_t(h.face)].count);
+  mesh.positions.reserve(vertex_count);
+  advise_huge_pages(mesh.positions.data(), vertex_count * sizeof(Vec3));
+  if (h.normals) {
+    mesh.normals.reserve(vertex_count);
+    advise_huge_pages(mesh.normals.data(), vertex_count * sizeof(Vec3));
+  }
+  mesh.faces.reserve(face_count);
+  advise_huge_pages(mesh.faces.data(), face_count * sizeof(MeshData::Face));
+  if (h.format == Format::Ascii) {
+    AsciiSource src(parser, bytes.substr(h.body_offset), h.body_line);
+    read_body(src, h, mesh);
+  } else {
+    BinarySource src(parser, bytes, h.body_offset, h.format == Format::BinaryBigEndian);
+    read_body(src, h, mesh);
+  }
+  if (mesh.faces.empty()) parser.fail("PLY file contains no faces");
+  return mesh;
+}
+
+}  // namespace strahl
