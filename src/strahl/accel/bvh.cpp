@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
-#include <memory>
 
 #include "strahl/accel/build_stats.h"
 
@@ -17,12 +17,12 @@ namespace {
 
 constexpr int kBins = 16;
 constexpr std::uint32_t kMaxLeafSize = 8;
-constexpr std::uint32_t kParallelThreshold = 4096;
+constexpr std::uint32_t kParallelThreshold = 4096;  // subtrees smaller than this build on one thread
 // Past this depth the build splits at the median, which at least halves every node: with at most
 // 2^32 primitives the tree is then at most 64 deep, which the traversal stack relies on
 // (bvh.h). SAH alone can peel off one primitive per level (geometrically spaced spheres).
-constexpr std::size_t kMaxSahDepth = 32;  // subtrees smaller than this build on one thread
-// SAH costs relative to one primitive test.
+constexpr std::size_t kMaxSahDepth = 32;
+// SAH cost of visiting a node relative to one primitive test.
 constexpr Real kTraversalCost = 1.0;
 
 Real surface_area(const Bounds& b) {
@@ -31,71 +31,71 @@ Real surface_area(const Bounds& b) {
   return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-Bounds merge(const Bounds& a, const Bounds& b) {
-  Bounds r;
-  r.lo = min(a.lo, b.lo);
-  r.hi = max(a.hi, b.hi);
-  return r;
-}
+Bounds merge(const Bounds& a, const Bounds& b) { return Bounds{min(a.lo, b.lo), max(a.hi, b.hi)}; }
 
-struct BuildNode {
-  Bounds bounds;
-  std::uint32_t first = 0, count = 0;  // range in the primitive index array (leaves)
-  std::uint8_t axis = 0;
-  std::unique_ptr<BuildNode> left, right;
-};
-
+// Builds into a node array sized for the worst case (2n − 1 nodes): a split takes the next two
+// free slots for its children, so subtrees build in parallel without a temporary tree.
 struct Builder {
   const std::vector<Bounds>& prim_bounds;
   const std::vector<Vec3>& centroids;
   std::vector<std::uint32_t>& index;
+  std::vector<BvhNode>& nodes;
+  std::atomic<std::uint32_t> next_node{1};
 
-  std::unique_ptr<BuildNode> build(std::uint32_t begin, std::uint32_t end, std::size_t depth) {
-    auto node = std::make_unique<BuildNode>();
+  void build(std::uint32_t at, std::uint32_t begin, std::uint32_t end, std::size_t depth) {
     Bounds bounds, centroid_bounds;
     for (std::uint32_t i = begin; i < end; ++i) {
       bounds = merge(bounds, prim_bounds[index[i]]);
       centroid_bounds.extend(centroids[index[i]]);
     }
-    node->bounds = bounds;
+    BvhNode& node = nodes[at];
+    node.bounds = bounds;
     const std::uint32_t count = end - begin;
     const auto make_leaf = [&] {
-      node->first = begin;
-      node->count = count;
-      return std::move(node);
+      node.offset = begin;
+      node.count = std::uint16_t(count);
     };
     // Tiny scenes (the lecture's five spheres) are one leaf: see traverse().
-    if (count <= 2 || (begin == 0 && end == index.size() && count <= kMaxLeafSize)) return make_leaf();
+    if (count <= 2 || (at == 0 && count <= kMaxLeafSize)) return make_leaf();
 
-    // Binned SAH: the best of kBins − 1 candidate planes on each axis.
+    // Binned SAH: the best of kBins − 1 candidate planes on each axis, all axes in one pass.
+    std::array<std::array<Bounds, kBins>, 3> bin_bounds;
+    std::array<std::array<std::uint32_t, kBins>, 3> bin_count{};
+    Vec3 scale;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Real extent = centroid_bounds.hi[axis] - centroid_bounds.lo[axis];
+      (axis == 0 ? scale.x : axis == 1 ? scale.y : scale.z) = extent > 0 ? kBins / extent : 0;
+    }
+    const auto bin_of = [&](const Vec3& c, int axis) {
+      return std::min(kBins - 1, int((c[axis] - centroid_bounds.lo[axis]) * scale[axis]));
+    };
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const std::uint32_t p = index[i];
+      for (int axis = 0; axis < 3; ++axis) {
+        const int b = bin_of(centroids[p], axis);
+        bin_bounds[axis][b] = merge(bin_bounds[axis][b], prim_bounds[p]);
+        ++bin_count[axis][b];
+      }
+    }
     Real best_cost = kInfinity;
     int best_axis = -1, best_split = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const Real lo = centroid_bounds.lo[axis], extent = centroid_bounds.hi[axis] - lo;
-      if (!(extent > 0)) continue;
-      std::array<Bounds, kBins> bin_bounds;
-      std::array<std::uint32_t, kBins> bin_count{};
-      const Real scale = kBins / extent;
-      for (std::uint32_t i = begin; i < end; ++i) {
-        const int b = std::min(kBins - 1, int((centroids[index[i]][axis] - lo) * scale));
-        bin_bounds[b] = merge(bin_bounds[b], prim_bounds[index[i]]);
-        ++bin_count[b];
-      }
+      if (scale[axis] == 0) continue;
       std::array<Real, kBins> right_area{};
       std::array<std::uint32_t, kBins> right_count{};
       Bounds acc;
       std::uint32_t n = 0;
       for (int b = kBins - 1; b > 0; --b) {
-        acc = merge(acc, bin_bounds[b]);
-        n += bin_count[b];
+        acc = merge(acc, bin_bounds[axis][b]);
+        n += bin_count[axis][b];
         right_area[b] = surface_area(acc);
         right_count[b] = n;
       }
       acc = Bounds{};
       n = 0;
       for (int b = 0; b < kBins - 1; ++b) {
-        acc = merge(acc, bin_bounds[b]);
-        n += bin_count[b];
+        acc = merge(acc, bin_bounds[axis][b]);
+        n += bin_count[axis][b];
         const Real cost = surface_area(acc) * n + right_area[b + 1] * right_count[b + 1];
         if (n > 0 && right_count[b + 1] > 0 && cost < best_cost) {
           best_cost = cost;
@@ -104,58 +104,54 @@ struct Builder {
         }
       }
     }
-    const Real leaf_cost = Real(count);
     const Real area = surface_area(bounds);
     const Real split_cost = area > 0 ? kTraversalCost + best_cost / area : kInfinity;
     // A leaf when splitting does not pay and the leaf stays small. Coinciding centroids (no SAH
     // split) are split in halves below, so leaves never exceed kMaxLeafSize.
-    if (count <= kMaxLeafSize && (best_axis < 0 || leaf_cost <= split_cost)) return make_leaf();
+    if (count <= kMaxLeafSize && (best_axis < 0 || Real(count) <= split_cost)) return make_leaf();
 
-    std::uint32_t mid;
-    if (depth >= kMaxSahDepth) {
-      // Median split on the widest centroid axis.
-      const Vec3 extent = centroid_bounds.empty() ? Vec3(0) : centroid_bounds.hi - centroid_bounds.lo;
-      const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-      mid = begin + count / 2;
+    std::uint32_t mid = begin + count / 2;
+    std::uint8_t axis = 0;
+    if (depth >= kMaxSahDepth || best_axis < 0) {
+      // Median split on the widest centroid axis (all centroids may coincide: then any halves).
+      const Vec3 extent = centroid_bounds.hi - centroid_bounds.lo;
+      axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
       std::nth_element(index.data() + begin, index.data() + mid, index.data() + end,
                        [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
-      node->axis = std::uint8_t(axis);
-    } else if (best_axis >= 0) {
-      const Real lo = centroid_bounds.lo[best_axis];
-      const Real scale = kBins / (centroid_bounds.hi[best_axis] - lo);
-      auto* split = std::partition(index.data() + begin, index.data() + end, [&](std::uint32_t p) {
-        return std::min(kBins - 1, int((centroids[p][best_axis] - lo) * scale)) < best_split;
-      });
+    } else {
+      axis = std::uint8_t(best_axis);
+      auto* split = std::partition(index.data() + begin, index.data() + end,
+                                   [&](std::uint32_t p) { return bin_of(centroids[p], best_axis) < best_split; });
       mid = std::uint32_t(split - index.data());
-      node->axis = std::uint8_t(best_axis);
-    } else {
-      // All centroids coincide (e.g. duplicated primitives): split the list in half.
-      mid = begin + count / 2;
-      node->axis = 0;
+      if (mid == begin || mid == end) mid = begin + count / 2;
     }
-    if (mid == begin || mid == end) mid = begin + count / 2;
+    const std::uint32_t children = next_node.fetch_add(2);
+    node.offset = children;
+    node.count = 0;
+    node.axis = axis;
     if (count > kParallelThreshold) {
-      tbb::parallel_invoke([&] { node->left = build(begin, mid, depth + 1); },
-                           [&] { node->right = build(mid, end, depth + 1); });
+      tbb::parallel_invoke([&] { build(children, begin, mid, depth + 1); },
+                           [&] { build(children + 1, mid, end, depth + 1); });
     } else {
-      node->left = build(begin, mid, depth + 1);
-      node->right = build(mid, end, depth + 1);
+      build(children, begin, mid, depth + 1);
+      build(children + 1, mid, end, depth + 1);
     }
-    return node;
   }
 };
 
-void flatten(const BuildNode& n, std::vector<BvhNode>& out, std::size_t depth, AccelBuildStats& stats) {
-  stats.max_depth = std::max(stats.max_depth, depth);
-  const std::size_t at = out.size();
-  out.push_back({n.bounds, n.first, std::uint16_t(n.left ? 0 : n.count), n.axis});
-  if (!n.left) {
-    ++stats.leaves;
-    return;
+void count_nodes(const std::vector<BvhNode>& nodes, AccelBuildStats& stats) {
+  std::vector<std::pair<std::uint32_t, std::size_t>> stack{{0, 1}};
+  while (!stack.empty()) {
+    const auto [at, depth] = stack.back();
+    stack.pop_back();
+    stats.max_depth = std::max(stats.max_depth, depth);
+    if (nodes[at].count > 0) {
+      ++stats.leaves;
+    } else {
+      stack.push_back({nodes[at].offset, depth + 1});
+      stack.push_back({nodes[at].offset + 1, depth + 1});
+    }
   }
-  flatten(*n.left, out, depth + 1, stats);
-  out[at].offset = std::uint32_t(out.size());
-  flatten(*n.right, out, depth + 1, stats);
 }
 
 }  // namespace
@@ -177,11 +173,12 @@ Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
         bvh.prims[i] = i;
       }
     });
-    Builder builder{bounds, centroids, bvh.prims};
-    const std::unique_ptr<BuildNode> root = builder.build(0, n, 1);
-    bvh.nodes.reserve(2 * std::size_t(n));
-    flatten(*root, bvh.nodes, 1, stats);
+    bvh.nodes.resize(2 * std::size_t(n) - 1);
+    Builder builder{bounds, centroids, bvh.prims, bvh.nodes};
+    builder.build(0, 0, n, 1);
+    bvh.nodes.resize(builder.next_node.load());
     bvh.nodes.shrink_to_fit();
+    count_nodes(bvh.nodes, stats);
   }
   stats.nodes = bvh.nodes.size();
   stats.bytes = bvh.nodes.size() * sizeof(BvhNode) + bvh.prims.size() * sizeof(std::uint32_t);

@@ -1,6 +1,6 @@
 #pragma once
-// Bounding volume hierarchy: binned SAH build (in parallel), flattened depth-first so that a
-// node's first child follows it; traversal front to back with early exit.
+// Bounding volume hierarchy: binned SAH build (in parallel) into one flat node array, the two
+// children of a node side by side; traversal front to back with early exit.
 
 #include <cstdint>
 #include <vector>
@@ -12,7 +12,8 @@ namespace strahl {
 
 struct BvhNode {
   Bounds bounds;
-  std::uint32_t offset = 0;  // leaf: first entry in the primitive index array; inner: second child
+  std::uint32_t offset = 0;  // leaf: first entry in the primitive index array; inner: first child
+                             // (the second child follows it)
   std::uint16_t count = 0;   // primitives in a leaf, 0 for inner nodes
   std::uint8_t axis = 0;     // inner: split axis, to visit the nearer child first
 };
@@ -56,7 +57,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const BvhView& bvh, const R
           if (visit(bvh.prims[i], -kInfinity, kInfinity, t_max)) return;
       } else {
         // Near child first: the first child lies on the low side of the split axis.
-        const std::uint32_t first = node + 1, second = n.offset;
+        const std::uint32_t first = n.offset, second = n.offset + 1;
         if (negative[n.axis]) { stack[top++] = first; node = second; }
         else { stack[top++] = second; node = first; }
         continue;

@@ -104,6 +104,8 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   // A mirroring transform (negative determinant) would turn the faces inside out: swap two
   // vertices of each face so that front faces stay outside.
   const bool mirrored = m.determinant() < 0;
+  out.triangles.reserve(out.triangles.size() + data.faces.size());
+  if (!data.normals.empty()) out.vertex_normals.reserve(out.vertex_normals.size() + data.faces.size());
   for (MeshData::Face f : data.faces) {
     if (mirrored) {
       std::swap(f.v[1], f.v[2]);
