@@ -14,9 +14,11 @@ std::string summary(const std::string& output, int width, int height, int supers
   const AccelBuildStats& a = scene.accel.stats;
   out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} lights\n", scene.spheres.size(),
                      scene.planes.size(), scene.triangles.size(), scene.lights.size());
-  out += fmt::format("accel       {}: {} nodes, {} leaves, depth {}, {:.1f} MiB ({:.1f} bytes per primitive), "
-                     "built in {:.3f} s\n",
-                     accel_name(scene.accel.kind), a.nodes, a.leaves, a.max_depth, double(a.bytes) / (1 << 20),
+  // Embree reports no node count or depth.
+  const std::string nodes =
+      a.nodes > 0 ? fmt::format("{} nodes, {} leaves, depth {}, ", a.nodes, a.leaves, a.max_depth) : std::string();
+  out += fmt::format("accel       {}: {}{:.1f} MiB ({:.1f} bytes per primitive), built in {:.3f} s\n",
+                     accel_name(scene.accel.kind), nodes, double(a.bytes) / (1 << 20),
                      a.primitives > 0 ? double(a.bytes) / double(a.primitives) : 0.0, a.seconds);
   out += fmt::format("time        load {:.3f} s, build {:.3f} s, render {:.3f} s, write {:.3f} s\n", t.load, t.build,
                      t.render, t.write);

@@ -1,15 +1,18 @@
 #include "strahl/accel/accel.h"
 
-#include <array>
 #include <chrono>
+#include <utility>
 
 namespace strahl {
 
 namespace {
-constexpr std::array<std::pair<AccelKind, std::string_view>, 2> kNames = {{
+constexpr std::pair<AccelKind, std::string_view> kNames[] = {
     {AccelKind::Naive, "naive"},
     {AccelKind::Bvh, "bvh"},
-}};
+#if defined(STRAHL_HAVE_EMBREE)
+    {AccelKind::Embree, "embree"},
+#endif
+};
 }  // namespace
 
 std::string_view accel_name(AccelKind kind) {
@@ -30,6 +33,12 @@ std::string accel_names() {
   return out;
 }
 
+std::vector<AccelKind> accel_kinds() {
+  std::vector<AccelKind> kinds;
+  for (const auto& [k, name] : kNames) kinds.push_back(k);
+  return kinds;
+}
+
 Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
   Accel a;
   a.kind = kind;
@@ -41,6 +50,9 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
       break;
     }
     case AccelKind::Bvh: a.bvh = build_bvh(prims, &a.stats); break;
+#if defined(STRAHL_HAVE_EMBREE)
+    case AccelKind::Embree: a.embree = build_embree(prims, &a.stats); break;
+#endif
   }
   a.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return a;

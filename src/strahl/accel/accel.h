@@ -1,43 +1,71 @@
 #pragma once
 // The interchangeable acceleration structures over a scene's bounded primitives (spheres and
-// triangles): the lecture's naive loop, a BVH (default), a kd-tree and an octree. Kernel code
-// dispatches on AccelKind with a switch; each structure has one traversal (see traversal.h) that
-// every query — nearest hit, any hit, shadow transmittance — runs through.
+// triangles): the lecture's naive loop, a BVH (default), a kd-tree and an octree, and Embree
+// where CMake found it (STRAHL_HAVE_EMBREE). Kernel code dispatches on AccelKind with a switch;
+// each structure has one traversal (see traversal.h) that every query — nearest hit, any hit,
+// shadow transmittance — runs through. Embree has no visitor traversal: the three queries call
+// it directly (embree_accel.h), on the host only.
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "strahl/accel/build_stats.h"
 #include "strahl/accel/bvh.h"
 #include "strahl/accel/naive.h"
+#if defined(STRAHL_HAVE_EMBREE)
+#include "strahl/accel/embree_accel.h"
+#endif
 
 namespace strahl {
 
-enum class AccelKind : std::uint8_t { Naive, Bvh };
+enum class AccelKind : std::uint8_t {
+  Naive,
+  Bvh,
+#if defined(STRAHL_HAVE_EMBREE)
+  Embree,
+#endif
+};
 
 std::string_view accel_name(AccelKind kind);
 std::optional<AccelKind> accel_from_name(std::string_view name);
 // "naive, bvh" — for messages and --help.
 std::string accel_names();
+// Every kind built into this binary, in the order of accel_names().
+std::vector<AccelKind> accel_kinds();
 
 // What kernels read: the kind and the plain-data view of the structure built.
 struct AccelView {
   AccelKind kind = AccelKind::Bvh;
   PrimitiveSet prims;
   BvhView bvh;
+#if defined(STRAHL_HAVE_EMBREE)
+  void* embree = nullptr;  // RTCScene (opaque here; see embree_accel.h)
+#endif
 };
 
-// Owns whichever structure was built.
 // Owns whichever structure was built. It holds primitive indices, not pointers, so the scene that
-// owns both may be moved or copied.
+// owns both may be moved or copied (an Embree scene is shared between copies, by reference count).
 struct Accel {
   AccelKind kind = AccelKind::Bvh;
   Bvh bvh;
+#if defined(STRAHL_HAVE_EMBREE)
+  EmbreeAccel embree;
+#endif
   AccelBuildStats stats;
 
-  AccelView view(const PrimitiveSet& prims) const { return {kind, prims, bvh.view()}; }
+  AccelView view(const PrimitiveSet& prims) const {
+    AccelView v;
+    v.kind = kind;
+    v.prims = prims;
+    v.bvh = bvh.view();
+#if defined(STRAHL_HAVE_EMBREE)
+    v.embree = embree.scene();
+#endif
+    return v;
+  }
 };
 
 Accel build_accel(AccelKind kind, const PrimitiveSet& prims);
@@ -47,6 +75,11 @@ STRAHL_HOST_DEVICE inline void traverse(const AccelView& a, const Ray& ray, Real
   switch (a.kind) {
     case AccelKind::Naive: traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit); break;
     case AccelKind::Bvh: traverse(a.bvh, ray, t_min, t_max, visit); break;
+#if defined(STRAHL_HAVE_EMBREE)
+    // Embree has no visitor traversal; the queries below call it directly. Any other visitor
+    // (and device code) gets the naive loop: slow, but the same answers.
+    case AccelKind::Embree: traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit); break;
+#endif
   }
 }
 
@@ -59,6 +92,9 @@ struct NearestHit {
 };
 
 STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+#if defined(STRAHL_HAVE_EMBREE) && !defined(__CUDACC__)
+  if (a.kind == AccelKind::Embree) return embree_nearest_hit(a, ray, t_min, t_max);
+#endif
   NearestHit result;
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
     const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, t_min, t_far);
@@ -75,6 +111,9 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
 
 // Any hit in (t_min, t_max)? Stops at the first one found.
 STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+#if defined(STRAHL_HAVE_EMBREE) && !defined(__CUDACC__)
+  if (a.kind == AccelKind::Embree) return embree_occluded(a, ray, t_min, t_max);
+#endif
   bool found = false;
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
     found = intersect_primitive(a.prims, prim, ray, t_min, t_far).t < kInfinity;
@@ -90,6 +129,15 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
 template <class Cross>
 STRAHL_HOST_DEVICE inline void for_each_crossing(const AccelView& a, const Ray& ray, Real t_min, Real t_max,
                                                  Cross& cross) {
+#if defined(STRAHL_HAVE_EMBREE) && !defined(__CUDACC__)
+  if (a.kind == AccelKind::Embree) {
+    const EmbreeCrossFn call = [](void* state, std::uint32_t prim, int n) {
+      return bool((*static_cast<Cross*>(state))(prim, n));
+    };
+    embree_for_each_crossing(a, ray, t_min, t_max, call, const_cast<void*>(static_cast<const void*>(&cross)));
+    return;
+  }
+#endif
   auto visit = [&](std::uint32_t prim, Real leaf_lo, Real leaf_hi, Real& t_far) {
     const Real lo = leaf_lo > t_min ? leaf_lo : t_min;
     const Real hi = leaf_hi < t_far ? leaf_hi : t_far;

@@ -1,0 +1,389 @@
+#include "strahl/accel/embree_accel.h"
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "strahl/accel/accel.h"
+
+namespace strahl {
+
+namespace {
+
+// Geometry ids in every strahl Embree scene.
+constexpr unsigned kTriangleGeometry = 0;
+constexpr unsigned kSphereGeometry = 1;
+
+// ---- the device: one per process, shared by every scene (each scene holds a reference) ----
+
+// Net bytes Embree has allocated, from its memory monitor; build_embree reads the difference
+// across a build. (Builds running at the same time in other threads would be counted too.)
+std::atomic<long long> g_embree_bytes{0};
+
+bool memory_monitor(void*, ssize_t bytes, bool) {
+  g_embree_bytes.fetch_add(static_cast<long long>(bytes), std::memory_order_relaxed);
+  return true;  // never refuse an allocation
+}
+
+// The last error Embree reported on this thread (Embree calls the error function on the thread
+// that made the failing call).
+thread_local std::string t_embree_error;
+
+void error_function(void*, RTCError code, const char* message) {
+  t_embree_error = std::string("Embree error ") + std::to_string(int(code)) + ": " + (message ? message : "");
+}
+
+struct SharedDevice {
+  RTCDevice device = nullptr;
+  SharedDevice() {
+    device = rtcNewDevice(nullptr);
+    if (device == nullptr)
+      throw std::runtime_error("Embree: cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) +
+                               ")");
+    rtcSetDeviceErrorFunction(device, error_function, nullptr);
+    rtcSetDeviceMemoryMonitorFunction(device, memory_monitor, nullptr);
+  }
+  ~SharedDevice() { rtcReleaseDevice(device); }
+  SharedDevice(const SharedDevice&) = delete;
+  SharedDevice& operator=(const SharedDevice&) = delete;
+};
+
+RTCDevice shared_device() {
+  static SharedDevice shared;  // created on first use, thread-safe
+  return shared.device;
+}
+
+void check(RTCDevice device, const char* what) {
+  const RTCError code = rtcGetDeviceError(device);
+  if (code == RTC_ERROR_NONE) return;
+  std::string message = t_embree_error.empty() ? "Embree error " + std::to_string(int(code)) : t_embree_error;
+  t_embree_error.clear();
+  throw std::runtime_error(std::string(what) + ": " + message);
+}
+
+// ---- queries ----
+
+// What the callbacks (sphere intersection, triangle filter) need besides the float ray Embree
+// hands them: the original double ray, the primitives and the double interval. Embree passes
+// &rtc to the callbacks, and rtc is the first member, so they can reach the rest.
+struct QueryContext {
+  RTCIntersectContext rtc;
+  const kernel::Sphere* spheres = nullptr;
+  const kernel::Triangle* triangles = nullptr;
+  const Ray* ray = nullptr;
+  Real t_min = 0, t_max = kInfinity;  // the query's interval
+  float check_below = 0;              // triangle hits nearer than this are checked in double
+  Real sphere_t_min = 0;              // spheres: roots beyond this (for_each_crossing steps it)
+  Real sphere_t = kInfinity;          // nearest sphere hit so far (intersect queries)
+  std::uint32_t sphere = 0;
+};
+static_assert(std::is_standard_layout_v<QueryContext> && offsetof(QueryContext, rtc) == 0);
+
+void init_context(QueryContext& ctx, const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.spheres = a.prims.spheres;
+  ctx.triangles = a.prims.triangles;
+  ctx.ray = &ray;
+  ctx.t_min = ctx.sphere_t_min = t_min;
+  ctx.t_max = t_max;
+  ctx.check_below = float(kEmbreeCheckDistance * (1 + max_abs_component(ray.origin)));
+}
+
+void set_ray(RTCRay& r, const Ray& ray, Real t_near, Real t_far) {
+  r.org_x = float(ray.origin.x);
+  r.org_y = float(ray.origin.y);
+  r.org_z = float(ray.origin.z);
+  r.dir_x = float(ray.direction.x);
+  r.dir_y = float(ray.direction.y);
+  r.dir_z = float(ray.direction.z);
+  r.tnear = float(t_near);
+  r.tfar = float(t_far);  // ∞ stays ∞
+  r.time = 0;
+  r.mask = ~0u;
+  r.id = 0;
+  r.flags = 0;
+}
+
+RTCRayHit make_rayhit(const Ray& ray, Real t_near, Real t_far) {
+  RTCRayHit rh;
+  set_ray(rh.ray, ray, t_near, t_far);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.u = rh.hit.v = 0;
+  rh.hit.Ng_x = rh.hit.Ng_y = rh.hit.Ng_z = 0;
+  return rh;
+}
+
+RTCScene scene_of(const AccelView& a) { return static_cast<RTCScene>(a.embree); }
+
+// Embree's triangle hit recomputed in double (Möller–Trumbore as kernel::intersect, without its
+// range checks): where the ray meets the triangle's plane, and the barycentrics there. Float
+// found the hit; rounding can put it a hair outside the triangle, which double then reports as
+// slightly negative barycentrics rather than a miss.
+kernel::TriangleHit refine(const kernel::Triangle& tri, const Ray& ray, const RTCRayHit& rh) {
+  const Vec3 pvec = cross(ray.direction, tri.e2);
+  const Real det = dot(tri.e1, pvec);
+  if (det == 0) return {Real(rh.ray.tfar), Real(rh.hit.u), Real(rh.hit.v)};
+  const Real inv_det = Real(1) / det;
+  const Vec3 tvec = ray.origin - tri.v0;
+  const Vec3 qvec = cross(tvec, tri.e1);
+  return {dot(tri.e2, qvec) * inv_det, dot(tvec, pvec) * inv_det, dot(ray.direction, qvec) * inv_det};
+}
+
+// ---- the spheres: a user geometry running strahl's own double-precision test ----
+
+float round_down(Real x) {
+  const float f = float(x);
+  return Real(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float round_up(Real x) {
+  const float f = float(x);
+  return Real(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+// Build time only: the user pointer is the PrimitiveSet's sphere array as it was during the build.
+void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+  const auto* spheres = static_cast<const kernel::Sphere*>(args->geometryUserPtr);
+  const kernel::Sphere& s = spheres[args->primID];
+  RTCBounds& b = *args->bounds_o;
+  b.lower_x = round_down(s.center.x - s.radius);
+  b.lower_y = round_down(s.center.y - s.radius);
+  b.lower_z = round_down(s.center.z - s.radius);
+  b.upper_x = round_up(s.center.x + s.radius);
+  b.upper_y = round_up(s.center.y + s.radius);
+  b.upper_z = round_up(s.center.z + s.radius);
+}
+
+// Only rtcIntersect1 / rtcOccluded1 are used, so N is 1 and the ray is an RTCRayHit / RTCRay.
+void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+  if (args->N != 1 || !args->valid[0]) return;
+  auto* ctx = reinterpret_cast<QueryContext*>(args->context);
+  auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const kernel::Sphere& s = ctx->spheres[args->primID];
+  const Real t_hi = ctx->sphere_t < ctx->t_max ? ctx->sphere_t : ctx->t_max;
+  const Real t = kernel::intersect(s, *ctx->ray, ctx->sphere_t_min, t_hi);
+  if (!(t < kInfinity)) return;
+  const float tf = float(t);
+  if (tf > rh->ray.tfar) return;  // a triangle is nearer
+  rh->ray.tfar = tf;
+  const Vec3 n = kernel::normal_at(s, ctx->ray->at(t));
+  rh->hit.Ng_x = float(n.x);
+  rh->hit.Ng_y = float(n.y);
+  rh->hit.Ng_z = float(n.z);
+  rh->hit.u = rh->hit.v = 0;
+  rh->hit.primID = args->primID;
+  rh->hit.geomID = args->geomID;
+  rh->hit.instID[0] = args->context->instID[0];
+  ctx->sphere_t = t;
+  ctx->sphere = args->primID;
+}
+
+// Triangles: a hit near the ray's origin may be the surface the ray leaves, which the float ray
+// (its origin rounded, losing strahl's tiny offset) can meet at a small t. Strahl's double test
+// decides such hits: it rejects them when it sees no hit in (t_min, ∞).
+void triangle_filter(const RTCFilterFunctionNArguments* args) {
+  if (args->N != 1 || !args->valid[0]) return;
+  const auto* ctx = reinterpret_cast<const QueryContext*>(args->context);
+  const auto* r = reinterpret_cast<const RTCRay*>(args->ray);  // tfar: the candidate hit's distance
+  if (r->tfar >= ctx->check_below) return;
+  const auto* hit = reinterpret_cast<const RTCHit*>(args->hit);
+  if (!(kernel::intersect(ctx->triangles[hit->primID], *ctx->ray, ctx->t_min, kInfinity).t < kInfinity))
+    args->valid[0] = 0;
+}
+
+void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
+  if (args->N != 1 || !args->valid[0]) return;
+  const auto* ctx = reinterpret_cast<const QueryContext*>(args->context);
+  auto* r = reinterpret_cast<RTCRay*>(args->ray);
+  if (kernel::intersect(ctx->spheres[args->primID], *ctx->ray, ctx->t_min, ctx->t_max) < kInfinity)
+    r->tfar = -std::numeric_limits<float>::infinity();
+}
+
+}  // namespace
+
+// ---- ownership ----
+
+EmbreeAccel::~EmbreeAccel() { release(); }
+
+void EmbreeAccel::release() noexcept {
+  if (scene_) rtcReleaseScene(static_cast<RTCScene>(scene_));
+  if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
+  scene_ = device_ = nullptr;
+}
+
+EmbreeAccel::EmbreeAccel(const EmbreeAccel& other) : device_(other.device_), scene_(other.scene_) {
+  if (device_) rtcRetainDevice(static_cast<RTCDevice>(device_));
+  if (scene_) rtcRetainScene(static_cast<RTCScene>(scene_));
+}
+
+EmbreeAccel& EmbreeAccel::operator=(const EmbreeAccel& other) {
+  if (this != &other) {
+    EmbreeAccel copy(other);
+    *this = std::move(copy);
+  }
+  return *this;
+}
+
+EmbreeAccel::EmbreeAccel(EmbreeAccel&& other) noexcept
+    : device_(std::exchange(other.device_, nullptr)), scene_(std::exchange(other.scene_, nullptr)) {}
+
+EmbreeAccel& EmbreeAccel::operator=(EmbreeAccel&& other) noexcept {
+  if (this != &other) {
+    release();
+    device_ = std::exchange(other.device_, nullptr);
+    scene_ = std::exchange(other.scene_, nullptr);
+  }
+  return *this;
+}
+
+// ---- build ----
+
+EmbreeAccel build_embree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
+  const auto start = std::chrono::steady_clock::now();
+  const RTCDevice device = shared_device();
+  const long long bytes_before = g_embree_bytes.load();
+  t_embree_error.clear();
+  rtcGetDeviceError(device);  // clear a stale error code
+
+  EmbreeAccel out;
+  rtcRetainDevice(device);
+  out.device_ = device;
+  const RTCScene scene = rtcNewScene(device);
+  check(device, "Embree: rtcNewScene");
+  out.scene_ = scene;
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_NONE);
+
+  if (prims.triangle_count > 0) {
+    const std::uint32_t n = prims.triangle_count;
+    const RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), 3 * std::size_t(n)));
+    auto* indices = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+    if (vertices == nullptr || indices == nullptr) {
+      rtcReleaseGeometry(geom);
+      check(device, "Embree: triangle buffers");
+      throw std::runtime_error("Embree: cannot allocate the triangle buffers");
+    }
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 4096), [&](const auto& r) {
+      for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
+        const kernel::Triangle& t = prims.triangles[i];
+        const Vec3 v[3] = {t.v0, t.v0 + t.e1, t.v0 + t.e2};
+        float* out_v = vertices + 9 * std::size_t(i);
+        for (int k = 0; k < 3; ++k) {
+          out_v[3 * k + 0] = float(v[k].x);
+          out_v[3 * k + 1] = float(v[k].y);
+          out_v[3 * k + 2] = float(v[k].z);
+          indices[3 * std::size_t(i) + std::size_t(k)] = 3 * i + unsigned(k);
+        }
+      }
+    });
+    rtcSetGeometryIntersectFilterFunction(geom, triangle_filter);
+    rtcSetGeometryOccludedFilterFunction(geom, triangle_filter);
+    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_MEDIUM);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene, geom, kTriangleGeometry);
+    rtcReleaseGeometry(geom);
+    check(device, "Embree: triangle geometry");
+  }
+
+  if (prims.sphere_count > 0) {
+    const RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, prims.sphere_count);
+    rtcSetGeometryUserData(geom, const_cast<kernel::Sphere*>(prims.spheres));
+    rtcSetGeometryBoundsFunction(geom, sphere_bounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, sphere_intersect);
+    rtcSetGeometryOccludedFunction(geom, sphere_occluded);
+    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_MEDIUM);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene, geom, kSphereGeometry);
+    rtcReleaseGeometry(geom);
+    check(device, "Embree: sphere geometry");
+  }
+
+  rtcCommitScene(scene);
+  check(device, "Embree: rtcCommitScene");
+
+  if (stats_out) {
+    AccelBuildStats stats;
+    stats.primitives = stats.primitive_references = prims.size();
+    const long long bytes = g_embree_bytes.load() - bytes_before;
+    stats.bytes = bytes > 0 ? std::size_t(bytes) : 0;
+    // Embree does not report its node count or depth.
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    *stats_out = stats;
+  }
+  return out;
+}
+
+// ---- queries ----
+
+NearestHit embree_nearest_hit(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+  NearestHit result;
+  QueryContext ctx;
+  init_context(ctx, a, ray, t_min, t_max);
+  RTCRayHit rh = make_rayhit(ray, t_min, t_max);
+  rtcIntersect1(scene_of(a), &ctx.rtc, &rh);
+  if (rh.hit.geomID == kTriangleGeometry) {
+    // The hit refined in double: the same t and barycentrics as strahl's own test, so that the
+    // hit point lies on the triangle to double precision and spawn_ray's tiny offset suffices.
+    const kernel::TriangleHit h = refine(a.prims.triangles[rh.hit.primID], ray, rh);
+    if (h.t > t_min && h.t < t_max) {
+      result.prim = a.prims.sphere_count + rh.hit.primID;
+      result.hit = h;
+    }
+  } else if (rh.hit.geomID == kSphereGeometry) {
+    result.prim = ctx.sphere;
+    result.hit = {ctx.sphere_t, 0, 0};
+  }
+  return result;
+}
+
+bool embree_occluded(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+  QueryContext ctx;
+  init_context(ctx, a, ray, t_min, t_max);
+  RTCRay r;
+  set_ray(r, ray, t_min, t_max);
+  rtcOccluded1(scene_of(a), &ctx.rtc, &r);
+  return r.tfar < 0;  // Embree sets tfar to −∞ when it finds a hit
+}
+
+void embree_for_each_crossing(const AccelView& a, const Ray& ray, Real t_min, Real t_max, EmbreeCrossFn cross,
+                              void* state) {
+  // Each round finds the nearest crossing past the previous one: triangles past the float t
+  // just reported (the next float up), spheres past the double root just reported.
+  QueryContext ctx;
+  init_context(ctx, a, ray, t_min, t_max);
+  Real triangle_lo = t_min;
+  for (;;) {
+    ctx.sphere_t = kInfinity;
+    RTCRayHit rh = make_rayhit(ray, triangle_lo, t_max);
+    rtcIntersect1(scene_of(a), &ctx.rtc, &rh);
+    std::uint32_t prim;
+    if (rh.hit.geomID == kTriangleGeometry) {
+      if (!(Real(rh.ray.tfar) < t_max)) return;
+      prim = a.prims.sphere_count + rh.hit.primID;
+      triangle_lo = std::nextafter(rh.ray.tfar, std::numeric_limits<float>::infinity());
+    } else if (rh.hit.geomID == kSphereGeometry) {
+      prim = ctx.sphere;
+      ctx.sphere_t_min = ctx.sphere_t;
+    } else {
+      return;
+    }
+    if (cross(state, prim, 1)) return;
+  }
+}
+
+}  // namespace strahl
