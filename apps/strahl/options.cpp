@@ -9,7 +9,7 @@ namespace strahl::cli {
 namespace {
 std::vector<std::string> accel_list() {
   std::vector<std::string> names;
-  for (AccelKind k : {AccelKind::Naive, AccelKind::Bvh}) names.emplace_back(accel_name(k));
+  for (AccelKind k : {AccelKind::Naive, AccelKind::Bvh, AccelKind::KdTree, AccelKind::Octree}) names.emplace_back(accel_name(k));
   return names;
 }
 }  // namespace

@@ -6,9 +6,11 @@
 namespace strahl {
 
 namespace {
-constexpr std::array<std::pair<AccelKind, std::string_view>, 2> kNames = {{
+constexpr std::array<std::pair<AccelKind, std::string_view>, 4> kNames = {{
     {AccelKind::Naive, "naive"},
     {AccelKind::Bvh, "bvh"},
+    {AccelKind::KdTree, "kdtree"},
+    {AccelKind::Octree, "octree"},
 }};
 }  // namespace
 
@@ -37,10 +39,12 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
   switch (kind) {
     case AccelKind::Naive: {
       a.stats.primitives = a.stats.primitive_references = prims.size();
-      a.stats.nodes = a.stats.leaves = prims.size() > 0 ? 1 : 0;
+      a.stats.nodes = a.stats.leaves = a.stats.max_depth = prims.size() > 0 ? 1 : 0;
       break;
     }
     case AccelKind::Bvh: a.bvh = build_bvh(prims, &a.stats); break;
+    case AccelKind::KdTree: a.kdtree = build_kdtree(prims, &a.stats); break;
+    case AccelKind::Octree: a.octree = build_octree(prims, &a.stats); break;
   }
   a.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return a;

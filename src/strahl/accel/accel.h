@@ -11,15 +11,17 @@
 
 #include "strahl/accel/build_stats.h"
 #include "strahl/accel/bvh.h"
+#include "strahl/accel/kdtree.h"
 #include "strahl/accel/naive.h"
+#include "strahl/accel/octree.h"
 
 namespace strahl {
 
-enum class AccelKind : std::uint8_t { Naive, Bvh };
+enum class AccelKind : std::uint8_t { Naive, Bvh, KdTree, Octree };
 
 std::string_view accel_name(AccelKind kind);
 std::optional<AccelKind> accel_from_name(std::string_view name);
-// "naive, bvh" — for messages and --help.
+// "naive, bvh, kdtree, octree" — for messages and --help.
 std::string accel_names();
 
 // What kernels read: the kind and the plain-data view of the structure built.
@@ -27,17 +29,20 @@ struct AccelView {
   AccelKind kind = AccelKind::Bvh;
   PrimitiveSet prims;
   BvhView bvh;
+  KdTreeView kdtree;
+  OctreeView octree;
 };
 
-// Owns whichever structure was built.
 // Owns whichever structure was built. It holds primitive indices, not pointers, so the scene that
 // owns both may be moved or copied.
 struct Accel {
   AccelKind kind = AccelKind::Bvh;
   Bvh bvh;
+  KdTree kdtree;
+  Octree octree;
   AccelBuildStats stats;
 
-  AccelView view(const PrimitiveSet& prims) const { return {kind, prims, bvh.view()}; }
+  AccelView view(const PrimitiveSet& prims) const { return {kind, prims, bvh.view(), kdtree.view(), octree.view()}; }
 };
 
 Accel build_accel(AccelKind kind, const PrimitiveSet& prims);
@@ -47,6 +52,8 @@ STRAHL_HOST_DEVICE inline void traverse(const AccelView& a, const Ray& ray, Real
   switch (a.kind) {
     case AccelKind::Naive: traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit); break;
     case AccelKind::Bvh: traverse(a.bvh, ray, t_min, t_max, visit); break;
+    case AccelKind::KdTree: traverse(a.kdtree, ray, t_min, t_max, visit); break;
+    case AccelKind::Octree: traverse(a.octree, ray, t_min, t_max, visit); break;
   }
 }
 
