@@ -9,6 +9,8 @@ namespace {
 constexpr std::pair<AccelKind, std::string_view> kNames[] = {
     {AccelKind::Naive, "naive"},
     {AccelKind::Bvh, "bvh"},
+    {AccelKind::KdTree, "kdtree"},
+    {AccelKind::Octree, "octree"},
 #if defined(STRAHL_HAVE_EMBREE)
     {AccelKind::Embree, "embree"},
 #endif
@@ -46,10 +48,12 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
   switch (kind) {
     case AccelKind::Naive: {
       a.stats.primitives = a.stats.primitive_references = prims.size();
-      a.stats.nodes = a.stats.leaves = prims.size() > 0 ? 1 : 0;
+      a.stats.nodes = a.stats.leaves = a.stats.max_depth = prims.size() > 0 ? 1 : 0;
       break;
     }
     case AccelKind::Bvh: a.bvh = build_bvh(prims, &a.stats); break;
+    case AccelKind::KdTree: a.kdtree = build_kdtree(prims, &a.stats); break;
+    case AccelKind::Octree: a.octree = build_octree(prims, &a.stats); break;
 #if defined(STRAHL_HAVE_EMBREE)
     case AccelKind::Embree: a.embree = build_embree(prims, &a.stats); break;
 #endif

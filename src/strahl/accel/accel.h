@@ -14,7 +14,9 @@
 
 #include "strahl/accel/build_stats.h"
 #include "strahl/accel/bvh.h"
+#include "strahl/accel/kdtree.h"
 #include "strahl/accel/naive.h"
+#include "strahl/accel/octree.h"
 #if defined(STRAHL_HAVE_EMBREE)
 #include "strahl/accel/embree_accel.h"
 #endif
@@ -24,6 +26,8 @@ namespace strahl {
 enum class AccelKind : std::uint8_t {
   Naive,
   Bvh,
+  KdTree,
+  Octree,
 #if defined(STRAHL_HAVE_EMBREE)
   Embree,
 #endif
@@ -31,7 +35,7 @@ enum class AccelKind : std::uint8_t {
 
 std::string_view accel_name(AccelKind kind);
 std::optional<AccelKind> accel_from_name(std::string_view name);
-// "naive, bvh" — for messages and --help.
+// "naive, bvh, kdtree, octree" — for messages and --help.
 std::string accel_names();
 // Every kind built into this binary, in the order of accel_names().
 std::vector<AccelKind> accel_kinds();
@@ -41,6 +45,8 @@ struct AccelView {
   AccelKind kind = AccelKind::Bvh;
   PrimitiveSet prims;
   BvhView bvh;
+  KdTreeView kdtree;
+  OctreeView octree;
 #if defined(STRAHL_HAVE_EMBREE)
   void* embree = nullptr;  // RTCScene (opaque here; see embree_accel.h)
 #endif
@@ -51,6 +57,8 @@ struct AccelView {
 struct Accel {
   AccelKind kind = AccelKind::Bvh;
   Bvh bvh;
+  KdTree kdtree;
+  Octree octree;
 #if defined(STRAHL_HAVE_EMBREE)
   EmbreeAccel embree;
 #endif
@@ -61,6 +69,8 @@ struct Accel {
     v.kind = kind;
     v.prims = prims;
     v.bvh = bvh.view();
+    v.kdtree = kdtree.view();
+    v.octree = octree.view();
 #if defined(STRAHL_HAVE_EMBREE)
     v.embree = embree.scene();
 #endif
@@ -75,6 +85,8 @@ STRAHL_HOST_DEVICE inline void traverse(const AccelView& a, const Ray& ray, Real
   switch (a.kind) {
     case AccelKind::Naive: traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit); break;
     case AccelKind::Bvh: traverse(a.bvh, ray, t_min, t_max, visit); break;
+    case AccelKind::KdTree: traverse(a.kdtree, ray, t_min, t_max, visit); break;
+    case AccelKind::Octree: traverse(a.octree, ray, t_min, t_max, visit); break;
 #if defined(STRAHL_HAVE_EMBREE)
     // Embree has no visitor traversal; the queries below call it directly. Any other visitor
     // (and device code) gets the naive loop: slow, but the same answers.

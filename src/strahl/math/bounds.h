@@ -2,10 +2,15 @@
 // Axis-aligned bounding box and the slab test.
 
 #include <cmath>
+#include <limits>
 
 #include "strahl/math/ray.h"
 
 namespace strahl {
+
+// γ₃ = 3u/(1 − 3u), u the unit roundoff of Real (Pharr, Jakob, Humphreys: PBR 3.9).
+inline constexpr Real kSlabGamma3 =
+    3 * (std::numeric_limits<Real>::epsilon() / 2) / (1 - 3 * (std::numeric_limits<Real>::epsilon() / 2));
 
 struct Bounds {
   Vec3 lo{kInfinity}, hi{-kInfinity};
@@ -20,6 +25,9 @@ STRAHL_HOST_DEVICE inline bool hits(const Bounds& b, const Vec3& origin, const V
     Real t0 = (b.lo[a] - origin[a]) * inv_dir[a];
     Real t1 = (b.hi[a] - origin[a]) * inv_dir[a];
     if (t0 > t1) { const Real tmp = t0; t0 = t1; t1 = tmp; }
+    // Widen by the rounding error of the two operations above (pbrt's 1 + 2γ₃), so hits exactly
+    // on a box face (vertices, axis-aligned edges, flat boxes) are not culled.
+    t1 *= 1 + 2 * kSlabGamma3;
     t_min = t0 > t_min ? t0 : t_min;  // NaN (0·inf) keeps the old bound
     t_max = t1 < t_max ? t1 : t_max;
     if (t_min > t_max) return false;

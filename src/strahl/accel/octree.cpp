@@ -1,0 +1,150 @@
+#include "strahl/accel/octree.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <stdexcept>
+
+#include "strahl/accel/build_stats.h"
+
+namespace strahl {
+
+namespace {
+
+constexpr std::size_t kLeafSize = 8;  // a node with at most this many primitives is not split
+// When a split does not pay. By the surface area heuristic a ray through a cube passes
+// through two of its eight octants on average (their surface areas over the cube's), so after
+// the split it meets about a quarter of the octants' references, plus the cost of visiting
+// octants (kTraversalCost, relative to one primitive test). A split is a bad refine when it
+// saves less than kMinGain of the node's own cost, or when its octants list more than
+// kMaxGrowth times the node's references: primitives large against the cube, which splitting
+// copies more than it separates (unchecked, the cubes along the edge of a pile of coinciding
+// triangles split down to the depth limit, each holding the whole pile). A few bad refines are
+// tolerated on one path, to see past a local minimum: a layer of primitives in a centre plane is
+// copied into both halves before the next level separates it.
+constexpr Real kTraversalCost = 1;
+constexpr Real kMinGain = 0.1;
+constexpr Real kMaxGrowth = 2;
+constexpr int kMaxBadRefines = 2;
+constexpr std::size_t kMaxIndex = (std::size_t(1) << 31) - 1;
+
+struct Builder {
+  const PrimitiveSet& set;
+  const std::vector<Bounds>& bounds;  // padded
+  Real pad;
+  std::vector<OctreeNode> nodes;
+  std::vector<std::uint32_t> refs;
+  AccelBuildStats stats;
+
+  OctreeNode leaf(const std::vector<std::uint32_t>& prims, int depth) {
+    OctreeNode n;
+    if (prims.size() > kMaxIndex) throw std::length_error("octree: too many primitives in one leaf");
+    if (prims.size() == 1) {
+      n.index = prims[0];
+    } else {
+      n.index = std::uint32_t(refs.size());
+      refs.insert(refs.end(), prims.begin(), prims.end());
+    }
+    n.bits = 1u | std::uint32_t(prims.size()) << 1;
+    ++stats.leaves;
+    stats.primitive_references += prims.size();
+    stats.max_depth = std::max(stats.max_depth, std::size_t(depth) + 1);
+    return n;
+  }
+
+  // The node of the cube centred at `center` with half side `half`; its children are appended.
+  // Child centres are computed as the traversal computes them (center ± half/2).
+  OctreeNode build(const Vec3& center, Real half, std::vector<std::uint32_t> prims, int depth, int bad_refines) {
+    if (prims.size() <= kLeafSize || depth + 1 >= kOctreeMaxDepth) return leaf(prims, depth);
+    const Real child_half = half * Real(0.5);
+    std::array<std::vector<std::uint32_t>, 8> children;
+    std::size_t total = 0, occupied = 0, separated = 0;
+    for (std::uint32_t k = 0; k < 8; ++k) {
+      // The octant's box, its inner faces exactly on the centre planes.
+      Bounds box;
+      box.lo = {k & 1u ? center.x : center.x - half, k & 2u ? center.y : center.y - half,
+                k & 4u ? center.z : center.z - half};
+      box.hi = {k & 1u ? center.x + half : center.x, k & 2u ? center.y + half : center.y,
+                k & 4u ? center.z + half : center.z};
+      // Listed where any part of it comes within the padding (spatial.h): a triangle crossing
+      // the corner of an octant's box without touching the octant is not.
+      for (std::uint32_t p : prims)
+        if (overlaps(bounds[p], box) && !clipped_bounds(set, p, box, pad).empty()) children[k].push_back(p);
+      total += children[k].size();
+      occupied += !children[k].empty();
+      separated += !children[k].empty() && children[k].size() < prims.size();
+    }
+    if (kTraversalCost + Real(total) / 4 > (1 - kMinGain) * Real(prims.size()) ||
+        Real(total) > kMaxGrowth * Real(prims.size()))
+      ++bad_refines;
+    // Several octants each holding every primitive (a pile of coinciding ones, a layer of
+    // overlapping ones covering the cube): the split only copies them.
+    if ((occupied > 1 && separated == 0) || bad_refines > kMaxBadRefines) return leaf(prims, depth);
+    prims = {};
+    const std::size_t first = nodes.size();
+    if (first + 8 > kMaxIndex) throw std::length_error("octree: too many nodes");
+    nodes.resize(first + 8);
+    OctreeNode inner;
+    inner.index = std::uint32_t(first);
+    for (std::uint32_t k = 0; k < 8; ++k) {
+      Vec3 c;
+      c.x = center.x + (k & 1u ? child_half : -child_half);
+      c.y = center.y + (k & 2u ? child_half : -child_half);
+      c.z = center.z + (k & 4u ? child_half : -child_half);
+      const OctreeNode child = build(c, child_half, std::move(children[k]), depth + 1, bad_refines);
+      nodes[first + k] = child;
+      if (!(child.is_leaf() && child.count() == 0)) inner.bits |= 2u << k;
+    }
+    return inner;
+  }
+};
+
+}  // namespace
+
+Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::uint32_t n = prims.size();
+  Octree oct;
+  AccelBuildStats stats;
+  stats.primitives = n;
+  if (n > 0) {
+    std::vector<Bounds> bounds(n);
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1024), [&](const auto& r) {
+      for (std::uint32_t i = r.begin(); i != r.end(); ++i) bounds[i] = primitive_bounds(prims, i);
+    });
+    Bounds scene;
+    for (const Bounds& b : bounds) {
+      scene.extend(b.lo);
+      scene.extend(b.hi);
+    }
+    const Real pad = bounds_padding(scene);
+    for (Bounds& b : bounds) b = padded(b, pad);
+    const Bounds box = padded(scene, pad);
+    oct.center = (box.lo + box.hi) * Real(0.5);
+    oct.half = max_component(box.hi - box.lo) * Real(0.5) + pad;
+
+    std::vector<std::uint32_t> all(n);
+    for (std::uint32_t i = 0; i < n; ++i) all[i] = i;
+    Builder builder{prims, bounds, pad, {}, {}, {}};
+    builder.nodes.resize(1);
+    const OctreeNode root = builder.build(oct.center, oct.half, std::move(all), 0, 0);
+    builder.nodes[0] = root;
+    oct.nodes = std::move(builder.nodes);
+    oct.prims = std::move(builder.refs);
+    oct.nodes.shrink_to_fit();
+    oct.prims.shrink_to_fit();
+    stats.leaves = builder.stats.leaves;
+    stats.max_depth = builder.stats.max_depth;
+    stats.primitive_references = builder.stats.primitive_references;
+  }
+  stats.nodes = oct.nodes.size();
+  stats.bytes = oct.nodes.size() * sizeof(OctreeNode) + oct.prims.size() * sizeof(std::uint32_t);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (stats_out) *stats_out = stats;
+  return oct;
+}
+
+}  // namespace strahl

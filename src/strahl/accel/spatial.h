@@ -1,0 +1,78 @@
+#pragma once
+// What the space-subdividing structures (kd-tree, octree) share. They list a primitive in every
+// leaf it overlaps, so their traversals hand each leaf's own parameter interval to the visitor
+// (see traversal.h), and three things keep the queries equal to the naive loop's:
+//
+// 1. The intervals of the leaves a ray passes through tile its parameter line exactly: a leaf
+//    ends at the very t value the next one starts with (the plane's t, computed once for both).
+// 2. A leaf's upper end is handed on as next_up(t_exit): for_each_crossing counts a crossing in
+//    the open interval (lo, hi), so a crossing lying exactly on a splitting plane (an
+//    axis-aligned triangle in the plane, met by an axis-parallel ray) is counted once, in the
+//    nearer leaf, instead of in neither.
+// 3. Primitives are sorted into leaves by their bounds grown by a tiny margin (clipped_bounds,
+//    below): a primitive is listed in every leaf it comes within the margin of, so a hit computed
+//    a few ulps off the primitive still lies in a leaf that lists it, and a primitive touching or
+//    lying in a splitting plane is listed on both sides. Together with 1 this also makes the
+//    early exit exact: a primitive first listed in a later leaf cannot be hit before the current
+//    leaf ends.
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include "strahl/accel/primitive.h"
+
+namespace strahl {
+
+// The smallest Real above t (t finite; ±∞ and NaN are returned as they are).
+STRAHL_HOST_DEVICE inline Real next_up(Real t) {
+  if (!(t < kInfinity)) return t;
+  if (t == 0) return std::numeric_limits<Real>::denorm_min();
+  std::uint64_t bits;
+  std::memcpy(&bits, &t, sizeof bits);
+  bits = t > 0 ? bits + 1 : bits - 1;
+  std::memcpy(&t, &bits, sizeof bits);
+  return t;
+}
+
+// The part [t_lo, t_hi] of (t_min, t_max) in which the ray is inside the box. Direction
+// components of ±0 give ±∞ reciprocals: a ray parallel to a slab is inside it for all t or for
+// none, and a ray lying in a face (0·∞ = NaN) counts as inside.
+STRAHL_HOST_DEVICE inline bool clip_to_box(const Bounds& b, const Vec3& origin, const Vec3& inv_dir, Real t_min,
+                                           Real t_max, Real& t_lo, Real& t_hi) {
+  for (int a = 0; a < 3; ++a) {
+    Real t0 = (b.lo[a] - origin[a]) * inv_dir[a];
+    Real t1 = (b.hi[a] - origin[a]) * inv_dir[a];
+    if (t0 > t1) { const Real tmp = t0; t0 = t1; t1 = tmp; }
+    t_min = t0 > t_min ? t0 : t_min;  // NaN keeps the old bound
+    t_max = t1 < t_max ? t1 : t_max;
+    if (t_min > t_max) return false;
+  }
+  t_lo = t_min;
+  t_hi = t_max;
+  return true;
+}
+
+// ---- for building (host code) ----
+
+// Primitives' bounds are grown by this fraction of the scene's largest coordinate magnitude:
+// far above the rounding of hit points (~1e-16 relative), far below any feature worth splitting.
+inline constexpr Real kBoundsPadding = Real(1e-9);
+
+// The padding for a scene whose primitives' bounds (unpadded) are `scene`.
+Real bounds_padding(const Bounds& scene);
+
+Bounds padded(const Bounds& b, Real pad);
+
+// Closed overlap: boxes that only touch overlap.
+bool overlaps(const Bounds& a, const Bounds& b);
+
+// The bounds of the part of a primitive within `box` grown by `pad`, grown by `pad` themselves;
+// empty when nothing of it is there. A primitive listed in a node by these bounds is listed in
+// every leaf it comes within `pad` of. Triangles are clipped to the box (Sutherland–Hodgman), so
+// one that crosses a corner of a box without touching it is not listed there ("perfect splits",
+// Havran 2000); spheres are bounded by their box's intersection with it.
+Bounds clipped_bounds(const PrimitiveSet& prims, std::uint32_t prim, const Bounds& box, Real pad);
+
+}  // namespace strahl
