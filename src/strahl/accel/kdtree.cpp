@@ -282,18 +282,10 @@ KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
   AccelBuildStats stats;
   stats.primitives = n;
   if (n > 0) {
-    std::vector<Bounds> bounds(n);
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1024), [&](const auto& r) {
-      for (std::uint32_t i = r.begin(); i != r.end(); ++i) bounds[i] = primitive_bounds(prims, i);
-    });
-    Bounds scene;
-    for (const Bounds& b : bounds) {
-      scene.extend(b.lo);
-      scene.extend(b.hi);
-    }
-    const Real pad = bounds_padding(scene);
-    for (Bounds& b : bounds) b = padded(b, pad);
-    kd.bounds = padded(scene, pad);
+    PaddedBounds padded_bounds = padded_primitive_bounds(prims);
+    std::vector<Bounds>& bounds = padded_bounds.prims;
+    const Real pad = padded_bounds.pad;
+    kd.bounds = padded_bounds.scene;
     kd.base = kd.bounds.lo;
 
     Events events;

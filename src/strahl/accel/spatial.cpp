@@ -1,5 +1,8 @@
 #include "strahl/accel/spatial.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace strahl {
 
 namespace {
@@ -90,6 +93,24 @@ Bounds clipped_bounds(const PrimitiveSet& prims, std::uint32_t prim, const Bound
     if (!b.empty()) b = intersection(b, box);  // the clipped points lie on its faces up to rounding
   }
   return b.empty() ? b : padded(b, pad);
+}
+
+PaddedBounds padded_primitive_bounds(const PrimitiveSet& prims) {
+  const std::uint32_t n = prims.size();
+  PaddedBounds out;
+  out.prims.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1024), [&](const auto& r) {
+    for (std::uint32_t i = r.begin(); i != r.end(); ++i) out.prims[i] = primitive_bounds(prims, i);
+  });
+  Bounds scene;
+  for (const Bounds& b : out.prims) {
+    scene.extend(b.lo);
+    scene.extend(b.hi);
+  }
+  out.pad = bounds_padding(scene);
+  for (Bounds& b : out.prims) b = padded(b, out.pad);
+  out.scene = padded(scene, out.pad);
+  return out;
 }
 
 }  // namespace strahl

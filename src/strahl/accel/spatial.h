@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "strahl/accel/primitive.h"
 
@@ -64,6 +65,14 @@ inline constexpr Real kBoundsPadding = Real(1e-9);
 Real bounds_padding(const Bounds& scene);
 
 Bounds padded(const Bounds& b, Real pad);
+
+// The padded bounds of every primitive (in parallel) and of the whole scene, and the padding used.
+struct PaddedBounds {
+  std::vector<Bounds> prims;
+  Bounds scene;
+  Real pad = 0;
+};
+PaddedBounds padded_primitive_bounds(const PrimitiveSet& prims);
 
 // Closed overlap: boxes that only touch overlap.
 bool overlaps(const Bounds& a, const Bounds& b);
