@@ -156,19 +156,17 @@ void count_nodes(const std::vector<BvhNode>& nodes, AccelBuildStats& stats) {
 
 }  // namespace
 
-Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
+Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out) {
   const auto start = std::chrono::steady_clock::now();
-  const std::uint32_t n = prims.size();
+  const auto n = static_cast<std::uint32_t>(bounds.size());
   Bvh bvh;
   AccelBuildStats stats;
   stats.primitives = stats.primitive_references = n;
   if (n > 0) {
-    std::vector<Bounds> bounds(n);
     std::vector<Vec3> centroids(n);
     bvh.prims.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1024), [&](const auto& r) {
       for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
-        bounds[i] = primitive_bounds(prims, i);
         centroids[i] = (bounds[i].lo + bounds[i].hi) * Real(0.5);
         bvh.prims[i] = i;
       }
@@ -184,6 +182,17 @@ Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
   stats.bytes = bvh.nodes.size() * sizeof(BvhNode) + bvh.prims.size() * sizeof(std::uint32_t);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats_out) *stats_out = stats;
+  return bvh;
+}
+
+Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Bounds> bounds(prims.size());
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, prims.size(), 1024), [&](const auto& r) {
+    for (std::uint32_t i = r.begin(); i != r.end(); ++i) bounds[i] = primitive_bounds(prims, i);
+  });
+  Bvh bvh = build_bvh(bounds, stats_out);
+  if (stats_out) stats_out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;
 }
 

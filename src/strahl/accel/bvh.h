@@ -31,6 +31,9 @@ struct Bvh {
 
 struct AccelBuildStats;
 Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
+// The same over arbitrary boxes (primitive i has box i), e.g. the swept boxes of moving shapes;
+// traverse() then reports indices into `boxes`.
+Bvh build_bvh(const std::vector<Bounds>& boxes, AccelBuildStats* stats = nullptr);
 
 // Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for every primitive in a leaf the ray reaches
 // within (t_min, t_max), nearer leaves first; see traversal.h for the visitor contract.
