@@ -17,6 +17,22 @@ struct Frame {
     f.v = cross(f.w, f.u);
     return f;
   }
+
+  // Some right-handed basis with w = n (unit): for local sample directions around a normal or
+  // axis (Duff et al. 2017, branchless).
+  STRAHL_HOST_DEVICE static Frame around(const Vec3& n) {
+    const Real sign = n.z >= 0 ? Real(1) : Real(-1);
+    const Real a = Real(-1) / (sign + n.z);
+    const Real b = n.x * n.y * a;
+    Frame f;
+    f.u = Vec3(1 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    f.v = Vec3(b, sign + n.y * n.y * a, -n.y);
+    f.w = n;
+    return f;
+  }
+
+  // Local coordinates (x, y, z) along (u, v, w) to world space.
+  STRAHL_HOST_DEVICE Vec3 to_world(const Vec3& local) const { return u * local.x + v * local.y + w * local.z; }
 };
 
 }  // namespace strahl

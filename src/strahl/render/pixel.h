@@ -2,7 +2,7 @@
 // Radiance of one pixel: N×N regular supersampling with a box filter (N = 1: the lecture's one
 // ray through the pixel centre). `row` counts from the top of the image.
 
-#include "strahl/render/whitted.h"
+#include "strahl/render/integrator.h"
 
 namespace strahl {
 
@@ -11,13 +11,14 @@ STRAHL_HOST_DEVICE inline Vec3 render_pixel(const SceneView& s, int x, int row, 
   const int n = supersample;
   const Real inv_n = Real(1) / n;
   const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
-  const MediumStack media(s.settings.medium_ior);
   Vec3 sum{0};
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
-      const Ray ray = s.camera.generate_ray(x + (i + Real(0.5)) * inv_n, y + (j + Real(0.5)) * inv_n);
-      ++counters.camera;
-      sum += trace(s, ray, 1, Real(1), media, counters);
+      CameraSample cs;
+      cs.film_x = x + (i + Real(0.5)) * inv_n;
+      cs.film_y = y + (j + Real(0.5)) * inv_n;
+      SampleStream rng{0, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x), std::uint32_t(j * n + i)};
+      sum += sample_radiance(s, cs, rng, counters);
     }
   }
   return sum * (inv_n * inv_n);

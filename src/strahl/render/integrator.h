@@ -1,0 +1,20 @@
+#pragma once
+// Radiance of one camera sample: the one entry point pixel samplers and the film call, whatever
+// the integrator does inside (DESIGN.md, "Integrator"). A pure function of the scene, the camera
+// sample and the sample's random stream (sampling/rng.h), so images are deterministic.
+
+#include "strahl/camera/camera_sample.h"
+#include "strahl/render/whitted.h"
+#include "strahl/sampling/rng.h"
+
+namespace strahl {
+
+STRAHL_HOST_DEVICE inline Vec3 sample_radiance(const SceneView& s, const CameraSample& cs, SampleStream& rng,
+                                               RayCounters& counters) {
+  (void)rng;  // the Whitted integrator draws no random numbers
+  const Ray ray = s.camera.generate_ray(cs.film_x, cs.film_y);
+  ++counters.camera;
+  return trace(s, ray, 1, Real(1), MediumStack(s.settings.medium_ior), counters);
+}
+
+}  // namespace strahl

@@ -1,0 +1,63 @@
+#pragma once
+// Warps from the unit square to the shapes the Monte Carlo estimators sample, each with its
+// density (with respect to area for the disk, solid angle for directions). Directions are in a
+// local frame with z as the axis; math/frame.h turns them into world space.
+
+#include <cmath>
+
+#include "strahl/math/vec2.h"
+#include "strahl/math/vec3.h"
+
+namespace strahl {
+
+// Shirley–Chiu concentric map: the square onto the unit disk, uniform, low distortion.
+STRAHL_HOST_DEVICE inline Vec2 square_to_disk(const Vec2& u) {
+  const Real a = 2 * u.x - 1, b = 2 * u.y - 1;
+  if (a == 0 && b == 0) return {0, 0};
+  Real r, phi;
+  if (a * a > b * b) {
+    r = a;
+    phi = (kPi / 4) * (b / a);
+  } else {
+    r = b;
+    phi = (kPi / 2) - (kPi / 4) * (a / b);
+  }
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+STRAHL_HOST_DEVICE inline Real disk_pdf() { return 1 / kPi; }
+
+// Uniform on the hemisphere z ≥ 0.
+STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_hemisphere(const Vec2& u) {
+  const Real z = u.x;
+  const Real r = std::sqrt(std::fmax(Real(0), 1 - z * z));
+  const Real phi = 2 * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+STRAHL_HOST_DEVICE inline Real uniform_hemisphere_pdf() { return 1 / (2 * kPi); }
+
+// Cosine-weighted on the hemisphere z ≥ 0 (Malley: the disk lifted onto the hemisphere).
+STRAHL_HOST_DEVICE inline Vec3 square_to_cosine_hemisphere(const Vec2& u) {
+  const Vec2 d = square_to_disk(u);
+  return {d.x, d.y, std::sqrt(std::fmax(Real(0), 1 - d.x * d.x - d.y * d.y))};
+}
+STRAHL_HOST_DEVICE inline Real cosine_hemisphere_pdf(Real cos_theta) { return cos_theta > 0 ? cos_theta / kPi : 0; }
+
+// Uniform on the whole unit sphere.
+STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_sphere(const Vec2& u) {
+  const Real z = 1 - 2 * u.x;
+  const Real r = std::sqrt(std::fmax(Real(0), 1 - z * z));
+  const Real phi = 2 * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+STRAHL_HOST_DEVICE inline Real uniform_sphere_pdf() { return 1 / (4 * kPi); }
+
+// Uniform in the cone of directions within angle θ_max of +z (cos_max = cos θ_max).
+STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_cone(const Vec2& u, Real cos_max) {
+  const Real z = 1 - u.x * (1 - cos_max);
+  const Real r = std::sqrt(std::fmax(Real(0), 1 - z * z));
+  const Real phi = 2 * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+STRAHL_HOST_DEVICE inline Real uniform_cone_pdf(Real cos_max) { return 1 / (2 * kPi * (1 - cos_max)); }
+
+}  // namespace strahl
