@@ -25,6 +25,8 @@ std::string summary(const std::string& output, int width, int height, int supers
   out += fmt::format("rays        {} total: {} camera, {} shadow, {} reflection, {} refraction\n", r.total(), r.camera,
                      r.shadow, r.reflection, r.refraction);
   out += fmt::format("throughput  {:.2f} Mrays/s\n", mrays);
+  if (r.invalid_samples > 0)
+    out += fmt::format("warning     {} samples were NaN or infinite and were set to black\n", r.invalid_samples);
   return out;
 }
 

@@ -374,8 +374,13 @@ void embree_for_each_crossing(const AccelView& a, const Ray& ray, Real t_min, Re
     std::uint32_t prim;
     if (rh.hit.geomID == kTriangleGeometry) {
       if (!(Real(rh.ray.tfar) < t_max)) return;
+      // Embree's AVX2 kernels can report a hit a float ulp below tnear: the crossing reported
+      // in the previous round once more. Step past it without counting it again (else the
+      // loop would never end).
+      const bool repeat = Real(rh.ray.tfar) < triangle_lo;
+      triangle_lo = std::nextafter(repeat ? float(triangle_lo) : rh.ray.tfar, std::numeric_limits<float>::infinity());
+      if (repeat) continue;
       prim = a.prims.sphere_count + rh.hit.primID;
-      triangle_lo = std::nextafter(rh.ray.tfar, std::numeric_limits<float>::infinity());
     } else if (rh.hit.geomID == kSphereGeometry) {
       prim = ctx.sphere;
       ctx.sphere_t_min = ctx.sphere_t;

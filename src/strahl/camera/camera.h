@@ -4,6 +4,7 @@
 // (x, y) (pixel centres at x + 0.5; y counted from the bottom row) has direction
 //   s_u·u + s_v·v − d·w,  s_u = l + (r − l)·x/n_x,  s_v = b + (t − b)·y/n_y.
 
+#include "strahl/camera/camera_sample.h"
 #include "strahl/math/frame.h"
 #include "strahl/math/ray.h"
 
@@ -21,6 +22,10 @@ struct Camera {
     const Real sv = b + (t - b) * y / ny;
     return Ray{eye, normalize(basis.u * su + basis.v * sv - basis.w * d)};
   }
+
+  // The ray for one camera sample: the pinhole camera uses only the film position. (A thin
+  // lens would use cs.lens, a shutter cs.time: they extend this function, not its callers.)
+  STRAHL_HOST_DEVICE Ray generate_ray(const CameraSample& cs) const { return generate_ray(cs.film_x, cs.film_y); }
 };
 
 }  // namespace strahl

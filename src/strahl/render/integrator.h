@@ -4,6 +4,7 @@
 // sample and the sample's random stream (sampling/rng.h), so images are deterministic.
 
 #include "strahl/camera/camera_sample.h"
+#include "strahl/render/sample_guard.h"
 #include "strahl/render/whitted.h"
 #include "strahl/sampling/rng.h"
 
@@ -12,9 +13,9 @@ namespace strahl {
 STRAHL_HOST_DEVICE inline Vec3 sample_radiance(const SceneView& s, const CameraSample& cs, SampleStream& rng,
                                                RayCounters& counters) {
   (void)rng;  // the Whitted integrator draws no random numbers
-  const Ray ray = s.camera.generate_ray(cs.film_x, cs.film_y);
+  const Ray ray = s.camera.generate_ray(cs);
   ++counters.camera;
-  return trace(s, ray, 1, Real(1), MediumStack(s.settings.medium_ior), counters);
+  return guard_sample(trace(s, ray, 1, Real(1), MediumStack(s.settings.medium_ior), counters), counters);
 }
 
 }  // namespace strahl

@@ -7,10 +7,12 @@ namespace strahl {
 
 struct RayCounters {
   std::uint64_t camera = 0, shadow = 0, reflection = 0, refraction = 0;
+  std::uint64_t invalid_samples = 0;  // samples whose radiance was NaN or infinite (set to black)
 
   constexpr std::uint64_t total() const { return camera + shadow + reflection + refraction; }
   constexpr RayCounters& operator+=(const RayCounters& o) {
     camera += o.camera; shadow += o.shadow; reflection += o.reflection; refraction += o.refraction;
+    invalid_samples += o.invalid_samples;
     return *this;
   }
 };

@@ -25,9 +25,14 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
   Image image(width, height);
   std::vector<RayCounters> tile_counters(tile_count);
   std::atomic<long> done{0};
+  std::atomic<bool> cancelled{false};
   const auto start = std::chrono::steady_clock::now();
 
   const auto render_tile = [&](int index) {
+    if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+      cancelled.store(true, std::memory_order_relaxed);
+      return;
+    }
     const int x0 = (index % tiles_x) * tile, y0 = (index / tiles_x) * tile;
     const int x1 = std::min(width, x0 + tile), y1 = std::min(height, y0 + tile);
     RayCounters counters;
@@ -54,6 +59,7 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
 
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->cancelled = cancelled.load();
     stats->rays = {};
     for (const RayCounters& c : tile_counters) stats->rays += c;
   }
