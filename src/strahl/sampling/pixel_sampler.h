@@ -2,7 +2,7 @@
 // Pixel samplers: the camera sample number `index` of pixel (x, y) — film position, lens position
 // and time — as a pure function of (seed, pixel, index) (DESIGN.md, "Determinism").
 //
-//   grid        n×n sub-pixel centres (n = round(√spp)); lens and time on the same regular strata
+//   grid        n×n sub-pixel centres (n = round(√spp)); lens and time stratified (jittered)
 //   stratified  the n×n strata, each jittered; lens and time stratified and padded by permutation
 //   random      independent uniform values
 //   sobol       Owen-scrambled Sobol (0,2)-sequence per dimension pair, index shuffled per pixel
@@ -125,9 +125,12 @@ struct PixelSampler {
       case SamplerKind::Stratified: {
         const std::uint32_t count = side * side, k = index % count, round = index / count;
         const bool jitter = kind == SamplerKind::Stratified;
-        const auto u = [&](std::uint32_t dim) { return jitter ? random_real(seed, pixel, index, dim) : Real(0.5); };
-        // Purposes 16 + 4·round + {0, 1, 2}: a new order of the strata each round.
-        film = stratum_2d(pixel, k, 16 + 4 * round, {u(kDimPixel), u(kDimPixel + 1)});
+        const auto u = [&](std::uint32_t dim) { return random_real(seed, pixel, index, dim); };
+        // Purposes 16 + 4·round + {0, 1, 2}: a new order of the strata each round. The grid's
+        // film positions are the strata's centres; lens and time are jittered for both (centres
+        // would bias the lens's and the shutter's averages).
+        film = stratum_2d(pixel, k, 16 + 4 * round,
+                          jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
         lens = stratum_2d(pixel, k, 17 + 4 * round, {u(kDimLens), u(kDimLens + 1)});
         time = stratum_1d(pixel, k, count, 18 + 4 * round, u(kDimTime));
         break;
