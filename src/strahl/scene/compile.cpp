@@ -192,6 +192,7 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   const bool mirrored = m.determinant() < 0;
   out.triangles.reserve(out.triangles.size() + data.faces.size());
   if (!data.normals.empty()) out.vertex_normals.reserve(out.vertex_normals.size() + data.faces.size());
+  std::size_t kept = 0;
   for (MeshData::Face f : data.faces) {
     if (mirrored) {
       std::swap(f.v[1], f.v[2]);
@@ -224,13 +225,18 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
     if (motion.moving())
       for (int key = 0; key < 2; ++key)
         for (int i = 0; i < 3; ++i) keyed[3 * key + i] = keyed_positions[key][f.v[i]];
-    if (!push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material_index, normals,
-                       object_id, motion.moving() ? keyed : nullptr) &&
-        normals >= 0) {
+    if (push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material_index, normals,
+                      object_id, motion.moving() ? keyed : nullptr)) {
+      ++kept;
+    } else if (normals >= 0) {
       out.vertex_normals.pop_back();
       if (motion.moving()) out.vertex_normals.pop_back();
     }
   }
+  if (data.faces.empty()) throw Error(loc, "mesh has no faces");
+  if (kept == 0)
+    throw Error(loc, "mesh has no triangle with an area (all " + std::to_string(data.faces.size()) +
+                         " are degenerate)");
 }
 
 namespace {
