@@ -27,7 +27,7 @@ Real covered_fraction(const Vec3& c0, const Vec3& delta, Real r, const Vec3& d) 
 TEST(MotionBlur, MovingSphereCoversTheSweptRegionOnAverage) {
   const Vec3 c0(-0.3, 0.05, -5), velocity(0.45, 0.1, 0);
   const Real r = 0.3;
-  const int nx = 64, ny = 32, ss = 4;
+  const int nx = 64, ny = 32, ss = 8;
   Scene s;
   Sphere sphere(c0, r, test::emissive_like(Vec3(1)));
   sphere.motion = Motion::linear(velocity);

@@ -1,6 +1,7 @@
 #include "summary.h"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 namespace strahl::cli {
 
@@ -31,6 +32,10 @@ std::string summary(const std::string& output, int width, int height, int thread
                      pixels > 0 ? double(s.samples) / pixels : 0.0, s.passes,
                      s.time_limited ? ", stopped by the time limit" : "",
                      t.render > 0 ? double(s.samples) / t.render * 1e-6 : 0.0);
+  // Peak resident set size of the whole process so far (Linux reports ru_maxrss in KiB).
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0)
+    out += fmt::format("memory      peak {:.1f} MiB resident\n", double(usage.ru_maxrss) / 1024);
   if (r.invalid_samples > 0)
     out += fmt::format("warning     {} samples were NaN or infinite and were set to black\n", r.invalid_samples);
   return out;

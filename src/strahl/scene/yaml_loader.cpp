@@ -441,6 +441,13 @@ class Reader {
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& name, const fs::path& base_dir) {
+  // yaml-cpp reads a NUL byte as the end of the text: a binary or UTF-16 file would be half read.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    const std::size_t line_start = text.rfind('\n', nul);
+    const int line = 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n'));
+    const int column = int(nul - (line_start == std::string::npos ? 0 : line_start + 1)) + 1;
+    throw Error(FileLoc{name, line, column}, "not a text file (a NUL byte; scene files are UTF-8 text)");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -456,7 +463,11 @@ Scene load_scene(const fs::path& path) {
   if (ext != ".yaml" && ext != ".yml" && ext != ".json")
     throw Error(FileLoc{path.string()}, "unknown scene format '" + ext + "' (use .yaml, .yml or .json)");
   std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(FileLoc{path.string()}, "cannot open scene file (no such file)");
   if (fs::is_directory(path, ec)) throw Error(FileLoc{path.string()}, "is a directory, not a scene file");
+  // A FIFO would block and /dev/zero would never end.
+  if (!fs::is_regular_file(path, ec))
+    throw Error(FileLoc{path.string()}, "is not a regular file (a FIFO, device or socket), not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(FileLoc{path.string()}, "cannot open scene file");
   std::ostringstream text;
