@@ -8,7 +8,7 @@ namespace strahl {
 
 namespace {
 
-constexpr double kFixedScale = 16777216.0;  // 2^24 units per 1
+constexpr double kFixedScale = 268435456.0;  // 2^28 units per 1
 // Larger contributions are clamped so that sums of many stay far from int64 overflow.
 constexpr double kFixedLimit = 1e6;
 
@@ -82,10 +82,14 @@ void Film::add_sample(Tile& tile, int x, int row, const CameraSample& cs, const 
       if (w == 0) continue;
       std::int64_t* p =
           &tile.sums[(std::size_t(prow - tile.brow0) * std::size_t(tile.bw) + std::size_t(px - tile.bx0)) * 4];
-      p[0] += to_fixed(w * L.x);
-      p[1] += to_fixed(w * L.y);
-      p[2] += to_fixed(w * L.z);
-      p[3] += to_fixed(w);
+      // The weight quantised first and the values weighted by the quantised weight: a flat
+      // image then resolves to its value up to the rounding of each product.
+      const std::int64_t qw = to_fixed(w);
+      const double fw = double(qw) / kFixedScale;
+      p[0] += to_fixed(fw * L.x);
+      p[1] += to_fixed(fw * L.y);
+      p[2] += to_fixed(fw * L.z);
+      p[3] += qw;
     }
   }
 }
@@ -124,7 +128,7 @@ Image Film::resolve() const {
         sum = {load(0), load(1), load(2)};
         w = load(3);
       }
-      if (w > 0) {
+      if (w != 0) {  // as pbrt: Mitchell's negative lobes can make a sparse pixel's sum negative
         const Vec3 c = sum / w;
         image.at(x, row) = Rgb{float(c.x), float(c.y), float(c.z)};
       }

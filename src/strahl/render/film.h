@@ -6,7 +6,7 @@
 // Determinism: a pixel-local filter (box, radius 0.5) adds each sample to its own pixel only, in
 // the pixel's sample order, in double precision: the image equals render_pixel() exactly. Wider
 // filters spread a sample over neighbouring pixels that other threads also write; their sums are
-// kept in 64-bit fixed point (2^-24 units), whose additions are exact and commute, so a pixel's
+// kept in 64-bit fixed point (2^-28 units), whose additions are exact and commute, so a pixel's
 // value does not depend on the order in which threads and tiles deliver the samples. Memory is
 // 32 bytes a pixel plus 24 for the per-pixel statistics, whatever the sample count.
 
@@ -51,7 +51,7 @@ class Film {
   void add_sample(Tile& tile, int x, int row, const CameraSample& cs, const Vec3& L);
   void end_tile(Tile& tile);
 
-  // Σ f·L / Σ f per pixel (0 where no sample has weight yet). Safe while tiles are being added
+  // Σ f·L / Σ f per pixel (0 where the weights sum to 0, e.g. no sample yet). Safe while tiles are being added
   // (checkpoints): each value is read atomically, a pixel may be between two samples.
   Image resolve() const;
 
