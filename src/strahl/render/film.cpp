@@ -18,13 +18,13 @@ std::int64_t to_fixed(double v) {
 
 }  // namespace
 
-Film::Film(int width, int height, const Filter& filter)
+Film::Film(int width, int height, const Filter& filter, bool pixel_stats)
     : width_(width),
       height_(height),
       filter_(filter),
       local_(filter_is_pixel_local(filter)),
       margin_(int(std::ceil(filter.radius)) + 1),
-      stats_(std::size_t(width) * std::size_t(height)) {
+      stats_(pixel_stats ? std::size_t(width) * std::size_t(height) : 0) {
   const std::size_t n = std::size_t(width) * std::size_t(height) * 4;
   if (local_)
     local_sums_.assign(n, 0.0);
@@ -50,11 +50,13 @@ Film::Tile Film::begin_tile(int x0, int row0, int x1, int row1) const {
 
 void Film::add_sample(Tile& tile, int x, int row, const CameraSample& cs, const Vec3& L) {
   const std::size_t own = index(x, row);
-  PixelStats& st = stats_[own];
-  const double lum = luminance(L);
-  st.sum += lum;
-  st.sum_sq += lum * lum;
-  ++st.n;
+  if (!stats_.empty()) {
+    PixelStats& st = stats_[own];
+    const double lum = luminance(L);
+    st.sum += lum;
+    st.sum_sq += lum * lum;
+    ++st.n;
+  }
 
   if (local_) {
     // Only this tile's thread writes the pixel; atomic stores let resolve() read meanwhile.
