@@ -74,9 +74,8 @@ namespace {
 // Appends the triangle unless it is degenerate; returns whether it did.
 bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t material,
                    std::int32_t normals, std::uint32_t object_id) {
-  const Vec3 e1 = b - a, e2 = c - a;
-  if (!(length_squared(cross(e1, e2)) > 0)) return false;
-  out.triangles.push_back({a, e1, e2, material, normals, object_id});
+  if (!(length_squared(cross(b - a, c - a)) > 0)) return false;
+  out.triangles.push_back({a, b, c, material, normals, object_id});
   return true;
 }
 }  // namespace
