@@ -1,12 +1,15 @@
 // strahl: load a scene (or the lecture's), compile, render on all cores, write the image.
-// Exit codes: 0 ok, 1 usage, 2 scene or I/O error.
+// Exit codes: 0 ok, 1 usage, 2 scene or I/O error, 130 interrupted (SIGINT/SIGTERM; the image
+// rendered so far is written).
 
 #include <fmt/core.h>
 #include <tbb/info.h>
 
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 
+#include "interrupt.h"
 #include "options.h"
 #include "progress.h"
 #include "strahl/image/image_io.h"
@@ -27,8 +30,9 @@ int run(const strahl::cli::Options& o) {
   cli::Timings timings;
   const std::string output =
       !o.output.empty() ? o.output : (o.scene.empty() ? "lecture" : fs::path(o.scene).stem().string()) + ".png";
-  if (!is_supported_image_extension(output))
-    throw Error(output + ": unknown image format (use .png, .jpg/.jpeg, .ppm, .pfm or .exr)");
+  // Before any work: a run that could not write its image fails at once.
+  check_output_path(output);
+  const std::atomic<bool>* cancel = cli::install_interrupt_handlers();
 
   auto t = std::chrono::steady_clock::now();
   Scene scene = o.scene.empty() ? lecture_scene() : load_scene(o.scene);
@@ -43,16 +47,27 @@ int run(const strahl::cli::Options& o) {
   const RenderScene render_scene = compile(scene);
   timings.build = seconds_since(t);
 
+  if (cancel->load()) {  // interrupted while loading: nothing rendered, nothing written
+    fmt::print(stderr, "strahl: interrupted before rendering; nothing written\n");
+    return 130;
+  }
   cli::Progress progress(!o.quiet);
   RenderStats stats;
-  const Image image = render(render_scene, {o.threads, o.tile_size}, &stats,
+  RenderOptions render_options{o.threads, o.tile_size};
+  render_options.cancel = cancel;
+  const Image image = render(render_scene, render_options, &stats,
                              [&](long done, long total) { progress.update(done, total); });
-  progress.finish();
+  if (!stats.cancelled) progress.finish();
   timings.render = stats.seconds;
 
   t = std::chrono::steady_clock::now();
   write_image(image, output, {o.linear});
   timings.write = seconds_since(t);
+  if (cancel->load()) {
+    fmt::print(stderr, "strahl: interrupted ({}); wrote the image rendered so far to {}\n",
+               cli::interrupt_signal() == SIGTERM ? "SIGTERM" : "SIGINT", output);
+    return 130;
+  }
 
   if (!o.quiet) {
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();

@@ -1,6 +1,7 @@
 #include "summary.h"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 namespace strahl::cli {
 
@@ -25,6 +26,10 @@ std::string summary(const std::string& output, int width, int height, int supers
   out += fmt::format("rays        {} total: {} camera, {} shadow, {} reflection, {} refraction\n", r.total(), r.camera,
                      r.shadow, r.reflection, r.refraction);
   out += fmt::format("throughput  {:.2f} Mrays/s\n", mrays);
+  // Peak resident set size of the whole process so far (Linux reports ru_maxrss in KiB).
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0)
+    out += fmt::format("memory      peak {:.1f} MiB resident\n", double(usage.ru_maxrss) / 1024);
   if (r.invalid_samples > 0)
     out += fmt::format("warning     {} samples were NaN or infinite and were set to black\n", r.invalid_samples);
   return out;

@@ -4,9 +4,17 @@
 // (x, y) (pixel centres at x + 0.5; y counted from the bottom row) has direction
 //   s_u·u + s_v·v − d·w,  s_u = l + (r − l)·x/n_x,  s_v = b + (t − b)·y/n_y.
 
+//
+// Thin lens (depth of field): with lens radius a > 0 the ray starts at a point of the lens disk
+// (cs.lens by the concentric map) and passes through the point where the pinhole ray meets the
+// focus plane, at distance focus_distance along the view axis −w. Points on that plane are
+// sharp; a point at depth z blurs into a disk of radius a·d·|1/f − 1/z| on the image plane.
+// Shutter: the ray's time is shutter_open + cs.time · (shutter_close − shutter_open).
+
 #include "strahl/camera/camera_sample.h"
 #include "strahl/math/frame.h"
 #include "strahl/math/ray.h"
+#include "strahl/sampling/warp.h"
 
 namespace strahl {
 
@@ -15,6 +23,9 @@ struct Camera {
   Frame basis;
   Real l = -1, r = 1, b = -1, t = 1, d = 1;
   int nx = 1, ny = 1;
+  Real lens_radius = 0;     // 0: the pinhole camera
+  Real focus_distance = 1;  // of the plane in focus, along −w
+  Real shutter_open = 0, shutter_close = 0;
 
   // (x, y) in raster units: x ∈ [0, n_x) left to right, y ∈ [0, n_y) bottom to top.
   STRAHL_HOST_DEVICE Ray generate_ray(Real x, Real y) const {
@@ -23,9 +34,18 @@ struct Camera {
     return Ray{eye, normalize(basis.u * su + basis.v * sv - basis.w * d)};
   }
 
-  // The ray for one camera sample: the pinhole camera uses only the film position. (A thin
-  // lens would use cs.lens, a shutter cs.time: they extend this function, not its callers.)
-  STRAHL_HOST_DEVICE Ray generate_ray(const CameraSample& cs) const { return generate_ray(cs.film_x, cs.film_y); }
+  // The ray for one camera sample: film position, lens position (thin lens) and shutter time.
+  STRAHL_HOST_DEVICE Ray generate_ray(const CameraSample& cs) const {
+    Ray ray = generate_ray(cs.film_x, cs.film_y);
+    ray.time = shutter_open + cs.time * (shutter_close - shutter_open);
+    if (lens_radius > 0) {
+      const Vec3 focus = ray.at(focus_distance / -dot(ray.direction, basis.w));
+      const Vec2 on_lens = square_to_disk(cs.lens);
+      ray.origin = eye + (basis.u * on_lens.x + basis.v * on_lens.y) * lens_radius;
+      ray.direction = normalize(focus - ray.origin);
+    }
+    return ray;
+  }
 };
 
 }  // namespace strahl

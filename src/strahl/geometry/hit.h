@@ -8,7 +8,7 @@
 
 namespace strahl {
 
-enum class ShapeKind : std::uint8_t { None, Sphere, Plane, Triangle };
+enum class ShapeKind : std::uint8_t { None, Sphere, Plane, Triangle, MovingSphere, MovingTriangle };
 
 struct Hit {
   Real t = kInfinity;

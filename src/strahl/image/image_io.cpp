@@ -9,10 +9,12 @@
 #include <stb_image_write.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -188,6 +190,26 @@ void write_image(const Image& image, const fs::path& path, const WriteOptions& o
     fs::remove(tmp, ec);
     throw Error(path.string() + ": cannot write: " + ec.message());
   }
+}
+
+void check_output_path(const fs::path& path) {
+  if (!is_supported_image_extension(path))
+    throw Error(path.string() + ": unknown image format '" + path.extension().string() +
+                "' (use .png, .jpg/.jpeg, .ppm, .pfm or .exr)");
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(path, ec);
+  if (fs::is_directory(st)) throw Error(path.string() + ": cannot write the image: it is a directory");
+  if (fs::exists(st) && !fs::is_regular_file(st) && !fs::is_symlink(st))
+    throw Error(path.string() + ": cannot write the image: it exists and is not a regular file");
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir, ec)) throw Error(path.string() + ": directory '" + dir.string() + "' does not exist");
+  std::string probe = (dir / ".strahl-write-test-XXXXXX").string();
+  const int fd = ::mkstemp(probe.data());
+  if (fd < 0)
+    throw Error(path.string() + ": cannot write in directory '" + dir.string() + "': " +
+                std::error_code(errno, std::generic_category()).message());
+  ::close(fd);
+  fs::remove(probe, ec);
 }
 
 Image read_image(const fs::path& path) {

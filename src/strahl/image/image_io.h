@@ -17,6 +17,12 @@ struct WriteOptions {
 // True for the extensions write_image understands (case-insensitive).
 bool is_supported_image_extension(const std::filesystem::path& path);
 
+// Checks, before any work is done, that write_image could write `path`: a known extension, an
+// existing directory in which a file can be created (tried with a temporary file, removed at
+// once), and no directory or non-regular file (a device such as /dev/null) at `path` itself,
+// which the final rename would replace. Throws strahl::Error naming the problem.
+void check_output_path(const std::filesystem::path& path);
+
 // Throws strahl::Error on an unknown extension or a failed write.
 void write_image(const Image& image, const std::filesystem::path& path, const WriteOptions& options = {});
 

@@ -8,6 +8,7 @@ namespace strahl {
 struct Ray {
   Vec3 origin;
   Vec3 direction;
+  Real time = 0;  // when in the shutter interval the ray travels (motion blur)
 
   STRAHL_HOST_DEVICE constexpr Vec3 at(Real t) const { return origin + direction * t; }
 };
@@ -15,10 +16,11 @@ struct Ray {
 // A secondary ray leaving surface point `p` with geometric normal `n`: its origin is pushed off
 // the surface to the side the ray travels into, by an amount relative to |p|, so that it cannot
 // hit the surface it starts on (no shadow acne) at any scene scale.
-STRAHL_HOST_DEVICE inline Ray spawn_ray(const Vec3& p, const Vec3& n, const Vec3& direction) {
+// `time` is the parent ray's: all rays of one camera sample see the scene at one instant.
+STRAHL_HOST_DEVICE inline Ray spawn_ray(const Vec3& p, const Vec3& n, const Vec3& direction, Real time = 0) {
   const Real eps = kRayEpsilon * (Real(1) + max_abs_component(p));
   const Real side = dot(direction, n) >= 0 ? Real(1) : Real(-1);
-  return Ray{p + n * (side * eps), direction};
+  return Ray{p + n * (side * eps), direction, time};
 }
 
 }  // namespace strahl

@@ -12,10 +12,9 @@ namespace strahl {
 
 STRAHL_HOST_DEVICE inline Vec3 sample_radiance(const SceneView& s, const CameraSample& cs, SampleStream& rng,
                                                RayCounters& counters) {
-  (void)rng;  // the Whitted integrator draws no random numbers
   const Ray ray = s.camera.generate_ray(cs);
   ++counters.camera;
-  return guard_sample(trace(s, ray, 1, Real(1), MediumStack(s.settings.medium_ior), counters), counters);
+  return guard_sample(trace(s, ray, 1, Real(1), MediumStack(s.settings.medium_ior), counters, rng), counters);
 }
 
 }  // namespace strahl

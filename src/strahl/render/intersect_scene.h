@@ -3,6 +3,7 @@
 // (2.3). Spheres and triangles go through the acceleration structure, planes are tested one by one.
 
 #include "strahl/geometry/hit.h"
+#include "strahl/render/moving_shapes.h"
 #include "strahl/render/scene_view.h"
 
 namespace strahl {
@@ -28,6 +29,7 @@ STRAHL_HOST_DEVICE inline Hit closest_hit(const SceneView& s, const Ray& ray, Re
       hit.b2 = nearest.hit.b2;
     }
   }
+  closest_moving_hit(s, ray, t_min, hit);
   if (!hit.found()) hit.t = kInfinity;
   return hit;
 }
@@ -62,6 +64,13 @@ STRAHL_HOST_DEVICE inline Vec3 transmittance(const SceneView& s, const Ray& ray,
     return false;
   };
   for_each_crossing(s.accel, ray, 0, distance, cross);
+  if (blocked) return Vec3(0);
+  auto cross_moving = [&](std::uint32_t material, int crossings) {
+    for (int k = 0; k < crossings; ++k)
+      if (!attenuate(s.materials[material], tr)) return blocked = true;
+    return false;
+  };
+  for_each_moving_crossing(s, ray, distance, cross_moving);
   return blocked ? Vec3(0) : tr;
 }
 

@@ -14,6 +14,9 @@ struct RenderScene {
   std::vector<kernel::Triangle> triangles;
   std::vector<kernel::VertexNormals> vertex_normals;
   Accel accel;  // built by compile() over spheres and triangles
+  std::vector<kernel::MovingSphere> moving_spheres;
+  std::vector<kernel::MovingTriangle> moving_triangles;
+  Bvh moving_bvh;  // over the moving shapes' swept boxes (empty when nothing moves)
   std::vector<Material> materials;
   std::vector<Light> lights;
   Camera camera;
@@ -35,6 +38,13 @@ struct RenderScene {
     v.triangle_count = static_cast<std::uint32_t>(triangles.size());
     v.vertex_normals = vertex_normals.data();
     v.accel = accel.view(primitives());
+    v.moving_spheres = moving_spheres.data();
+    v.moving_sphere_count = static_cast<std::uint32_t>(moving_spheres.size());
+    v.moving_triangles = moving_triangles.data();
+    v.moving_triangle_count = static_cast<std::uint32_t>(moving_triangles.size());
+    v.moving_bvh = moving_bvh.view();
+    v.shutter_open = camera.shutter_open;
+    v.inv_shutter = camera.shutter_close > camera.shutter_open ? 1 / (camera.shutter_close - camera.shutter_open) : 0;
     v.materials = materials.data();
     v.lights = lights.data();
     v.light_count = static_cast<std::uint32_t>(lights.size());

@@ -6,6 +6,7 @@
 
 #include "strahl/accel/accel.h"
 #include "strahl/camera/camera.h"
+#include "strahl/geometry/moving.h"
 #include "strahl/geometry/plane.h"
 #include "strahl/geometry/sphere.h"
 #include "strahl/geometry/triangle.h"
@@ -32,6 +33,14 @@ struct SceneView {
   std::uint32_t triangle_count = 0;
   const kernel::VertexNormals* vertex_normals = nullptr;
   AccelView accel;  // over spheres and triangles; planes are tested one by one
+  // Moving shapes (motion blur), in a BVH of their own over their swept boxes: primitive i is
+  // moving sphere i, or moving triangle i − moving_sphere_count. Empty for static scenes.
+  const kernel::MovingSphere* moving_spheres = nullptr;
+  std::uint32_t moving_sphere_count = 0;
+  const kernel::MovingTriangle* moving_triangles = nullptr;
+  std::uint32_t moving_triangle_count = 0;
+  BvhView moving_bvh;
+  Real shutter_open = 0, inv_shutter = 0;  // u = (time − open) · inv_shutter; 0 for no interval
   const Material* materials = nullptr;
   const Light* lights = nullptr;
   std::uint32_t light_count = 0;

@@ -2,6 +2,7 @@
 // Everything shading needs about the nearest hit, derived once from the Hit record.
 
 #include "strahl/geometry/hit.h"
+#include "strahl/render/moving_shapes.h"
 #include "strahl/render/scene_view.h"
 
 namespace strahl {
@@ -12,11 +13,13 @@ struct SurfacePoint {
   Vec3 normal;           // shading normal: interpolated vertex normals, else the geometric one
   Vec3 texcoord;         // plane (u, v, 0) or the point itself, for procedural textures
   std::uint32_t material = 0;
+  Real time = 0;         // the ray's time (motion blur): secondary rays keep it
 };
 
 STRAHL_HOST_DEVICE inline SurfacePoint surface_at(const SceneView& s, const Ray& ray, const Hit& hit) {
   SurfacePoint sp;
   sp.p = ray.at(hit.t);
+  sp.time = ray.time;
   switch (hit.kind) {
     case ShapeKind::Sphere: {
       const kernel::Sphere& sphere = s.spheres[hit.index];
@@ -45,6 +48,30 @@ STRAHL_HOST_DEVICE inline SurfacePoint surface_at(const SceneView& s, const Ray&
       }
       sp.texcoord = sp.p;
       sp.material = tri.material;
+      break;
+    }
+    case ShapeKind::MovingSphere: {
+      const kernel::MovingSphere& ms = s.moving_spheres[hit.index];
+      sp.geometric_normal = sp.normal = kernel::normal_at(kernel::at_time(ms, shutter_fraction(s, ray.time)), sp.p);
+      sp.texcoord = sp.p;
+      sp.material = ms.material;
+      break;
+    }
+    case ShapeKind::MovingTriangle: {
+      const kernel::MovingTriangle& mt = s.moving_triangles[hit.index];
+      const Real u = shutter_fraction(s, ray.time);
+      sp.geometric_normal = sp.normal = kernel::geometric_normal(kernel::at_time(mt, u));
+      if (mt.normals >= 0) {
+        const kernel::VertexNormals& a = s.vertex_normals[mt.normals];
+        const kernel::VertexNormals& b = s.vertex_normals[mt.normals + 1];
+        const Real w0 = 1 - hit.b1 - hit.b2;
+        const Vec3 n = kernel::lerp(a.n0, b.n0, u) * w0 + kernel::lerp(a.n1, b.n1, u) * hit.b1 +
+                       kernel::lerp(a.n2, b.n2, u) * hit.b2;
+        if (length_squared(n) > 0) sp.normal = normalize(n);
+        if (dot(sp.normal, sp.geometric_normal) < 0) sp.normal = -sp.normal;
+      }
+      sp.texcoord = sp.p;
+      sp.material = mt.material;
       break;
     }
     case ShapeKind::None: break;

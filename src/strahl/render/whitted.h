@@ -12,6 +12,12 @@
 //   colour = local + k_r·trace(reflected) + T·tint·trace(refracted)
 // with T the transparency. Total internal reflection moves T into k_r; with Fresnel enabled a
 // Schlick fraction F of T moves to k_r. Highlights are not dimmed by transparency (glass shines).
+//
+// Distributed ray tracing (Cook 1984) extends this: area lights contribute the mean of n×n
+// stratified samples, each treated as a point light (shading/area_light.h); a ray meeting an
+// area light's surface returns its radiance L; rough materials perturb the mirror and refracted
+// directions (shading/glossy.h). The random numbers come from the camera sample's SampleStream,
+// drawn in a fixed order, so images stay deterministic.
 
 #include <cmath>
 
@@ -19,6 +25,9 @@
 #include "strahl/render/medium_stack.h"
 #include "strahl/render/ray_counters.h"
 #include "strahl/render/surface_point.h"
+#include "strahl/sampling/rng.h"
+#include "strahl/shading/area_light.h"
+#include "strahl/shading/glossy.h"
 #include "strahl/shading/optics.h"
 
 namespace strahl {
@@ -37,34 +46,72 @@ STRAHL_HOST_DEVICE inline Real specular_power(Real x, Real e) {
   return std::pow(x, e);
 }
 
+// Light of intensity `intensity` arriving from unit direction `to_light` over `distance`:
+// Lambert + Blinn-Phong, times the shadow ray's transmittance.
+STRAHL_HOST_DEVICE inline Vec3 shade_from(const SceneView& s, const SurfacePoint& sp, const Vec3& n, const Vec3& view,
+                                          const Vec3& c, const Material& m, const Vec3& to_light, Real distance,
+                                          const Vec3& intensity, RayCounters& counters) {
+  const Real n_dot_l = dot(n, to_light);
+  if (n_dot_l <= 0) return Vec3(0);  // light behind the surface
+  ++counters.shadow;
+  const Ray shadow_ray = spawn_ray(sp.p, sp.geometric_normal, to_light, sp.time);
+  const Vec3 tr = transmittance(s, shadow_ray, distance);
+  if (is_black(tr)) return Vec3(0);  // in shadow: ambient only
+  const Vec3 h = normalize(to_light + view);
+  const Real n_dot_h = dot(n, h);
+  Vec3 contribution = c * (m.diffuse * (1 - m.transparency) * n_dot_l);
+  if (n_dot_h > 0 && !is_black(m.specular)) contribution += m.specular * specular_power(n_dot_h, m.shininess);
+  return contribution * intensity * tr;
+}
+
 STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
-                                                  const Vec3& view, RayCounters& counters) {
+                                                  const Vec3& view, RayCounters& counters, SampleStream& rng) {
   const Material& m = s.materials[sp.material];
   const Vec3 c = surface_color(m, sp.texcoord);
   const Real opacity = 1 - m.transparency;
   Vec3 result = c * s.settings.ambient_light * (m.ambient * opacity);
   for (std::uint32_t i = 0; i < s.light_count; ++i) {
     const Light& light = s.lights[i];
-    const LightSample ls = sample_light(light, sp.p);
-    const Real n_dot_l = dot(n, ls.to_light);
-    if (n_dot_l <= 0) continue;  // light behind the surface
-    ++counters.shadow;
-    const Ray shadow_ray = spawn_ray(sp.p, sp.geometric_normal, ls.to_light);
-    const Vec3 tr = transmittance(s, shadow_ray, ls.distance);
-    if (is_black(tr)) continue;  // in shadow: ambient only
-    const Vec3 h = normalize(ls.to_light + view);
-    const Real n_dot_h = dot(n, h);
-    Vec3 contribution = c * (m.diffuse * opacity * n_dot_l);
-    if (n_dot_h > 0 && !is_black(m.specular)) contribution += m.specular * specular_power(n_dot_h, m.shininess);
-    result += contribution * light.radiance * tr;
+    if (!light.is_area()) {
+      const LightSample ls = sample_light(light, sp.p);
+      result += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance, counters);
+      continue;
+    }
+    // Area light: the mean over n×n jittered strata of the light's sample domain.
+    const int k = light.samples;
+    Vec3 sum{0};
+    for (int j = 0; j < k; ++j) {
+      for (int q = 0; q < k; ++q) {
+        const AreaLightSample ls = sample_area_light(light, sp.p, stratified(q, j, k, rng.next2()));
+        if (is_black(ls.intensity)) continue;
+        sum += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, ls.intensity, counters);
+      }
+    }
+    result += sum * (Real(1) / (k * k));
   }
   return result;
 }
 
+// The nearest area light the ray meets before t_max, or −1.
+STRAHL_HOST_DEVICE inline int nearest_emitter(const SceneView& s, const Ray& ray, Real t_max) {
+  int nearest = -1;
+  for (std::uint32_t i = 0; i < s.light_count; ++i) {
+    if (!s.lights[i].is_area()) continue;
+    const Real t = intersect_emitter(s.lights[i], ray, 0, t_max);
+    if (t < t_max) {
+      t_max = t;
+      nearest = int(i);
+    }
+  }
+  return nearest;
+}
+
 // Radiance arriving along `ray`. `depth` is 1 for camera rays; `weight` is the ray's share of the pixel.
 STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int depth, Real weight,
-                                     const MediumStack& media, RayCounters& counters) {
+                                     const MediumStack& media, RayCounters& counters, SampleStream& rng) {
   const Hit hit = closest_hit(s, ray, 0, kInfinity);
+  const int emitter = nearest_emitter(s, ray, hit.t);
+  if (emitter >= 0) return s.lights[emitter].radiance;
   if (!hit.found()) return s.settings.background;
 
   const SurfacePoint sp = surface_at(s, ray, hit);
@@ -74,7 +121,7 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int dep
   const Vec3 n = front ? sp.normal : -sp.normal;
   const Vec3 view = -ray.direction;
 
-  Vec3 color = local_illumination(s, sp, n, view, counters);
+  Vec3 color = local_illumination(s, sp, n, view, counters, rng);
   if (depth >= s.settings.max_depth) return color;
 
   Real kr = m.reflectivity;
@@ -99,14 +146,17 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int dep
   }
   if (kr > 0 && kr * weight >= s.settings.min_weight) {
     ++counters.reflection;
-    const Ray r = spawn_ray(sp.p, sp.geometric_normal, reflect(ray.direction, n));
-    color += trace(s, r, depth + 1, weight * kr, media, counters) * kr;
+    Vec3 dir = reflect(ray.direction, n);
+    if (m.roughness > 0) dir = glossy_direction(dir, sp.geometric_normal, m.roughness, rng.next2());
+    const Ray r = spawn_ray(sp.p, sp.geometric_normal, dir, ray.time);
+    color += trace(s, r, depth + 1, weight * kr, media, counters, rng) * kr;
   }
   if (kt > 0 && kt * weight >= s.settings.min_weight) {
     ++counters.refraction;
-    const Ray r = spawn_ray(sp.p, sp.geometric_normal, refracted_dir);
+    if (m.roughness > 0) refracted_dir = glossy_direction(refracted_dir, sp.geometric_normal, m.roughness, rng.next2());
+    const Ray r = spawn_ray(sp.p, sp.geometric_normal, refracted_dir, ray.time);
     const Vec3 tint = m.filter ? m.color : Vec3(1);
-    color += trace(s, r, depth + 1, weight * kt, next_media, counters) * tint * kt;
+    color += trace(s, r, depth + 1, weight * kt, next_media, counters, rng) * tint * kt;
   }
   return color;
 }

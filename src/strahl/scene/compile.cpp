@@ -24,11 +24,24 @@ Camera build_camera(const CameraDescription& c, int nx, int ny) {
   if (length_squared(view) == 0) throw Error(c.loc, "camera position and look_at coincide");
   if (length_squared(cross(normalize(view), normalize(c.up))) < Real(1e-12))
     throw Error(c.loc, "camera up is parallel to the viewing direction");
+  validate::non_negative(c.aperture, c.loc, "camera aperture");
+  validate::non_negative(c.focus_distance, c.loc, "camera focus_distance");
+  validate::finite(c.focus_point, c.loc, "camera focus_point");
+  validate::finite(c.shutter_open, c.loc, "shutter open");
+  validate::finite(c.shutter_close, c.loc, "shutter close");
+  if (c.shutter_close < c.shutter_open) throw Error(c.loc, "shutter close must not come before shutter open");
   Camera cam;
   cam.eye = c.position;
   cam.basis = Frame::look_at(c.position, c.look_at, c.up);
   cam.nx = nx;
   cam.ny = ny;
+  cam.lens_radius = c.aperture;
+  cam.focus_distance = c.has_focus_point ? dot(c.focus_point - c.position, -cam.basis.w)
+                       : c.focus_distance > 0 ? c.focus_distance
+                                              : length(c.look_at - c.position);
+  if (c.aperture > 0 && !(cam.focus_distance > 0)) throw Error(c.loc, "camera focus_point must lie in front of the camera");
+  cam.shutter_open = c.shutter_open;
+  cam.shutter_close = c.shutter_close;
   if (c.explicit_image_plane) {
     for (Real v : {c.l, c.r, c.b, c.t}) validate::finite(v, c.loc, "image plane bound");
     validate::positive(c.d, c.loc, "image plane distance d");
@@ -52,13 +65,51 @@ Camera build_camera(const CameraDescription& c, int nx, int ny) {
 
 }  // namespace
 
+namespace {
+
+Vec3 apply(const Transform& t, const Vec3& p) { return t.linear() * p + t.translate; }
+
+void validate_motion(const Motion& m, const FileLoc& loc) {
+  if (m.kind == Motion::Kind::Velocity) validate::finite(m.velocity, loc, "motion velocity");
+  if (m.kind != Motion::Kind::Keyframes) return;
+  for (const Transform* t : {&m.from, &m.to}) {
+    validate::finite(t->scale, loc, "motion scale");
+    validate::finite(t->rotate_degrees, loc, "motion rotate");
+    validate::finite(t->translate, loc, "motion translate");
+    if (t->linear().determinant() == 0) throw Error(loc, "motion scale must not be zero");
+  }
+}
+
+// Where point p is at shutter open (key 0) and close (key 1).
+Vec3 moved(const Motion& m, const RenderScene& out, const Vec3& p, int key) {
+  switch (m.kind) {
+    case Motion::Kind::Velocity: return p + m.velocity * (key == 0 ? out.camera.shutter_open : out.camera.shutter_close);
+    case Motion::Kind::Keyframes: return apply(key == 0 ? m.from : m.to, p);
+    case Motion::Kind::None: break;
+  }
+  return p;
+}
+
+// The linear part of the motion at a key, for normals (identity for a velocity).
+Mat3 moved_linear(const Motion& m, int key) {
+  return m.kind == Motion::Kind::Keyframes ? (key == 0 ? m.from : m.to).linear() : Mat3{};
+}
+
+}  // namespace
+
 void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
   validate::finite(center, loc, "sphere center");
   validate::positive(radius, loc, "sphere radius");
+  if (motion.moving()) {
+    validate_motion(motion, loc);
+    out.moving_spheres.push_back({moved(motion, out, center, 0), moved(motion, out, center, 1), radius, material_index});
+    return;
+  }
   out.spheres.push_back({center, radius, material_index});
 }
 
 void Plane::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
+  if (motion.moving()) throw Error(loc, "planes cannot move (motion is for spheres, triangles and meshes)");
   validate::non_zero(normal, loc, "plane normal");
   validate::finite(distance, loc, "plane distance");
   kernel::Plane p;
@@ -73,8 +124,22 @@ void Plane::compile_into(RenderScene& out, std::uint32_t material_index, std::ui
 namespace {
 // Appends the triangle unless it is degenerate; returns whether it did.
 bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t material,
-                   std::int32_t normals, std::uint32_t object_id) {
+                   std::int32_t normals, std::uint32_t object_id, const Motion& motion = {}) {
   if (!(length_squared(cross(b - a, c - a)) > 0)) return false;
+  if (motion.moving()) {
+    kernel::MovingTriangle t;
+    for (int key = 0; key < 2; ++key) {
+      Vec3* p = key == 0 ? t.p0 : t.p1;
+      p[0] = moved(motion, out, a, key);
+      p[1] = moved(motion, out, b, key);
+      p[2] = moved(motion, out, c, key);
+    }
+    t.material = material;
+    t.normals = normals;
+    t.object = object_id;
+    out.moving_triangles.push_back(t);
+    return true;
+  }
   out.triangles.push_back({a, b, c, material, normals, object_id});
   return true;
 }
@@ -84,7 +149,8 @@ void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std:
   validate::finite(v0, loc, "triangle vertex");
   validate::finite(v1, loc, "triangle vertex");
   validate::finite(v2, loc, "triangle vertex");
-  if (!push_triangle(out, v0, v1, v2, material_index, -1, object_id))
+  validate_motion(motion, loc);
+  if (!push_triangle(out, v0, v1, v2, material_index, -1, object_id, motion))
     throw Error(loc, "degenerate triangle (its vertices are collinear)");
 }
 
@@ -95,6 +161,10 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   const Mat3 m = transform.linear();
   if (m.determinant() == 0) throw Error(loc, "mesh scale must not be zero");
   const Mat3 normal_matrix = m.inverse().transposed();
+  validate_motion(motion, loc);
+  // Moving meshes keep two sets of vertex normals, at shutter open and close.
+  const Mat3 normal_key[2] = {(moved_linear(motion, 0) * m).inverse().transposed(),
+                              (moved_linear(motion, 1) * m).inverse().transposed()};
   std::vector<Vec3> positions(data.positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) {
     validate::finite(data.positions[i], loc, "mesh vertex");
@@ -105,6 +175,7 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   const bool mirrored = m.determinant() < 0;
   out.triangles.reserve(out.triangles.size() + data.faces.size());
   if (!data.normals.empty()) out.vertex_normals.reserve(out.vertex_normals.size() + data.faces.size());
+  std::size_t kept = 0;
   for (MeshData::Face f : data.faces) {
     if (mirrored) {
       std::swap(f.v[1], f.v[2]);
@@ -121,14 +192,51 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
         return length_squared(v) > 0 && is_finite(v) ? normalize(v) : Vec3(0);
       };
       normals = static_cast<std::int32_t>(out.vertex_normals.size());
-      out.vertex_normals.push_back({xf(f.n[0]), xf(f.n[1]), xf(f.n[2])});
+      if (motion.moving()) {
+        for (const Mat3& nm : normal_key) {
+          const auto xk = [&](std::int32_t n) {
+            const Vec3 v = nm * data.normals[std::size_t(n)];
+            return length_squared(v) > 0 && is_finite(v) ? normalize(v) : Vec3(0);
+          };
+          out.vertex_normals.push_back({xk(f.n[0]), xk(f.n[1]), xk(f.n[2])});
+        }
+      } else {
+        out.vertex_normals.push_back({xf(f.n[0]), xf(f.n[1]), xf(f.n[2])});
+      }
     }
-    if (!push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material_index, normals,
-                       object_id) &&
-        normals >= 0)
+    if (push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material_index, normals,
+                      object_id, motion)) {
+      ++kept;
+    } else if (normals >= 0) {
       out.vertex_normals.pop_back();
+      if (motion.moving()) out.vertex_normals.pop_back();
+    }
+  }
+  if (data.faces.empty()) throw Error(loc, "mesh has no faces");
+  if (kept == 0)
+    throw Error(loc, "mesh has no triangle with an area (all " + std::to_string(data.faces.size()) +
+                         " are degenerate)");
+}
+
+namespace {
+void validate_area_light(Light& light, const FileLoc& loc) {
+  validate::finite(light.position, loc, light.kind == LightKind::Rect ? "light corner" : "light center");
+  validate::int_range(light.samples, 1, 64, loc, "light samples");
+  if (light.kind == LightKind::Rect) {
+    validate::non_zero(light.edge_u, loc, "light edge_u");
+    validate::non_zero(light.edge_v, loc, "light edge_v");
+    const Real c = dot(normalize(light.edge_u), normalize(light.edge_v));
+    if (std::fabs(c) > Real(1e-6)) throw Error(loc, "rect light edges must be perpendicular");
+    light.normal = normalize(cross(light.edge_u, light.edge_v));
+  } else {
+    validate::positive(light.radius, loc, "light radius");
+    if (light.kind == LightKind::Disk) {
+      validate::non_zero(light.normal, loc, "light normal");
+      light.normal = normalize(light.normal);
+    }
   }
 }
+}  // namespace
 
 RenderScene compile(const Scene& scene) {
   const RenderSettings& s = scene.settings;
@@ -148,7 +256,7 @@ RenderScene compile(const Scene& scene) {
   out.settings = {s.max_depth, s.min_weight, s.background, s.ambient_light, s.medium_ior};
   out.supersample = s.supersample;
 
-  std::uint32_t object_id = 0;
+  std::uint32_t object_id = 0;  // (the camera, with its shutter, is built first: moving shapes need it)
   for (const auto& object : scene.objects()) {
     validate::material(object->material, object->loc);
     const auto material_index = static_cast<std::uint32_t>(out.materials.size());
@@ -161,13 +269,22 @@ RenderScene compile(const Scene& scene) {
     validate::non_negative(light.radiance, loc, "light colour × intensity");
     if (light.kind == LightKind::Point) {
       validate::finite(light.position, loc, "light position");
-    } else {
+    } else if (light.kind == LightKind::Directional) {
       validate::non_zero(light.direction, loc, "light direction");
       light.direction = normalize(light.direction);
+    } else {
+      validate_area_light(light, loc);
     }
     out.lights.push_back(light);
   }
   out.accel = build_accel(s.accel, out.primitives());
+  if (!out.moving_spheres.empty() || !out.moving_triangles.empty()) {
+    std::vector<Bounds> boxes;
+    boxes.reserve(out.moving_spheres.size() + out.moving_triangles.size());
+    for (const kernel::MovingSphere& m : out.moving_spheres) boxes.push_back(kernel::swept_bounds(m));
+    for (const kernel::MovingTriangle& m : out.moving_triangles) boxes.push_back(kernel::swept_bounds(m));
+    out.moving_bvh = build_bvh(boxes);
+  }
   return out;
 }
 

@@ -33,6 +33,21 @@ inline Material material_with_color(const Vec3& color) {
   return m;
 }
 
+// How an object moves during the shutter interval (motion blur): not at all, with a linear
+// velocity (units per unit of shutter time: at time τ it is displaced by velocity·τ), or between
+// two keyframed transforms applied after its own placement, `from` at shutter open and `to` at
+// shutter close (vertices, or a sphere's centre, move linearly in between). Planes cannot move.
+struct Motion {
+  enum class Kind { None, Velocity, Keyframes };
+  Kind kind = Kind::None;
+  Vec3 velocity{0};
+  Transform from, to;
+
+  static Motion linear(const Vec3& v) { return {Kind::Velocity, v, {}, {}}; }
+  static Motion keyframes(const Transform& a, const Transform& b) { return {Kind::Keyframes, Vec3(0), a, b}; }
+  bool moving() const { return kind != Kind::None; }
+};
+
 class SceneObject {
  public:
   explicit SceneObject(const Material& m) : material(m) {}
@@ -43,6 +58,7 @@ class SceneObject {
 
   Material material;
   FileLoc loc;  // where a scene file defined it, if it did
+  Motion motion;
 };
 
 class Sphere : public SceneObject {
@@ -86,6 +102,44 @@ class Mesh : public SceneObject {
   Transform transform;
 };
 
+// Area lights (shading/area_light.h). `radiance` is the emitted radiance L (colour × intensity);
+// set_power() derives it from a total power Φ instead. n×n stratified samples per shading point.
+// Rect: a corner and two perpendicular edges; it emits towards edge_u × edge_v.
+inline Light rect_light(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v, const Vec3& radiance = Vec3(1),
+                        int samples = 4) {
+  Light l;
+  l.kind = LightKind::Rect;
+  l.position = corner;
+  l.edge_u = edge_u;
+  l.edge_v = edge_v;
+  l.normal = cross(edge_u, edge_v);
+  l.radiance = radiance;
+  l.samples = samples;
+  return l;
+}
+// Disk: centre, normal of the emitting side and radius.
+inline Light disk_light(const Vec3& center, const Vec3& normal, Real radius, const Vec3& radiance = Vec3(1),
+                        int samples = 4) {
+  Light l;
+  l.kind = LightKind::Disk;
+  l.position = center;
+  l.normal = normal;
+  l.radius = radius;
+  l.radiance = radiance;
+  l.samples = samples;
+  return l;
+}
+// Sphere: emits from its whole surface, outwards.
+inline Light sphere_light(const Vec3& center, Real radius, const Vec3& radiance = Vec3(1), int samples = 4) {
+  Light l;
+  l.kind = LightKind::Sphere;
+  l.position = center;
+  l.radius = radius;
+  l.radiance = radiance;
+  l.samples = samples;
+  return l;
+}
+
 inline Light point_light(const Vec3& position, const Vec3& color = Vec3(1), Real intensity = 1) {
   Light l;
   l.kind = LightKind::Point;
@@ -114,6 +168,14 @@ struct CameraDescription {
   FovAxis fov_axis = FovAxis::Horizontal;
   bool explicit_image_plane = false;
   Real l = -1, r = 1, b = -1, t = 1, d = 1;
+  // Thin lens (depth of field): lens radius; 0 is the pinhole camera. The plane in focus lies
+  // at focus_distance along the view axis, or through focus_point; by default through look_at.
+  Real aperture = 0;
+  Real focus_distance = 0;  // 0: not given
+  bool has_focus_point = false;
+  Vec3 focus_point{0};
+  // Shutter interval (motion blur): each camera ray gets a time in [open, close].
+  Real shutter_open = 0, shutter_close = 1;
   FileLoc loc;
 };
 

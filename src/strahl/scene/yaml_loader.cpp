@@ -16,6 +16,7 @@
 #include "strahl/scene/ply_loader.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/validate.h"
+#include "strahl/shading/area_light.h"
 
 namespace strahl {
 namespace fs = std::filesystem;
@@ -185,7 +186,9 @@ class Reader {
 
   void camera(const YAML::Node& n, CameraDescription& c) const {
     map(n, "camera");
-    keys(n, {"position", "look_at", "up", "fov", "fov_axis", "image_plane"}, "camera");
+    keys(n, {"position", "look_at", "up", "fov", "fov_axis", "image_plane", "aperture", "focus_distance", "focus_point",
+             "shutter"},
+         "camera");
     c.loc = loc(n);
     if (const auto v = n["position"]) c.position = vec3(v, "camera position");
     if (const auto v = n["look_at"]) c.look_at = vec3(v, "camera look_at");
@@ -216,16 +219,31 @@ class Reader {
       if (!(c.l < c.r)) fail(p, "image_plane needs l < r");
       if (!(c.b < c.t)) fail(p, "image_plane needs b < t");
     }
+    if (const auto v = n["aperture"]) c.aperture = non_negative(v, "aperture");
+    if (const auto v = n["focus_distance"]) c.focus_distance = positive(v, "focus_distance");
+    if (const auto v = n["focus_point"]) {
+      if (n["focus_distance"]) fail(v, "give either focus_distance or focus_point, not both");
+      c.focus_point = vec3(v, "focus_point");
+      c.has_focus_point = true;
+    }
+    if (const auto v = n["shutter"]) {
+      if (!v.IsSequence() || v.size() != 2) fail(v, "shutter must be a list of two times [open, close]");
+      c.shutter_open = number(v[0], "shutter open");
+      c.shutter_close = number(v[1], "shutter close");
+      if (c.shutter_close < c.shutter_open) fail(v, "shutter close must not come before shutter open");
+    }
     const Vec3 view = c.look_at - c.position;
     if (length_squared(view) == 0) fail(n, "camera position and look_at coincide");
     if (length_squared(cross(normalize(view), normalize(c.up))) < 1e-12)
       fail(n, "camera up is parallel to the viewing direction");
+    if (c.has_focus_point && !(dot(c.focus_point - c.position, view) > 0))
+      fail(n["focus_point"], "focus_point must lie in front of the camera");
   }
 
   Material material(const YAML::Node& n) const {
     map(n, "material");
     keys(n, {"color", "ambient", "diffuse", "specular", "shininess", "reflectivity", "transparency", "ior", "fresnel",
-             "filter", "checker"},
+             "filter", "checker", "roughness"},
          "material");
     Material m;
     if (const auto v = n["color"]) m.color = color(v, "color");
@@ -238,6 +256,7 @@ class Reader {
     if (const auto v = n["ior"]) m.ior = ior(v);
     if (const auto v = n["fresnel"]) m.fresnel = boolean(v, "fresnel");
     if (const auto v = n["filter"]) m.filter = boolean(v, "filter");
+    if (const auto v = n["roughness"]) m.roughness = unit(v, "roughness");
     if (const auto c = n["checker"]) {
       map(c, "checker");
       keys(c, {"size", "color"}, "checker");
@@ -273,9 +292,73 @@ class Reader {
       const Vec3 dir = vec3(d, "light direction");
       validate::non_zero(dir, loc(d), "light direction");
       scene.add(directional_light(dir, c, intensity), loc(n));
+    } else if (type == "rect" || type == "disk" || type == "sphere") {
+      area_light(n, type, c, scene);
     } else {
-      fail(n["type"], "unknown light type '" + type + "' (point or directional)");
+      fail(n["type"], "unknown light type '" + type + "' (point, directional, rect, disk or sphere)");
     }
+  }
+
+  // Area lights: radiance L = color × intensity, or from `power` Φ (one-sided: Φ = π·L·area).
+  void area_light(const YAML::Node& n, const std::string& type, const Vec3& c, Scene& scene) const {
+    const std::string what = type + " light";
+    if (type == "rect") keys(n, {"type", "corner", "edge_u", "edge_v", "color", "intensity", "power", "samples"}, what);
+    if (type == "disk") keys(n, {"type", "center", "normal", "radius", "color", "intensity", "power", "samples"}, what);
+    if (type == "sphere") keys(n, {"type", "center", "radius", "color", "intensity", "power", "samples"}, what);
+    if (n["power"] && n["intensity"]) fail(n["power"], "give either intensity or power, not both");
+    const int samples = n["samples"] ? integer(n["samples"], "light samples", 1, 64) : 4;
+    Light l;
+    if (type == "rect") {
+      const YAML::Node eu = required(n, "edge_u", what), ev = required(n, "edge_v", what);
+      const Vec3 u = vec3(eu, "edge_u"), v = vec3(ev, "edge_v");
+      validate::non_zero(u, loc(eu), "edge_u");
+      validate::non_zero(v, loc(ev), "edge_v");
+      if (std::fabs(dot(normalize(u), normalize(v))) > 1e-6) fail(ev, "rect light edges must be perpendicular");
+      l = rect_light(vec3(required(n, "corner", what), "light corner"), u, v, Vec3(1), samples);
+    } else if (type == "disk") {
+      const YAML::Node nn = required(n, "normal", what);
+      const Vec3 normal = vec3(nn, "light normal");
+      validate::non_zero(normal, loc(nn), "light normal");
+      l = disk_light(vec3(required(n, "center", what), "light center"), normalize(normal),
+                     positive(required(n, "radius", what), "light radius"), Vec3(1), samples);
+    } else {
+      l = sphere_light(vec3(required(n, "center", what), "light center"),
+                       positive(required(n, "radius", what), "light radius"), Vec3(1), samples);
+    }
+    if (const auto p = n["power"]) {
+      const Real power = non_negative(p, "power");
+      if (type == "rect") l.normal = normalize(cross(l.edge_u, l.edge_v));
+      l.radiance = c * radiance_from_power(l, power);
+    } else {
+      l.radiance = c * (n["intensity"] ? non_negative(n["intensity"], "intensity") : Real(1));
+    }
+    scene.add(l, loc(n));
+  }
+
+  // `motion: {velocity: [x, y, z]}` or `motion: {from: {…}, to: {…}}` with scale/rotate/translate.
+  Transform transform(const YAML::Node& n, const std::string& what) const {
+    map(n, what);
+    keys(n, {"scale", "rotate", "translate"}, what);
+    Transform t;
+    if (const auto v = n["scale"]) {
+      t.scale = v.IsScalar() ? Vec3(number(v, "scale")) : vec3(v, "scale");
+      if (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0) fail(v, "motion scale must not be zero");
+    }
+    if (const auto v = n["rotate"]) t.rotate_degrees = vec3(v, "rotate");
+    if (const auto v = n["translate"]) t.translate = vec3(v, "translate");
+    return t;
+  }
+  Motion motion(const YAML::Node& n) const {
+    map(n, "motion");
+    keys(n, {"velocity", "from", "to"}, "motion");
+    if (const auto v = n["velocity"]) {
+      if (n["from"] || n["to"]) fail(v, "give either velocity or from/to keyframes, not both");
+      return Motion::linear(vec3(v, "velocity"));
+    }
+    if (!n["from"] && !n["to"]) fail(n, "motion needs 'velocity' or 'from'/'to' keyframes");
+    const Transform from = n["from"] ? transform(n["from"], "motion from") : Transform{};
+    const Transform to = n["to"] ? transform(n["to"], "motion to") : Transform{};
+    return Motion::keyframes(from, to);
   }
 
   void object(const YAML::Node& n, Scene& scene) const {
@@ -283,7 +366,7 @@ class Reader {
     const std::string type = scalar(required(n, "type", "object"), "object type");
     SceneObject* added = nullptr;
     if (type == "sphere") {
-      keys(n, {"type", "center", "radius", "material"}, "sphere");
+      keys(n, {"type", "center", "radius", "material", "motion"}, "sphere");
       const Vec3 center = vec3(required(n, "center", "sphere"), "sphere center");
       const Real radius = positive(required(n, "radius", "sphere"), "sphere radius");
       added = &scene.add(Sphere(center, radius, object_material(n)));
@@ -295,14 +378,14 @@ class Reader {
       const Real distance = n["distance"] ? number(n["distance"], "plane distance") : Real(0);
       added = &scene.add(Plane(normal, distance, object_material(n)));
     } else if (type == "triangle") {
-      keys(n, {"type", "vertices", "material"}, "triangle");
+      keys(n, {"type", "vertices", "material", "motion"}, "triangle");
       const YAML::Node v = required(n, "vertices", "triangle");
       if (!v.IsSequence() || v.size() != 3) fail(v, "triangle vertices must be a list of three points");
       const Vec3 a = vec3(v[0], "vertex"), b = vec3(v[1], "vertex"), c = vec3(v[2], "vertex");
       if (!(length_squared(cross(b - a, c - a)) > 0)) fail(v, "degenerate triangle (its vertices are collinear)");
       added = &scene.add(Triangle(a, b, c, object_material(n)));
     } else if (type == "mesh") {
-      keys(n, {"type", "file", "material", "scale", "rotate", "translate"}, "mesh");
+      keys(n, {"type", "file", "material", "scale", "rotate", "translate", "motion"}, "mesh");
       const YAML::Node f = required(n, "file", "mesh");
       const fs::path path = base_dir_ / scalar(f, "mesh file");
       Transform t;
@@ -324,6 +407,7 @@ class Reader {
       fail(n["type"], "unknown object type '" + type + "' (sphere, plane, triangle or mesh)");
     }
     added->loc = loc(n);
+    if (const auto m = n["motion"]) added->motion = motion(m);
   }
 
   std::string name_;
@@ -334,6 +418,13 @@ class Reader {
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& name, const fs::path& base_dir) {
+  // yaml-cpp reads a NUL byte as the end of the text: a binary or UTF-16 file would be half read.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    const std::size_t line_start = text.rfind('\n', nul);
+    const int line = 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n'));
+    const int column = int(nul - (line_start == std::string::npos ? 0 : line_start + 1)) + 1;
+    throw Error(FileLoc{name, line, column}, "not a text file (a NUL byte; scene files are UTF-8 text)");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -349,7 +440,11 @@ Scene load_scene(const fs::path& path) {
   if (ext != ".yaml" && ext != ".yml" && ext != ".json")
     throw Error(FileLoc{path.string()}, "unknown scene format '" + ext + "' (use .yaml, .yml or .json)");
   std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(FileLoc{path.string()}, "cannot open scene file (no such file)");
   if (fs::is_directory(path, ec)) throw Error(FileLoc{path.string()}, "is a directory, not a scene file");
+  // A FIFO would block and /dev/zero would never end.
+  if (!fs::is_regular_file(path, ec))
+    throw Error(FileLoc{path.string()}, "is not a regular file (a FIFO, device or socket), not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(FileLoc{path.string()}, "cannot open scene file");
   std::ostringstream text;

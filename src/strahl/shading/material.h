@@ -20,6 +20,9 @@ struct Material {
   Real ior = 1;               // index of refraction of the object's interior
   bool fresnel = false;       // Schlick: reflection grows towards grazing angles, refraction shrinks
   bool filter = false;        // transmitted light (refraction and shadows) is tinted by `color`
+  // Glossy reflection and translucency (shading/glossy.h): 0 = perfect mirror and clear
+  // refraction, up to 1 = the widest lobe.
+  Real roughness = 0;
   // Procedural checkerboard: squares of `checker_size` alternating `color` and `checker_color`
   // (0 = no checkerboard). Planes use their own 2D frame, other shapes a 3D (solid) checker.
   Real checker_size = 0;

@@ -1,0 +1,235 @@
+// Area lights: their samples follow the stated densities (chi-square), a fully lit point gets
+// the analytic irradiance of a disk, a sphere and a rectangle, a fully shadowed point gets
+// nothing, a half-occluded one about half; emitters are visible to camera rays.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "chi_square_effects.h"
+#include "strahl/sampling/rng.h"
+#include "strahl/shading/area_light.h"
+#include "strahl/shading/glossy.h"
+#include "test_helpers.h"
+
+namespace strahl {
+namespace {
+
+using test::chi_square;
+
+constexpr int kSamples = 200000;
+
+Vec2 random2(std::uint32_t i) { return {random_real(7, 0, i, 0), random_real(7, 0, i, 1)}; }
+
+Light compiled(const Light& l) {
+  Scene s;
+  s.add(Sphere({0, -100, 0}, 1, Vec3(1)));
+  s.add(l);
+  return compile(s).lights.at(0);
+}
+
+TEST(AreaLightSampling, RectIsUniformByArea) {
+  const Light l = compiled(rect_light({-0.5, 2, -0.25}, {1, 0, 0}, {0, 0, 0.5}));
+  EXPECT_VEC_NEAR(l.normal, Vec3(0, -1, 0), 1e-12);
+  const Vec3 p(0.3, 0, 0.1);
+  const int n = 10;
+  std::vector<double> obs(n * n, 0), expected(n * n, 0);
+  for (std::uint32_t i = 0; i < kSamples; ++i) {
+    const AreaLightSample s = sample_area_light(l, p, random2(i));
+    const Vec3 q = s.point - l.position;
+    const int a = std::min(n - 1, int(dot(q, l.edge_u) / length_squared(l.edge_u) * n));
+    const int b = std::min(n - 1, int(dot(q, l.edge_v) / length_squared(l.edge_v) * n));
+    obs[std::size_t(b * n + a)] += 1;
+    for (int k = 0; k < n * n && i == 0; ++k) expected[std::size_t(k)] = kSamples * s.pdf * (0.5 / (n * n));
+    ASSERT_NEAR(s.distance, length(s.point - p), 1e-12);
+    ASSERT_NEAR(std::fabs(dot(q, l.normal)), 0, 1e-12);
+  }
+  const auto r = chi_square(obs, expected);
+  EXPECT_TRUE(r.pass) << r.describe();
+}
+
+TEST(AreaLightSampling, DiskIsUniformByArea) {
+  const Real radius = 0.7;
+  const Light l = compiled(disk_light({0, 2, 0}, {0, -1, 0.2}, radius));
+  const Frame f = Frame::around(l.normal);
+  const int n = 10;  // bins in (r/R)² and φ: equal areas
+  std::vector<double> obs(n * n, 0), expected(n * n, 0);
+  for (std::uint32_t i = 0; i < kSamples; ++i) {
+    const AreaLightSample s = sample_area_light(l, {0.2, 0, 0}, random2(i));
+    const Vec3 q = s.point - l.position;
+    ASSERT_NEAR(dot(q, l.normal), 0, 1e-12);
+    const Real r2 = length_squared(q) / (radius * radius);
+    ASSERT_LE(r2, 1 + 1e-12);
+    const Real phi = std::atan2(dot(q, f.v), dot(q, f.u)) + kPi;
+    const int a = std::min(n - 1, int(r2 * n)), b = std::min(n - 1, int(phi / (2 * kPi) * n));
+    obs[std::size_t(b * n + a)] += 1;
+    if (i == 0)
+      for (double& e : expected) e = kSamples * s.pdf * (kPi * radius * radius / (n * n));
+  }
+  const auto r = chi_square(obs, expected);
+  EXPECT_TRUE(r.pass) << r.describe();
+}
+
+// Sphere lights: directions uniform in the cone the sphere subtends, with pdf 1/solid angle;
+// bins reach past the cone's edge, where nothing may land.
+TEST(AreaLightSampling, SphereFollowsTheConeDensity) {
+  const Vec3 center(0.3, 3, -0.2), p(0, 0, 0);
+  const Real radius = 1.2;
+  const Light l = compiled(sphere_light(center, radius));
+  const Vec3 axis = normalize(center - p);
+  const Frame f = Frame::around(axis);
+  const Real cos_max = std::sqrt(1 - radius * radius / length_squared(center - p));
+  const int nc = 12, np = 8;
+  const Real lo = cos_max - 2 * (1 - cos_max) / 10;  // two bins outside the cone
+  std::vector<double> obs(nc * np, 0), expected(nc * np, 0);
+  for (std::uint32_t i = 0; i < kSamples; ++i) {
+    const AreaLightSample s = sample_area_light(l, p, random2(i));
+    ASSERT_NEAR(length(s.point - center), radius, 1e-9);
+    ASSERT_NEAR(length(s.to_light), 1, 1e-12);
+    const Real c = dot(s.to_light, axis);
+    const Real phi = std::atan2(dot(s.to_light, f.v), dot(s.to_light, f.u)) + kPi;
+    const int a = std::clamp(int((c - lo) / (1 - lo) * nc), 0, nc - 1), b = std::min(np - 1, int(phi / (2 * kPi) * np));
+    obs[std::size_t(b * nc + a)] += 1;
+  }
+  // Expected: pdf × solid angle of the part of each bin inside the cone.
+  const Real pdf = 1 / (2 * kPi * (1 - cos_max));
+  for (int a = 0; a < nc; ++a) {
+    const Real c0 = std::max(cos_max, lo + (1 - lo) * a / nc), c1 = lo + (1 - lo) * (a + 1) / nc;
+    const Real omega = c1 > c0 ? (c1 - c0) * 2 * kPi / np : 0;
+    for (int b = 0; b < np; ++b) expected[std::size_t(b * nc + a)] = kSamples * pdf * omega;
+  }
+  const auto r = chi_square(obs, expected);
+  EXPECT_TRUE(r.pass) << r.describe();
+}
+
+TEST(GlossySampling, PhongLobeFollowsItsDensity) {
+  for (const Real roughness : {0.2, 0.6, 1.0}) {
+    const Real e = glossy_exponent(roughness);
+    const Vec3 axis = normalize(Vec3(0.3, 1, -0.4));
+    const Frame f = Frame::around(axis);
+    const int nc = 10, np = 6;
+    std::vector<double> obs(nc * np, 0), expected(nc * np, 0);
+    for (std::uint32_t i = 0; i < kSamples; ++i) {
+      const Vec3 d = sample_phong_lobe(axis, e, random2(i));
+      const Real c = dot(d, axis);
+      const Real phi = std::atan2(dot(d, f.v), dot(d, f.u)) + kPi;
+      const int a = std::clamp(int(c * nc), 0, nc - 1), b = std::min(np - 1, int(phi / (2 * kPi) * np));
+      obs[std::size_t(b * nc + a)] += 1;
+    }
+    // ∫ (e + 1)/(2π) c^e dc dφ over a bin = (c1^(e+1) − c0^(e+1)) Δφ/(2π)
+    for (int a = 0; a < nc; ++a)
+      for (int b = 0; b < np; ++b)
+        expected[std::size_t(b * nc + a)] =
+            kSamples * (std::pow(Real(a + 1) / nc, e + 1) - std::pow(Real(a) / nc, e + 1)) / np;
+    const auto r = chi_square(obs, expected);
+    EXPECT_TRUE(r.pass) << "roughness " << roughness << ": " << r.describe();
+  }
+}
+
+// ---- irradiance at a point on the floor y = 0, seen by one camera ray from the side ----
+
+// One pixel so narrow that all its samples see the origin.
+void narrow_camera(Scene& s, const Vec3& eye) {
+  test::set_camera(s, eye, {0, 0, 0}, {0, 1, 0}, -1e-7, 1e-7, -1e-7, 1e-7, 1, 1, 1);
+}
+
+// Floor with k_d = 1, colour 1 and nothing else: its radiance is E/π (shading/area_light.h).
+Scene floor_scene(const Light& light) {
+  Scene s;
+  s.add(Plane({0, 1, 0}, 0, test::phong(Vec3(1), 0, 1, Vec3(0), 1)));
+  s.add(light);
+  narrow_camera(s, {2, 0.3, 0.05});
+  s.settings.supersample = 4;  // 16 camera samples, each with its own light samples
+  return s;
+}
+
+TEST(AreaLightShading, DiskOnAxisGivesTheAnalyticIrradiance) {
+  const Real h = 1, r = 0.5, L = 3;
+  const Vec3 c = test::pixel(floor_scene(disk_light({0, h, 0}, {0, -1, 0}, r, Vec3(L), 32)));
+  // E = π L r²/(r² + h²)
+  EXPECT_NEAR(c.x, L * r * r / (r * r + h * h), 0.005 * L * r * r / (r * r + h * h));
+}
+
+TEST(AreaLightShading, SphereGivesTheAnalyticIrradiance) {
+  const Real d = 2, r = 0.6, L = 2;
+  const Vec3 c = test::pixel(floor_scene(sphere_light({0, d, 0}, r, Vec3(L), 32)));
+  // A sphere wholly above the horizon: E = π L (r/d)²
+  EXPECT_NEAR(c.x, L * r * r / (d * d), 0.005 * L * r * r / (d * d));
+}
+
+// Form factor from a point to a parallel rectangle a × b at height h with a corner above it.
+Real corner_form_factor(Real a, Real b, Real h) {
+  const Real x = a / h, y = b / h;
+  return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
+          y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
+         (2 * kPi);
+}
+
+TEST(AreaLightShading, RectangleGivesTheAnalyticIrradiance) {
+  const Real a = 1.2, b = 0.8, h = 1.5, L = 4;
+  // Centred above the point: four corner rectangles. Edges chosen so that u × v points down.
+  const Vec3 c = test::pixel(floor_scene(rect_light({-a / 2, h, -b / 2}, {a, 0, 0}, {0, 0, b}, Vec3(L), 32)));
+  const Real expected = L * 4 * corner_form_factor(a / 2, b / 2, h);
+  EXPECT_NEAR(c.x, expected, 0.005 * expected);
+}
+
+TEST(AreaLightShading, PowerSetsTheRadiance) {
+  Light l = disk_light({0, 1, 0}, {0, -1, 0}, 0.5);
+  const Real power = 10;
+  EXPECT_NEAR(radiance_from_power(l, power), power / (kPi * kPi * 0.25), 1e-12);
+  l = sphere_light({0, 1, 0}, 0.5);
+  EXPECT_NEAR(radiance_from_power(l, power), power / (kPi * 4 * kPi * 0.25), 1e-12);
+}
+
+TEST(AreaLightShading, FullyShadowedPointGetsNothing) {
+  Scene s = floor_scene(disk_light({0, 1, 0}, {0, -1, 0}, 0.5, Vec3(3), 8));
+  s.add(Triangle({-5, 0.5, -5}, {5, 0.5, -5}, {0, 0.5, 5}, Vec3(1)));  // covers the light
+  narrow_camera(s, {0.3, 0.2, 0});
+  EXPECT_EQ(test::pixel(s), Vec3(0));
+}
+
+// A blocker covering the half-space x < 0 halfway up hides half of the (symmetric) disk.
+TEST(AreaLightShading, HalfOccludedPointGetsHalf) {
+  const Light light = disk_light({0, 1, 0}, {0, -1, 0}, 0.5, Vec3(3), 16);
+  const Vec3 full = test::pixel(floor_scene(light));
+  Scene s = floor_scene(light);
+  s.add(Triangle({0, 0.5, -50}, {0, 0.5, 50}, {-50, 0.5, 0}, Vec3(1)));
+  const Vec3 half = test::pixel(s);
+  // 16 camera samples × 256 light samples: a fraction's standard deviation is at most
+  // 0.5/√4096 ≈ 0.008 (stratification only lowers it); 4σ.
+  EXPECT_NEAR(half.x / full.x, 0.5, 0.032);
+  EXPECT_GT(full.x, 0);
+}
+
+TEST(AreaLightShading, EmittersAreVisibleFromTheirFrontOnly) {
+  Scene s;
+  s.add(Sphere({0, -100, 0}, 1, Vec3(1)));
+  s.add(disk_light({0, 0, 0}, {0, 0, 1}, 0.5, Vec3(2, 3, 4)));
+  s.settings.background = Vec3(0.25);
+  test::one_ray_camera(s, {0.1, 0.1, 3}, {0.1, 0.1, 0});
+  EXPECT_EQ(test::pixel(s), Vec3(2, 3, 4));
+  test::one_ray_camera(s, {0.1, 0.1, -3}, {0.1, 0.1, 0});
+  EXPECT_EQ(test::pixel(s), Vec3(0.25));  // its back
+  s.add(sphere_light({0, 0, -5}, 1, Vec3(5)));
+  test::one_ray_camera(s, {0, 0, -10}, {0, 0, 0});
+  EXPECT_EQ(test::pixel(s), Vec3(5));
+}
+
+// Light shapes cast no shadow: a sphere light between a point light and the floor blocks nothing.
+TEST(AreaLightShading, LightShapesCastNoShadows) {
+  Scene s;
+  s.add(Plane({0, 1, 0}, 0, test::phong(Vec3(1), 0, 1, Vec3(0), 1)));
+  s.add(point_light({0, 4, 0}));
+  s.add(sphere_light({0, 2, 0}, 0.5, Vec3(0)));
+  test::one_ray_camera(s, {2, 0.3, 0.05}, {0, 0, 0});
+  EXPECT_NEAR(test::pixel(s).x, 1, 1e-12);
+}
+
+TEST(AreaLightShading, StratifiedSamplesAreDeterministic) {
+  const Scene s = floor_scene(rect_light({-0.5, 1, -0.5}, {0, 0, 1}, {1, 0, 0}, Vec3(2), 3));
+  EXPECT_EQ(test::pixel(s), test::pixel(s));
+}
+
+}  // namespace
+}  // namespace strahl
