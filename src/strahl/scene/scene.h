@@ -17,6 +17,7 @@
 
 #include "strahl/accel/accel.h"
 #include "strahl/math/transform.h"
+#include "strahl/sampling/pixel_sampler.h"
 #include "strahl/scene/mesh_data.h"
 #include "strahl/shading/light.h"
 #include "strahl/shading/material.h"
@@ -35,8 +36,10 @@ inline Material material_with_color(const Vec3& color) {
 
 // How an object moves during the shutter interval (motion blur): not at all, with a linear
 // velocity (units per unit of shutter time: at time τ it is displaced by velocity·τ), or between
-// two keyframed transforms applied after its own placement, `from` at shutter open and `to` at
-// shutter close (vertices, or a sphere's centre, move linearly in between). Planes cannot move.
+// two keyframed transforms, `from` at shutter open and `to` at shutter close (vertices, or a
+// sphere's centre, move linearly in between). Keyframes act in the object's own coordinates:
+// world space for spheres and triangles, before a mesh's own scale/rotate/translate (so a mesh
+// turns about its own origin). Planes cannot move.
 struct Motion {
   enum class Kind { None, Velocity, Keyframes };
   Kind kind = Kind::None;
@@ -189,6 +192,12 @@ struct RenderSettings {
   Vec3 ambient_light{1};
   Real medium_ior = 1;
   AccelKind accel = AccelKind::Bvh;
+  // Pixel sampler, spp, seed, filter, adaptive settings; spp 0: supersample² on the grid.
+  SamplingSettings sampling = [] {
+    SamplingSettings s;
+    s.spp = 0;
+    return s;
+  }();
   FileLoc loc;
 };
 
