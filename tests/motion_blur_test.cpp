@@ -27,7 +27,7 @@ Real covered_fraction(const Vec3& c0, const Vec3& delta, Real r, const Vec3& d) 
 TEST(MotionBlur, MovingSphereCoversTheSweptRegionOnAverage) {
   const Vec3 c0(-0.3, 0.05, -5), velocity(0.45, 0.1, 0);
   const Real r = 0.3;
-  const int nx = 64, ny = 32, ss = 4;
+  const int nx = 64, ny = 32, ss = 8;
   Scene s;
   Sphere sphere(c0, r, test::emissive_like(Vec3(1)));
   sphere.motion = Motion::linear(velocity);
@@ -110,6 +110,44 @@ TEST(MotionBlur, KeyframedMeshAndTriangleMove) {
   EXPECT_EQ(transmittance(v, shadow, 10), Vec3(0));
   shadow.time = 1;
   EXPECT_EQ(transmittance(v, shadow, 10), Vec3(1));
+}
+
+// Keyframes act in the mesh's own coordinates: a half turn about its own y axis, then its
+// placement; vertex normals turn with it.
+TEST(MotionBlur, KeyframedMeshTurnsAboutItsOwnOrigin) {
+  MeshData data;
+  data.positions = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  data.normals = {{0, 0, 1}};
+  data.faces.push_back({{0, 1, 2}, {0, 0, 0}});
+  Transform place;
+  place.translate = {10, 0, 0};
+  Mesh mesh(data, Material{}, place);
+  Transform to;
+  to.rotate_degrees = {0, 180, 0};
+  mesh.motion = Motion::keyframes(Transform{}, to);
+  Scene s;
+  s.add(std::move(mesh));
+  const RenderScene rs = compile(s);
+  ASSERT_EQ(rs.moving_triangles.size(), 1u);
+  const kernel::MovingTriangle& t = rs.moving_triangles[0];
+  EXPECT_VEC_NEAR(t.p0[0], Vec3(11, 0, 0), 1e-12);
+  EXPECT_VEC_NEAR(t.p1[0], Vec3(9, 0, 0), 1e-12);
+  EXPECT_VEC_NEAR(t.p1[1], Vec3(10, 1, 0), 1e-12);
+  EXPECT_VEC_NEAR(t.p1[2], Vec3(10, 0, -1), 1e-12);
+  ASSERT_EQ(t.normals, 0);
+  ASSERT_EQ(rs.vertex_normals.size(), 2u);
+  EXPECT_VEC_NEAR(rs.vertex_normals[0].n0, Vec3(0, 0, 1), 1e-12);
+  EXPECT_VEC_NEAR(rs.vertex_normals[1].n0, Vec3(0, 0, -1), 1e-12);
+  // A velocity moves the placed mesh in world space by velocity × time.
+  Mesh fast(data, Material{}, place);
+  fast.motion = Motion::linear({0, 2, 0});
+  Scene s2;
+  s2.add(std::move(fast));
+  s2.camera.shutter_open = 0.5;
+  s2.camera.shutter_close = 1.5;
+  const RenderScene r2 = compile(s2);
+  EXPECT_VEC_NEAR(r2.moving_triangles.at(0).p0[0], Vec3(11, 1, 0), 1e-12);
+  EXPECT_VEC_NEAR(r2.moving_triangles.at(0).p1[0], Vec3(11, 3, 0), 1e-12);
 }
 
 TEST(MotionBlur, SceneKeysLoadAndAreChecked) {

@@ -16,7 +16,7 @@ STRAHL_HOST_DEVICE inline Real shutter_fraction(const SceneView& s, Real time) {
 
 // Lowers hit.t (and sets the hit) when a moving shape lies nearer than hit.t.
 STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray& ray, Real t_min, Hit& hit) {
-  if (s.moving_bvh.nodes == nullptr) return;
+  if (s.moving_sphere_count + s.moving_triangle_count == 0) return;
   const Real u = shutter_fraction(s, ray.time);
   Real t_max = hit.t;
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
@@ -47,7 +47,7 @@ STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray&
 // shadow ray crosses; stops when it returns true.
 template <class Cross>
 STRAHL_HOST_DEVICE inline void for_each_moving_crossing(const SceneView& s, const Ray& ray, Real distance, Cross& cross) {
-  if (s.moving_bvh.nodes == nullptr) return;
+  if (s.moving_sphere_count + s.moving_triangle_count == 0) return;
   const Real u = shutter_fraction(s, ray.time);
   Real t_max = distance;
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {

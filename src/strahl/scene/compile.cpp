@@ -124,16 +124,14 @@ void Plane::compile_into(RenderScene& out, std::uint32_t material_index, std::ui
 namespace {
 // Appends the triangle unless it is degenerate; returns whether it did.
 bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t material,
-                   std::int32_t normals, std::uint32_t object_id, const Motion& motion = {}) {
+                   std::int32_t normals, std::uint32_t object_id, const Vec3* keyed = nullptr) {
   const Vec3 e1 = b - a, e2 = c - a;
   if (!(length_squared(cross(e1, e2)) > 0)) return false;
-  if (motion.moving()) {
+  if (keyed != nullptr) {  // moving: a, b, c at shutter open, then at close
     kernel::MovingTriangle t;
-    for (int key = 0; key < 2; ++key) {
-      Vec3* p = key == 0 ? t.p0 : t.p1;
-      p[0] = moved(motion, out, a, key);
-      p[1] = moved(motion, out, b, key);
-      p[2] = moved(motion, out, c, key);
+    for (int i = 0; i < 3; ++i) {
+      t.p0[i] = keyed[i];
+      t.p1[i] = keyed[3 + i];
     }
     t.material = material;
     t.normals = normals;
@@ -151,7 +149,13 @@ void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std:
   validate::finite(v1, loc, "triangle vertex");
   validate::finite(v2, loc, "triangle vertex");
   validate_motion(motion, loc);
-  if (!push_triangle(out, v0, v1, v2, material_index, -1, object_id, motion))
+  Vec3 keyed[6];
+  for (int key = 0; key < 2; ++key) {
+    keyed[3 * key] = moved(motion, out, v0, key);
+    keyed[3 * key + 1] = moved(motion, out, v1, key);
+    keyed[3 * key + 2] = moved(motion, out, v2, key);
+  }
+  if (!push_triangle(out, v0, v1, v2, material_index, -1, object_id, motion.moving() ? keyed : nullptr))
     throw Error(loc, "degenerate triangle (its vertices are collinear)");
 }
 
@@ -164,12 +168,24 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   const Mat3 normal_matrix = m.inverse().transposed();
   validate_motion(motion, loc);
   // Moving meshes keep two sets of vertex normals, at shutter open and close.
-  const Mat3 normal_key[2] = {(moved_linear(motion, 0) * m).inverse().transposed(),
-                              (moved_linear(motion, 1) * m).inverse().transposed()};
+  // Keyframes act in the mesh's own coordinates, before its scale/rotate/translate (so a
+  // rotation turns it about its own origin); a velocity moves it in world space.
+  const Mat3 normal_key[2] = {(m * moved_linear(motion, 0)).inverse().transposed(),
+                              (m * moved_linear(motion, 1)).inverse().transposed()};
   std::vector<Vec3> positions(data.positions.size());
+  std::vector<Vec3> keyed_positions[2];
   for (std::size_t i = 0; i < positions.size(); ++i) {
     validate::finite(data.positions[i], loc, "mesh vertex");
     positions[i] = m * data.positions[i] + transform.translate;
+  }
+  if (motion.moving()) {
+    for (int key = 0; key < 2; ++key) {
+      keyed_positions[key].resize(positions.size());
+      for (std::size_t i = 0; i < positions.size(); ++i)
+        keyed_positions[key][i] = motion.kind == Motion::Kind::Keyframes
+                                      ? m * moved(motion, out, data.positions[i], key) + transform.translate
+                                      : moved(motion, out, positions[i], key);
+    }
   }
   // A mirroring transform (negative determinant) would turn the faces inside out: swap two
   // vertices of each face so that front faces stay outside.
@@ -205,8 +221,12 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
         out.vertex_normals.push_back({xf(f.n[0]), xf(f.n[1]), xf(f.n[2])});
       }
     }
+    Vec3 keyed[6];
+    if (motion.moving())
+      for (int key = 0; key < 2; ++key)
+        for (int i = 0; i < 3; ++i) keyed[3 * key + i] = keyed_positions[key][f.v[i]];
     if (push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material_index, normals,
-                      object_id, motion)) {
+                      object_id, motion.moving() ? keyed : nullptr)) {
       ++kept;
     } else if (normals >= 0) {
       out.vertex_normals.pop_back();

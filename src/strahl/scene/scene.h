@@ -35,8 +35,10 @@ inline Material material_with_color(const Vec3& color) {
 
 // How an object moves during the shutter interval (motion blur): not at all, with a linear
 // velocity (units per unit of shutter time: at time τ it is displaced by velocity·τ), or between
-// two keyframed transforms applied after its own placement, `from` at shutter open and `to` at
-// shutter close (vertices, or a sphere's centre, move linearly in between). Planes cannot move.
+// two keyframed transforms, `from` at shutter open and `to` at shutter close (vertices, or a
+// sphere's centre, move linearly in between). Keyframes act in the object's own coordinates:
+// world space for spheres and triangles, before a mesh's own scale/rotate/translate (so a mesh
+// turns about its own origin). Planes cannot move.
 struct Motion {
   enum class Kind { None, Velocity, Keyframes };
   Kind kind = Kind::None;
