@@ -239,6 +239,19 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
                          " are degenerate)");
 }
 
+// Checks the sampling settings; spp 0 means the N×N grid of `supersample`.
+static SamplingSettings compile_sampling(const RenderSettings& s) {
+  SamplingSettings out = s.sampling;
+  validate::int_range(out.spp, 0, kMaxSpp, s.loc, "spp");
+  if (out.spp == 0) out.spp = s.supersample * s.supersample;
+  out.spp = effective_spp(out.sampler, out.spp);
+  validate::in_range(out.filter.radius, kMinFilterRadius, kMaxFilterRadius, s.loc, "filter_radius");
+  validate::int_range(out.adaptive_min, 1, kMaxSpp, s.loc, "adaptive_min");
+  validate::positive(out.adaptive_threshold, s.loc, "adaptive_threshold");
+  validate::finite(out.adaptive_threshold, s.loc, "adaptive_threshold");
+  return out;
+}
+
 namespace {
 void validate_area_light(Light& light, const FileLoc& loc) {
   validate::finite(light.position, loc, light.kind == LightKind::Rect ? "light corner" : "light center");
@@ -276,6 +289,7 @@ RenderScene compile(const Scene& scene) {
   out.camera = build_camera(scene.camera, s.width, s.height);
   out.settings = {s.max_depth, s.min_weight, s.background, s.ambient_light, s.medium_ior};
   out.supersample = s.supersample;
+  out.sampling = compile_sampling(s);
 
   std::uint32_t object_id = 0;  // (the camera, with its shutter, is built first: moving shapes need it)
   for (const auto& object : scene.objects()) {
