@@ -8,7 +8,7 @@ namespace strahl {
 
 namespace {
 
-constexpr double kFixedScale = 16777216.0;  // 2^24 units per 1
+constexpr double kFixedScale = 268435456.0;  // 2^28 units per 1
 // Larger contributions are clamped so that sums of many stay far from int64 overflow.
 constexpr double kFixedLimit = 1e6;
 
@@ -18,13 +18,13 @@ std::int64_t to_fixed(double v) {
 
 }  // namespace
 
-Film::Film(int width, int height, const Filter& filter)
+Film::Film(int width, int height, const Filter& filter, bool pixel_stats)
     : width_(width),
       height_(height),
       filter_(filter),
       local_(filter_is_pixel_local(filter)),
       margin_(int(std::ceil(filter.radius)) + 1),
-      stats_(std::size_t(width) * std::size_t(height)) {
+      stats_(pixel_stats ? std::size_t(width) * std::size_t(height) : 0) {
   const std::size_t n = std::size_t(width) * std::size_t(height) * 4;
   if (local_)
     local_sums_.assign(n, 0.0);
@@ -50,11 +50,13 @@ Film::Tile Film::begin_tile(int x0, int row0, int x1, int row1) const {
 
 void Film::add_sample(Tile& tile, int x, int row, const CameraSample& cs, const Vec3& L) {
   const std::size_t own = index(x, row);
-  PixelStats& st = stats_[own];
-  const double lum = luminance(L);
-  st.sum += lum;
-  st.sum_sq += lum * lum;
-  ++st.n;
+  if (!stats_.empty()) {
+    PixelStats& st = stats_[own];
+    const double lum = luminance(L);
+    st.sum += lum;
+    st.sum_sq += lum * lum;
+    ++st.n;
+  }
 
   if (local_) {
     // Only this tile's thread writes the pixel; atomic stores let resolve() read meanwhile.
@@ -82,10 +84,14 @@ void Film::add_sample(Tile& tile, int x, int row, const CameraSample& cs, const 
       if (w == 0) continue;
       std::int64_t* p =
           &tile.sums[(std::size_t(prow - tile.brow0) * std::size_t(tile.bw) + std::size_t(px - tile.bx0)) * 4];
-      p[0] += to_fixed(w * L.x);
-      p[1] += to_fixed(w * L.y);
-      p[2] += to_fixed(w * L.z);
-      p[3] += to_fixed(w);
+      // The weight quantised first and the values weighted by the quantised weight: a flat
+      // image then resolves to its value up to the rounding of each product.
+      const std::int64_t qw = to_fixed(w);
+      const double fw = double(qw) / kFixedScale;
+      p[0] += to_fixed(fw * L.x);
+      p[1] += to_fixed(fw * L.y);
+      p[2] += to_fixed(fw * L.z);
+      p[3] += qw;
     }
   }
 }
@@ -124,7 +130,7 @@ Image Film::resolve() const {
         sum = {load(0), load(1), load(2)};
         w = load(3);
       }
-      if (w > 0) {
+      if (w != 0) {  // as pbrt: Mitchell's negative lobes can make a sparse pixel's sum negative
         const Vec3 c = sum / w;
         image.at(x, row) = Rgb{float(c.x), float(c.y), float(c.z)};
       }

@@ -6,9 +6,9 @@
 // Determinism: a pixel-local filter (box, radius 0.5) adds each sample to its own pixel only, in
 // the pixel's sample order, in double precision: the image equals render_pixel() exactly. Wider
 // filters spread a sample over neighbouring pixels that other threads also write; their sums are
-// kept in 64-bit fixed point (2^-24 units), whose additions are exact and commute, so a pixel's
+// kept in 64-bit fixed point (2^-28 units), whose additions are exact and commute, so a pixel's
 // value does not depend on the order in which threads and tiles deliver the samples. Memory is
-// 32 bytes a pixel plus 24 for the per-pixel statistics, whatever the sample count.
+// 32 bytes a pixel, plus 24 for the per-pixel statistics where kept, whatever the sample count.
 
 #include <cstdint>
 #include <vector>
@@ -38,7 +38,8 @@ class Film {
     std::vector<std::int64_t> sums;  // bw · bh · 4 (r, g, b, weight)
   };
 
-  Film(int width, int height, const Filter& filter);
+  // `pixel_stats`: keep the per-pixel luminance statistics (adaptive sampling needs them).
+  Film(int width, int height, const Filter& filter, bool pixel_stats = true);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -51,11 +52,11 @@ class Film {
   void add_sample(Tile& tile, int x, int row, const CameraSample& cs, const Vec3& L);
   void end_tile(Tile& tile);
 
-  // Σ f·L / Σ f per pixel (0 where no sample has weight yet). Safe while tiles are being added
+  // Σ f·L / Σ f per pixel (0 where the weights sum to 0, e.g. no sample yet). Safe while tiles are being added
   // (checkpoints): each value is read atomically, a pixel may be between two samples.
   Image resolve() const;
 
-  const PixelStats& stats(int x, int row) const { return stats_[index(x, row)]; }
+  const PixelStats& stats(int x, int row) const { return stats_.at(index(x, row)); }
 
  private:
   std::size_t index(int x, int row) const { return std::size_t(row) * std::size_t(width_) + std::size_t(x); }

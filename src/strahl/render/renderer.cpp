@@ -36,7 +36,7 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
   const bool timed = options.time_limit > 0;
   const bool progressive = adaptive || timed || options.checkpoint_interval > 0;
 
-  Film film(width, height, sampling.filter);
+  Film film(width, height, sampling.filter, adaptive);
   std::vector<std::uint32_t> counts(pixel_count, 0);
   // First pass: all samples, or 1 (progressive), or the adaptive minimum.
   const std::uint32_t first =

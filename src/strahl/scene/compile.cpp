@@ -276,7 +276,7 @@ RenderScene compile(const Scene& scene) {
   const RenderSettings& s = scene.settings;
   validate::int_range(s.width, 1, 65536, s.loc, "width");
   validate::int_range(s.height, 1, 65536, s.loc, "height");
-  // 12 bytes a pixel for the film: refuse what would not fit in memory before allocating it.
+  // About 50 bytes a pixel for the film and image (render/film.h): refuse what would not fit in memory before allocating it.
   if (double(s.width) * s.height > double(1u << 28)) throw Error(s.loc, "resolution too large (over 268 million pixels)");
   validate::int_range(s.max_depth, 1, 64, s.loc, "max_depth");
   validate::int_range(s.supersample, 1, 64, s.loc, "supersample");
