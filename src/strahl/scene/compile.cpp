@@ -125,8 +125,7 @@ namespace {
 // Appends the triangle unless it is degenerate; returns whether it did.
 bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t material,
                    std::int32_t normals, std::uint32_t object_id, const Vec3* keyed = nullptr) {
-  const Vec3 e1 = b - a, e2 = c - a;
-  if (!(length_squared(cross(e1, e2)) > 0)) return false;
+  if (!(length_squared(cross(b - a, c - a)) > 0)) return false;
   if (keyed != nullptr) {  // moving: a, b, c at shutter open, then at close
     kernel::MovingTriangle t;
     for (int i = 0; i < 3; ++i) {
@@ -139,7 +138,7 @@ bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c
     out.moving_triangles.push_back(t);
     return true;
   }
-  out.triangles.push_back({a, e1, e2, material, normals, object_id});
+  out.triangles.push_back({a, b, c, material, normals, object_id});
   return true;
 }
 }  // namespace
