@@ -18,8 +18,8 @@ STRAHL_HOST_DEVICE inline Vec3 render_pixel(const SceneView& s, int x, int row, 
       cs.film_x = x + (i + Real(0.5)) * inv_n;
       cs.film_y = y + (j + Real(0.5)) * inv_n;
       SampleStream rng{0, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x), std::uint32_t(j * n + i)};
-      cs.lens = {random_real(0, rng.pixel, rng.sample, kDimLens), random_real(0, rng.pixel, rng.sample, kDimLens + 1)};
-      cs.time = random_real(0, rng.pixel, rng.sample, kDimTime);
+      if (s.camera.lens_radius > 0) cs.lens = {random_real(0, rng.pixel, rng.sample, kDimLens), random_real(0, rng.pixel, rng.sample, kDimLens + 1)};
+      if (s.moving_sphere_count + s.moving_triangle_count > 0) cs.time = random_real(0, rng.pixel, rng.sample, kDimTime);
       sum += sample_radiance(s, cs, rng, counters);
     }
   }
