@@ -9,6 +9,10 @@ add_library(strahl_optimise INTERFACE)
 # Nothing reads errno after maths calls; without it sqrt() needs no libm call for negative
 # arguments and loops over shapes vectorise.
 target_compile_options(strahl_optimise INTERFACE -fno-math-errno)
+# No fused multiply-add contraction: the watertight triangle test (geometry/triangle.h) relies on
+# a·b − c·d being computed the same way, with both products rounded, for the two triangles that
+# share an edge. GCC contracts across statements by default in C++ where the CPU has FMA.
+target_compile_options(strahl_optimise INTERFACE -ffp-contract=off)
 if(STRAHL_NATIVE)
   target_compile_options(strahl_optimise INTERFACE -march=native)
 endif()

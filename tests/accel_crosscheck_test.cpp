@@ -40,8 +40,8 @@ struct Prims {
   void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
     kernel::Triangle t;
     t.v0 = a;
-    t.e1 = b - a;
-    t.e2 = c - a;
+    t.v1 = b;
+    t.v2 = c;
     triangles.push_back(t);
   }
 };
@@ -213,8 +213,8 @@ std::vector<Query> awkward_rays(const Prims& s, const std::vector<std::pair<int,
           target = sp.center + rng.direction() * (sp.radius * (rng.coin() ? 1 : rng.uniform()));
         } else {
           const kernel::Triangle& t = s.triangles[prim - s.spheres.size()];
-          const Vec3 corners[6] = {t.v0, t.v0 + t.e1, t.v0 + t.e2, t.v0 + t.e1 * 0.5, t.v0 + t.e2 * 0.5,
-                                   t.v0 + (t.e1 + t.e2) * 0.5};
+          const Vec3 corners[6] = {t.v0, t.v1, t.v2, t.v0 + t.edge1() * 0.5, t.v0 + t.edge2() * 0.5,
+                                   t.v0 + (t.edge1() + t.edge2()) * 0.5};
           target = corners[rng.below(6)];
         }
         const Vec3 origin = rng.coin() ? rng.point(-1.5, 1.5) : target + rng.direction() * 40.0;
@@ -373,11 +373,11 @@ TEST(AccelCrossCheck, AwkwardSceneMatchesNaive) {
     const int axis = int(n.axis());
     const Real plane = kd.base[axis] + Real(n.split);
     for (const kernel::Triangle& t : s.triangles)
-      in_kd_planes += t.v0[axis] == plane && t.e1[axis] == 0 && t.e2[axis] == 0;
+      in_kd_planes += t.v0[axis] == plane && t.v1[axis] == plane && t.v2[axis] == plane;
   }
   std::size_t in_octree_root_planes = 0;
   for (const kernel::Triangle& t : s.triangles)
-    for (int a = 0; a < 3; ++a) in_octree_root_planes += t.v0[a] == 0 && t.e1[a] == 0 && t.e2[a] == 0;
+    for (int a = 0; a < 3; ++a) in_octree_root_planes += t.v0[a] == 0 && t.v1[a] == 0 && t.v2[a] == 0;
   EXPECT_EQ(build_octree(set).center, Vec3(0));
   EXPECT_GT(in_kd_planes, 0u);
   EXPECT_GT(in_octree_root_planes, 0u);

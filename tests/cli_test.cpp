@@ -203,5 +203,53 @@ TEST_F(Diff, ComparesImagesAndReportsExitCodes) {
   EXPECT_EQ(diff("a.pfm absent.pfm"), 2) << log();
 }
 
+// Sampling flags (docs/cli.md, "Sampling and output").
+TEST_F(Cli, SamplingFiltersAovsAndTimeLimit) {
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --sampler sobol --spp 8 --filter mitchell --filter-radius 2 "
+                "--seed 5 --aov depth,normal,albedo,id -o out.png"),
+            0)
+      << log();
+  EXPECT_NE(log().find("sobol 8 spp, mitchell filter r=2"), std::string::npos) << log();
+  EXPECT_NE(log().find("samples     1536 (8.00 per pixel"), std::string::npos) << log();
+  for (const char* aov : {"depth", "normal", "albedo", "id"}) {
+    const fs::path p = dir_ / (std::string("out.") + aov + ".exr");
+    ASSERT_TRUE(fs::exists(p)) << p;
+    EXPECT_EQ(read_image(p).width(), 16);
+  }
+  // Stratified rounds 10 to 3×3; adaptive reports its passes.
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --sampler stratified --spp 10 -o s.png"), 0) << log();
+  EXPECT_NE(log().find("stratified 9 spp"), std::string::npos) << log();
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --sampler adaptive --spp 64 --adaptive-min 4 "
+                "--adaptive-threshold 0.05 -o a.png"),
+            0)
+      << log();
+  // A time limit without a sample count renders until the limit; a checkpoint rewrites the output.
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --time-limit 0.3 --checkpoint 0.05 -o t.png"), 0) << log();
+  EXPECT_NE(log().find("stopped by the time limit"), std::string::npos) << log();
+  EXPECT_TRUE(fs::exists(dir_ / "t.png"));
+  // Bad values are usage errors.
+  EXPECT_EQ(run("scene.yaml --sampler halton -o x.png"), 1);
+  EXPECT_EQ(run("scene.yaml --filter-radius 9 -o x.png"), 1);
+  EXPECT_EQ(run("scene.yaml --spp 0 -o x.png"), 1);
+  EXPECT_EQ(run("scene.yaml --aov colour -o x.png"), 1);
+  EXPECT_EQ(run("scene.yaml --time-limit -1 -o x.png"), 1);
+}
+
+// The same settings as scene keys; a bad value names its line.
+TEST_F(Cli, SamplingSceneKeys) {
+  std::string scene = kGoodScene;
+  scene.replace(scene.find("render: {width: 320, height: 240}"), std::string("render: {width: 320, height: 240}").size(),
+                "render: {width: 8, height: 6, sampler: random, spp: 3, seed: 2, filter: gaussian, filter_radius: 1.5, "
+                "adaptive_min: 2, adaptive_threshold: 0.1}");
+  test::write_text(dir_ / "keys.yaml", scene);
+  ASSERT_EQ(run("keys.yaml -o k.png"), 0) << log();
+  EXPECT_NE(log().find("random 3 spp, gaussian filter r=1.5"), std::string::npos) << log();
+  scene.replace(scene.find("sampler: random"), std::string("sampler: random").size(), "sampler: halton");
+  test::write_text(dir_ / "bad-keys.yaml", scene);
+  EXPECT_EQ(run("bad-keys.yaml -o k.png"), 2);
+  EXPECT_NE(log().find("bad-keys.yaml:2:"), std::string::npos) << log();
+  EXPECT_NE(log().find("unknown sampler 'halton'"), std::string::npos) << log();
+}
+
 }  // namespace
 }  // namespace strahl

@@ -70,7 +70,7 @@ Prims random_prims(std::uint64_t seed, int spheres, int triangles) {
     const Vec3 a = rng.in_box(1);
     const Real size = rng.uniform(0.02, 0.3);
     const Vec3 e1 = rng.direction() * size, e2 = rng.direction() * size;
-    if (length_squared(cross(e1, e2)) > 1e-12) p.triangles.push_back({a, e1, e2, 0, -1, 0});
+    if (length_squared(cross(e1, e2)) > 1e-12) p.triangles.push_back({a, a + e1, a + e2, 0, -1, 0});
   }
   const Vec3 c(0.2, -0.1, 0.3);
   const Vec3 ax[6] = {{0.4, 0, 0}, {-0.4, 0, 0}, {0, 0.4, 0}, {0, -0.4, 0}, {0, 0, 0.4}, {0, 0, -0.4}};
@@ -78,20 +78,21 @@ Prims random_prims(std::uint64_t seed, int spheres, int triangles) {
     for (int y : {2, 3})
       for (int z : {4, 5}) {
         const Vec3 v0 = c + ax[x], v1 = c + ax[y], v2 = c + ax[z];
-        p.triangles.push_back({v0, v1 - v0, v2 - v0, 0, -1, 0});
+        p.triangles.push_back({v0, v1, v2, 0, -1, 0});
       }
   return p;
 }
 
 // Does the ray pass within kEdge of the triangle's boundary (barycentric), or graze it?
 bool near_edge(const kernel::Triangle& tri, const Ray& ray) {
-  const Vec3 n = cross(tri.e1, tri.e2);
+  const Vec3 e1 = tri.edge1(), e2 = tri.edge2();
+  const Vec3 n = cross(e1, e2);
   if (std::fabs(dot(normalize(n), ray.direction)) < kGrazing) return true;
-  const Vec3 pvec = cross(ray.direction, tri.e2);
-  const Real inv_det = 1 / dot(tri.e1, pvec);
+  const Vec3 pvec = cross(ray.direction, e2);
+  const Real inv_det = 1 / dot(e1, pvec);
   const Vec3 tvec = ray.origin - tri.v0;
   const Real b1 = dot(tvec, pvec) * inv_det;
-  const Real b2 = dot(ray.direction, cross(tvec, tri.e1)) * inv_det;
+  const Real b2 = dot(ray.direction, cross(tvec, e1)) * inv_det;
   const Real margin = std::min({b1, b2, 1 - b1 - b2});
   return std::fabs(margin) < kEdge;
 }
@@ -103,7 +104,7 @@ bool explained(const PrimitiveSet& prims, const Ray& ray, Real t_min, Real t_max
   for (std::uint32_t i = 0; i < prims.triangle_count; ++i) {
     const kernel::Triangle& tri = prims.triangles[i];
     // Where the ray meets the triangle's plane, if it does within the interval (a little widened).
-    const Vec3 n = cross(tri.e1, tri.e2);
+    const Vec3 n = cross(tri.edge1(), tri.edge2());
     const Real denom = dot(n, ray.direction);
     if (denom == 0) continue;
     const Real t = dot(n, tri.v0 - ray.origin) / denom;
@@ -275,7 +276,7 @@ TEST(Embree, SecondaryRaysDoNotHitTheSurfaceTheyLeave) {
     const kernel::Triangle& tri = p.triangles[std::size_t(i) % p.triangles.size()];
     Real u = rng.uniform(0, 1), v = rng.uniform(0, 1);
     if (u + v > 1) { u = 1 - u; v = 1 - v; }
-    const Vec3 point = tri.v0 + tri.e1 * u + tri.e2 * v;
+    const Vec3 point = tri.v0 + tri.edge1() * u + tri.edge2() * v;
     Vec3 n = kernel::geometric_normal(tri);
     if (dot(n, point - Vec3(0.2, -0.1, 0.3)) < 0) n = -n;  // outwards from the octahedron's centre
     Vec3 d = rng.direction();

@@ -368,7 +368,7 @@ TEST_F(SceneFileMesh, MeshPathIsRelativeToTheSceneDirectory) {
   ASSERT_EQ(s.objects().size(), 1u);
   const RenderScene rs = compile(s);
   ASSERT_EQ(rs.triangles.size(), 1u);
-  EXPECT_VEC_NEAR(rs.triangles[0].v0 + rs.triangles[0].e1, Vec3(2, 0, -1), 1e-15);
+  EXPECT_VEC_NEAR(rs.triangles[0].v1, Vec3(2, 0, -1), 1e-15);
 }
 
 TEST_F(SceneFileMesh, MissingMeshFileNamesTheSceneLocation) {

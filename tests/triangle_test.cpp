@@ -212,8 +212,8 @@ TEST_F(MeshTest, TransformMovesVerticesAndNormalsUseInverseTranspose) {
   const RenderScene rs = compile(s);
   ASSERT_EQ(rs.triangles.size(), 1u);
   EXPECT_VEC_NEAR(rs.triangles[0].v0, Vec3(0, 0, -3), 1e-15);
-  EXPECT_VEC_NEAR(rs.triangles[0].v0 + rs.triangles[0].e1, Vec3(2, 0, -3), 1e-15);
-  EXPECT_VEC_NEAR(rs.triangles[0].v0 + rs.triangles[0].e2, Vec3(0, 1, -3), 1e-15);
+  EXPECT_VEC_NEAR(rs.triangles[0].v1, Vec3(2, 0, -3), 1e-15);
+  EXPECT_VEC_NEAR(rs.triangles[0].v2, Vec3(0, 1, -3), 1e-15);
   // At (1, 0.25): b1 = 0.5, b2 = 0.25.
   const Ray ray{{1, 0.25, 0}, kDown};
   const Hit hit = closest_hit(rs.view(), ray, 0, kInfinity);
@@ -231,8 +231,8 @@ TEST_F(MeshTest, RotationIsRightHandedAboutTheAxis) {
   Scene s;
   s.add(Mesh(load_obj(write_obj("tri.obj", kNormalTriangleObj)), Material{}, t));
   const RenderScene rs = compile(s);
-  EXPECT_VEC_NEAR(rs.triangles.at(0).v0 + rs.triangles[0].e1, Vec3(0, 1, 0), 1e-15);
-  EXPECT_VEC_NEAR(rs.triangles.at(0).v0 + rs.triangles[0].e2, Vec3(-1, 0, 0), 1e-15);
+  EXPECT_VEC_NEAR(rs.triangles.at(0).v1, Vec3(0, 1, 0), 1e-15);
+  EXPECT_VEC_NEAR(rs.triangles.at(0).v2, Vec3(-1, 0, 0), 1e-15);
 }
 
 TEST_F(MeshTest, MirroringTransformKeepsFrontFacesFacingTheSameWay) {
@@ -260,7 +260,7 @@ TEST_F(MeshTest, TransformOrderIsScaleThenRotateXYZThenTranslate) {
     s.add(Mesh(load_obj(obj), Material{}, t));
     const RenderScene rs = compile(s);
     const kernel::Triangle& tri = rs.triangles.at(0);
-    return std::pair{tri.v0 + tri.e1, tri.v0 + tri.e2};
+    return std::pair{tri.v1, tri.v2};
   };
   Transform rx;
   rx.rotate_degrees = {90, 0, 0};

@@ -36,9 +36,9 @@ std::vector<kernel::Triangle> triangles_of(const MeshData& mesh, const std::stri
     for (std::uint32_t v : f.v)
       if (v >= mesh.positions.size()) throw Error(FileLoc{name}, "face refers to a vertex that does not exist");
     const Vec3 a = mesh.positions[f.v[0]];
-    const Vec3 e1 = mesh.positions[f.v[1]] - a, e2 = mesh.positions[f.v[2]] - a;
-    if (!(length_squared(cross(e1, e2)) > 0)) continue;  // degenerate, as compile() drops it
-    out.push_back({a, e1, e2, 0, -1, 0});
+    const Vec3 b = mesh.positions[f.v[1]], c = mesh.positions[f.v[2]];
+    if (!(length_squared(cross(b - a, c - a)) > 0)) continue;  // degenerate, as compile() drops it
+    out.push_back({a, b, c, 0, -1, 0});
   }
   return out;
 }
@@ -49,8 +49,8 @@ Camera framing_camera(const std::vector<kernel::Triangle>& triangles, int width,
   Bounds b;
   for (const kernel::Triangle& t : triangles) {
     b.extend(t.v0);
-    b.extend(t.v0 + t.e1);
-    b.extend(t.v0 + t.e2);
+    b.extend(t.v1);
+    b.extend(t.v2);
   }
   if (b.empty()) b.extend(Vec3(0));
   const Real tan_h = std::tan(25 * kPi / 180);
@@ -67,8 +67,8 @@ Camera framing_camera(const std::vector<kernel::Triangle>& triangles, int width,
   };
   for (const kernel::Triangle& t : triangles) {
     fit(t.v0);
-    fit(t.v0 + t.e1);
-    fit(t.v0 + t.e2);
+    fit(t.v1);
+    fit(t.v2);
   }
   if (!(distance > 0)) distance = 1;
   distance *= Real(1.05);

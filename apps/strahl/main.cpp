@@ -13,6 +13,7 @@
 #include "options.h"
 #include "progress.h"
 #include "strahl/image/image_io.h"
+#include "strahl/render/aov.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_file.h"
@@ -22,6 +23,33 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// Command-line sampling settings over the scene's. A time limit without a sample count renders
+// until the limit (up to 65536 samples per pixel).
+void apply_sampling_options(const strahl::cli::Options& o, strahl::SamplingSettings& s) {
+  using namespace strahl;
+  if (o.sampler) s.sampler = *sampler_from_name(*o.sampler);
+  if (o.spp) s.spp = *o.spp;
+  if (o.seed) s.seed = *o.seed;
+  if (o.filter) s.filter.kind = *filter_from_name(*o.filter);
+  if (o.filter_radius) s.filter.radius = *o.filter_radius;
+  if (o.adaptive_min) s.adaptive_min = *o.adaptive_min;
+  if (o.adaptive_threshold) s.adaptive_threshold = *o.adaptive_threshold;
+  if (o.time_limit > 0 && !o.spp && s.spp == 0) s.spp = 65536;
+}
+
+// <output stem>.<name>.exr beside the image, for each AOV asked for.
+void write_aovs(const strahl::RenderScene& scene, const strahl::cli::Options& o, const std::string& output) {
+  using namespace strahl;
+  namespace fs = std::filesystem;
+  const AovImages aovs = render_aovs(scene, o.threads);
+  for (const std::string& name : o.aov) {
+    const Image& img = name == "depth" ? aovs.depth : name == "normal" ? aovs.normal : name == "albedo" ? aovs.albedo : aovs.id;
+    fs::path path = fs::path(output);
+    path.replace_extension("." + name + ".exr");
+    write_image(img, path);
+  }
 }
 
 int run(const strahl::cli::Options& o) {
@@ -41,6 +69,7 @@ int run(const strahl::cli::Options& o) {
   if (o.max_depth) scene.settings.max_depth = *o.max_depth;
   if (o.supersample) scene.settings.supersample = *o.supersample;
   if (o.accel) scene.settings.accel = *accel_from_name(*o.accel);
+  apply_sampling_options(o, scene.settings.sampling);
   timings.load = seconds_since(t);
 
   t = std::chrono::steady_clock::now();
@@ -53,7 +82,14 @@ int run(const strahl::cli::Options& o) {
   }
   cli::Progress progress(!o.quiet);
   RenderStats stats;
-  RenderOptions render_options{o.threads, o.tile_size};
+  RenderOptions render_options;
+  render_options.threads = o.threads;
+  render_options.tile_size = o.tile_size;
+  render_options.time_limit = o.time_limit;
+  if (o.checkpoint > 0) {
+    render_options.checkpoint_interval = o.checkpoint;
+    render_options.checkpoint = [&](const Image& partial) { write_image(partial, output, {o.linear}); };
+  }
   render_options.cancel = cancel;
   const Image image = render(render_scene, render_options, &stats,
                              [&](long done, long total) { progress.update(done, total); });
@@ -62,6 +98,7 @@ int run(const strahl::cli::Options& o) {
 
   t = std::chrono::steady_clock::now();
   write_image(image, output, {o.linear});
+  if (!o.aov.empty()) write_aovs(render_scene, o, output);
   timings.write = seconds_since(t);
   if (cancel->load()) {
     fmt::print(stderr, "strahl: interrupted ({}); wrote the image rendered so far to {}\n",
@@ -71,7 +108,7 @@ int run(const strahl::cli::Options& o) {
 
   if (!o.quiet) {
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
-    fmt::print("{}", cli::summary(output, image.width(), image.height(), render_scene.supersample, threads, timings,
+    fmt::print("{}", cli::summary(output, image.width(), image.height(), threads, timings,
                                   stats, render_scene));
   }
   return 0;

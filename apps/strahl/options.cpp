@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "strahl/accel/accel.h"
+#include "strahl/sampling/pixel_sampler.h"
 
 namespace strahl::cli {
 
@@ -11,6 +12,32 @@ std::vector<std::string> accel_list() {
   std::vector<std::string> names;
   for (AccelKind k : accel_kinds()) names.emplace_back(accel_name(k));  // with "embree" where built
   return names;
+}
+// Pixel sampling, filters, AOVs and progressive rendering (docs/cli.md, "Sampling").
+void add_sampling_options(CLI::App& app, Options& o) {
+  app.add_option("--spp", o.spp,
+                 "Samples per pixel (adaptive: the maximum); grid and stratified round it to a square n×n")
+      ->check(CLI::Range(1, kMaxSpp));
+  app.add_option("--sampler", o.sampler, std::string("Pixel sampler: ") + kSamplerNames + " (default grid)")
+      ->check(CLI::IsMember({"grid", "stratified", "random", "sobol", "adaptive"}));
+  app.add_option("--seed", o.seed, "Seed of the random numbers (default 0)");
+  app.add_option("--filter", o.filter, std::string("Reconstruction filter: ") + kFilterNames + " (default box)")
+      ->check(CLI::IsMember({"box", "tent", "gaussian", "mitchell"}));
+  app.add_option("--filter-radius", o.filter_radius, "Filter radius in pixels, 0.5 to 4 (default 0.5)")
+      ->check(CLI::Range(0.5, 4.0));
+  app.add_option("--adaptive-min", o.adaptive_min, "Adaptive: samples every pixel gets first (default 16)")
+      ->check(CLI::Range(1, kMaxSpp));
+  app.add_option("--adaptive-threshold", o.adaptive_threshold,
+                 "Adaptive: relative standard error at which a pixel stops (default 0.02)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--aov", o.aov, "Also write these per-pixel outputs as <output>.<name>.exr: depth, normal, albedo, id")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"depth", "normal", "albedo", "id"}));
+  app.add_option("--time-limit", o.time_limit,
+                 "Render progressively and stop after this many seconds with the image so far")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--checkpoint", o.checkpoint, "Rewrite the output image every this many seconds while rendering")
+      ->check(CLI::PositiveNumber);
 }
 }  // namespace
 
@@ -29,6 +56,7 @@ ParseResult parse_options(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   app.add_option("--supersample", o.supersample, "N×N regular samples per pixel, box filter (default 1)")
       ->check(CLI::Range(1, 64));
+  add_sampling_options(app, o);
   app.add_option("--accel", o.accel, "Acceleration structure: " + accel_names() + " (default bvh)")
       ->check(CLI::IsMember(accel_list()));
   app.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));

@@ -2,7 +2,9 @@
 // Command-line options of the `strahl` renderer.
 
 #include <optional>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace strahl::cli {
 
@@ -11,6 +13,14 @@ struct Options {
   std::string output;  // empty: <scene name>.png in the current directory
   std::optional<int> width, height, max_depth, supersample;
   std::optional<std::string> accel;
+  // Sampling and output (issue 4).
+  std::optional<int> spp, adaptive_min;
+  std::optional<std::string> sampler, filter;
+  std::optional<double> filter_radius, adaptive_threshold;
+  std::optional<std::uint64_t> seed;
+  std::vector<std::string> aov;  // depth, normal, albedo, id
+  double time_limit = 0;         // seconds, 0: none
+  double checkpoint = 0;         // seconds, 0: none
   int threads = 0;
   int tile_size = 32;
   bool linear = false;

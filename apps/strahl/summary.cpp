@@ -5,13 +5,14 @@
 
 namespace strahl::cli {
 
-std::string summary(const std::string& output, int width, int height, int supersample, int threads,
+std::string summary(const std::string& output, int width, int height, int threads,
                     const Timings& t, const RenderStats& s, const RenderScene& scene) {
   const RayCounters& r = s.rays;
   const double mrays = t.render > 0 ? double(r.total()) / t.render * 1e-6 : 0;
   std::string out;
-  out += fmt::format("image       {} ({}x{}, {}x{} samples per pixel, {} threads)\n", output, width, height,
-                     supersample, supersample, threads);
+  const SamplingSettings& sm = scene.sampling;
+  out += fmt::format("image       {} ({}x{}, {} {} spp, {} filter r={}, {} threads)\n", output, width, height,
+                     sampler_name(sm.sampler), sm.spp, filter_name(sm.filter.kind), sm.filter.radius, threads);
   const AccelBuildStats& a = scene.accel.stats;
   out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} lights\n", scene.spheres.size(),
                      scene.planes.size(), scene.triangles.size(), scene.lights.size());
@@ -26,6 +27,11 @@ std::string summary(const std::string& output, int width, int height, int supers
   out += fmt::format("rays        {} total: {} camera, {} shadow, {} reflection, {} refraction\n", r.total(), r.camera,
                      r.shadow, r.reflection, r.refraction);
   out += fmt::format("throughput  {:.2f} Mrays/s\n", mrays);
+  const double pixels = double(width) * double(height);
+  out += fmt::format("samples     {} ({:.2f} per pixel, {} passes{}), {:.2f} Msamples/s\n", s.samples,
+                     pixels > 0 ? double(s.samples) / pixels : 0.0, s.passes,
+                     s.time_limited ? ", stopped by the time limit" : "",
+                     t.render > 0 ? double(s.samples) / t.render * 1e-6 : 0.0);
   // Peak resident set size of the whole process so far (Linux reports ru_maxrss in KiB).
   rusage usage{};
   if (getrusage(RUSAGE_SELF, &usage) == 0)

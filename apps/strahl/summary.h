@@ -11,7 +11,7 @@ struct Timings {
   double load = 0, build = 0, render = 0, write = 0;
 };
 
-std::string summary(const std::string& output, int width, int height, int supersample, int threads,
+std::string summary(const std::string& output, int width, int height, int threads,
                     const Timings& t, const RenderStats& stats, const RenderScene& scene);
 
 }  // namespace strahl::cli

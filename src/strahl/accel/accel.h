@@ -108,8 +108,9 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
   if (a.kind == AccelKind::Embree) return embree_nearest_hit(a, ray, t_min, t_max);
 #endif
   NearestHit result;
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
-    const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, t_min, t_far);
+    const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far);
     if (h.t < t_far) {
       t_far = h.t;
       result.prim = prim;
@@ -127,8 +128,9 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
   if (a.kind == AccelKind::Embree) return embree_occluded(a, ray, t_min, t_max);
 #endif
   bool found = false;
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
-    found = intersect_primitive(a.prims, prim, ray, t_min, t_far).t < kInfinity;
+    found = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far).t < kInfinity;
     return found;
   };
   traverse(a, ray, t_min, t_max, visit);
@@ -150,11 +152,12 @@ STRAHL_HOST_DEVICE inline void for_each_crossing(const AccelView& a, const Ray& 
     return;
   }
 #endif
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
   auto visit = [&](std::uint32_t prim, Real leaf_lo, Real leaf_hi, Real& t_far) {
     const Real lo = leaf_lo > t_min ? leaf_lo : t_min;
     const Real hi = leaf_hi < t_far ? leaf_hi : t_far;
     if (!(lo < hi)) return false;
-    const int n = primitive_crossings(a.prims, prim, ray, lo, hi);
+    const int n = primitive_crossings(a.prims, prim, ray, shear, lo, hi);
     return n > 0 && cross(prim, n);
   };
   traverse(a, ray, t_min, t_max, visit);

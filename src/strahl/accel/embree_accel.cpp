@@ -127,18 +127,14 @@ RTCRayHit make_rayhit(const Ray& ray, Real t_near, Real t_far) {
 
 RTCScene scene_of(const AccelView& a) { return static_cast<RTCScene>(a.embree); }
 
-// Embree's triangle hit recomputed in double (Möller–Trumbore as kernel::intersect, without its
-// range checks): where the ray meets the triangle's plane, and the barycentrics there. Float
-// found the hit; rounding can put it a hair outside the triangle, which double then reports as
-// slightly negative barycentrics rather than a miss.
+// Embree's triangle hit recomputed in double, with kernel::intersect's own arithmetic (without its
+// inside and range checks): where the ray meets the triangle's plane, and the barycentrics there.
+// Float found the hit; rounding can put it a hair outside the triangle, which double then reports
+// as slightly negative barycentrics rather than a miss.
 kernel::TriangleHit refine(const kernel::Triangle& tri, const Ray& ray, const RTCRayHit& rh) {
-  const Vec3 pvec = cross(ray.direction, tri.e2);
-  const Real det = dot(tri.e1, pvec);
-  if (det == 0) return {Real(rh.ray.tfar), Real(rh.hit.u), Real(rh.hit.v)};
-  const Real inv_det = Real(1) / det;
-  const Vec3 tvec = ray.origin - tri.v0;
-  const Vec3 qvec = cross(tvec, tri.e1);
-  return {dot(tri.e2, qvec) * inv_det, dot(tvec, pvec) * inv_det, dot(ray.direction, qvec) * inv_det};
+  const kernel::TriangleHit h = kernel::plane_hit(tri, ray, kernel::ray_shear(ray.direction));
+  if (!(h.t < kInfinity)) return {Real(rh.ray.tfar), Real(rh.hit.u), Real(rh.hit.v)};
+  return h;
 }
 
 // ---- the spheres: a user geometry running strahl's own double-precision test ----
@@ -280,7 +276,7 @@ EmbreeAccel build_embree(const PrimitiveSet& prims, AccelBuildStats* stats_out) 
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 4096), [&](const auto& r) {
       for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
         const kernel::Triangle& t = prims.triangles[i];
-        const Vec3 v[3] = {t.v0, t.v0 + t.e1, t.v0 + t.e2};
+        const Vec3 v[3] = {t.v0, t.v1, t.v2};
         float* out_v = vertices + 9 * std::size_t(i);
         for (int k = 0; k < 3; ++k) {
           out_v[3 * k + 0] = float(v[k].x);

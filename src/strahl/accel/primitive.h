@@ -30,17 +30,23 @@ STRAHL_HOST_DEVICE inline Bounds primitive_bounds(const PrimitiveSet& p, std::ui
   } else {
     const kernel::Triangle& t = p.triangles[prim - p.sphere_count];
     b.extend(t.v0);
-    b.extend(t.v0 + t.e1);
-    b.extend(t.v0 + t.e2);
+    b.extend(t.v1);
+    b.extend(t.v2);
   }
   return b;
 }
 
-// Nearest root of one primitive in (t_min, t_max); triangles also give barycentrics.
+// Nearest root of one primitive in (t_min, t_max); triangles also give barycentrics. `shear` is
+// kernel::ray_shear(ray.direction), computed once per ray.
+STRAHL_HOST_DEVICE inline kernel::TriangleHit intersect_primitive(const PrimitiveSet& p, std::uint32_t prim,
+                                                                  const Ray& ray, const kernel::RayShear& shear,
+                                                                  Real t_min, Real t_max) {
+  if (p.is_sphere(prim)) return {kernel::intersect(p.spheres[prim], ray, t_min, t_max), 0, 0};
+  return kernel::intersect(p.triangles[prim - p.sphere_count], ray, shear, t_min, t_max);
+}
 STRAHL_HOST_DEVICE inline kernel::TriangleHit intersect_primitive(const PrimitiveSet& p, std::uint32_t prim,
                                                                   const Ray& ray, Real t_min, Real t_max) {
-  if (p.is_sphere(prim)) return {kernel::intersect(p.spheres[prim], ray, t_min, t_max), 0, 0};
-  return kernel::intersect(p.triangles[prim - p.sphere_count], ray, t_min, t_max);
+  return intersect_primitive(p, prim, ray, kernel::ray_shear(ray.direction), t_min, t_max);
 }
 
 STRAHL_HOST_DEVICE inline std::uint32_t primitive_material(const PrimitiveSet& p, std::uint32_t prim) {
@@ -49,9 +55,13 @@ STRAHL_HOST_DEVICE inline std::uint32_t primitive_material(const PrimitiveSet& p
 
 // How often the segment (t_min, t_max) crosses the primitive's surface (0..2).
 STRAHL_HOST_DEVICE inline int primitive_crossings(const PrimitiveSet& p, std::uint32_t prim, const Ray& ray,
-                                                  Real t_min, Real t_max) {
+                                                  const kernel::RayShear& shear, Real t_min, Real t_max) {
   if (p.is_sphere(prim)) return kernel::crossings(p.spheres[prim], ray, t_min, t_max);
-  return kernel::intersect(p.triangles[prim - p.sphere_count], ray, t_min, t_max).t < kInfinity ? 1 : 0;
+  return kernel::intersect(p.triangles[prim - p.sphere_count], ray, shear, t_min, t_max).t < kInfinity ? 1 : 0;
+}
+STRAHL_HOST_DEVICE inline int primitive_crossings(const PrimitiveSet& p, std::uint32_t prim, const Ray& ray,
+                                                  Real t_min, Real t_max) {
+  return primitive_crossings(p, prim, ray, kernel::ray_shear(ray.direction), t_min, t_max);
 }
 
 }  // namespace strahl

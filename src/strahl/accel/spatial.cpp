@@ -81,7 +81,7 @@ Bounds clipped_bounds(const PrimitiveSet& prims, std::uint32_t prim, const Bound
     b = intersection(whole, box);
   } else {
     const kernel::Triangle& t = prims.triangles[prim - prims.sphere_count];
-    Vec3 poly[2][16] = {{t.v0, t.v0 + t.e1, t.v0 + t.e2}};
+    Vec3 poly[2][16] = {{t.v0, t.v1, t.v2}};
     int n = 3, cur = 0;
     for (int axis = 0; axis < 3 && n > 0; ++axis) {
       n = clip_polygon(poly[cur], n, poly[1 - cur], axis, box.lo[axis], false);

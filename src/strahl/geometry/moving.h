@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "strahl/geometry/sphere.h"
+#include "strahl/geometry/triangle.h"
 #include "strahl/math/bounds.h"
 
 namespace strahl::kernel {
@@ -55,28 +56,16 @@ inline Bounds swept_bounds(const MovingTriangle& t) {
   return b;
 }
 
-// Möller–Trumbore on the triangle where it is at time u: t and barycentrics (b1, b2) of b and c.
+// The watertight test (triangle.h) on the triangle where it is at time u: t and barycentrics
+// (b1, b2) of b and c. Neighbours interpolate their shared vertices alike, so they stay watertight.
 struct MovingTriangleHit {
   Real t = kInfinity;
   Real b1 = 0, b2 = 0;
 };
 
 STRAHL_HOST_DEVICE inline MovingTriangleHit intersect(const TriangleAtTime& tri, const Ray& ray, Real t_min, Real t_max) {
-  MovingTriangleHit hit;
-  const Vec3 e1 = tri.b - tri.a, e2 = tri.c - tri.a;
-  const Vec3 pvec = cross(ray.direction, e2);
-  const Real det = dot(e1, pvec);
-  if (det == 0) return hit;
-  const Real inv_det = Real(1) / det;
-  const Vec3 tvec = ray.origin - tri.a;
-  const Real b1 = dot(tvec, pvec) * inv_det;
-  if (b1 < 0 || b1 > 1) return hit;
-  const Vec3 qvec = cross(tvec, e1);
-  const Real b2 = dot(ray.direction, qvec) * inv_det;
-  if (b2 < 0 || b1 + b2 > 1) return hit;
-  const Real t = dot(e2, qvec) * inv_det;
-  if (t > t_min && t < t_max) hit = {t, b1, b2};
-  return hit;
+  const TriangleHit h = intersect(tri.a, tri.b, tri.c, ray, ray_shear(ray.direction), t_min, t_max);
+  return {h.t, h.b1, h.b2};
 }
 
 STRAHL_HOST_DEVICE inline Vec3 geometric_normal(const TriangleAtTime& tri) {

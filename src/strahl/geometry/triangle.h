@@ -1,7 +1,16 @@
 #pragma once
-// Ray–triangle intersection by barycentric coordinates (Möller–Trumbore): the lecture's
-// "intersect the triangle's plane, then test whether the point lies inside" in one solve of
-// o + t·d = v0 + b1·e1 + b2·e2.
+// Ray–triangle intersection, watertight (Woop, Benthin, Wald: "Watertight Ray/Triangle
+// Intersection", JCGT 2013). The lecture's "intersect the triangle's plane, then test whether the
+// point lies inside", done in a frame where the ray is the z axis: the vertices are translated to
+// the ray origin and sheared so the ray points along +z, and the three 2-D edge functions U, V, W
+// say on which side of each edge the ray passes. A shared edge gives the two triangles edge
+// functions of exactly opposite sign (the same products of the same vertex values, subtracted the
+// other way round), so a ray through the edge or a vertex hits at least one of them: no ray slips
+// between the triangles of a closed mesh. This needs the compiler not to fuse a·b − c·d into an
+// FMA (which rounds the two products differently): the build uses -ffp-contract=off.
+//
+// Vertices are stored, not edges: v0 + (v1 − v0) need not give back v1 in floating point, and
+// the edge functions of neighbouring triangles agree only when both see the same vertex values.
 
 #include <cmath>
 #include <cstdint>
@@ -11,10 +20,13 @@
 namespace strahl::kernel {
 
 struct Triangle {
-  Vec3 v0, e1, e2;             // v1 = v0 + e1, v2 = v0 + e2
+  Vec3 v0, v1, v2;
   std::uint32_t material = 0;
   std::int32_t normals = -1;  // index into the vertex-normal array, −1 for flat shading
   std::uint32_t object = 0;   // which scene object (mesh) it belongs to
+
+  STRAHL_HOST_DEVICE Vec3 edge1() const { return v1 - v0; }
+  STRAHL_HOST_DEVICE Vec3 edge2() const { return v2 - v0; }
 };
 
 // Per-vertex shading normals of a triangle, interpolated with the barycentric coordinates.
@@ -24,27 +36,84 @@ struct VertexNormals {
 
 struct TriangleHit {
   Real t = kInfinity;
-  Real b1 = 0, b2 = 0;
+  Real b1 = 0, b2 = 0;  // barycentric weights of v1 and v2 (v0 has 1 − b1 − b2)
 };
 
-STRAHL_HOST_DEVICE inline TriangleHit intersect(const Triangle& tri, const Ray& ray, Real t_min, Real t_max) {
+// What the watertight test needs of a ray, computed once per ray: the axis the direction is
+// largest along (kz) and the two others (kx, ky, ordered so the frame keeps its winding), and
+// the shear that maps the direction to (0, 0, 1).
+struct RayShear {
+  int kx = 0, ky = 1, kz = 2;
+  Real sx = 0, sy = 0, sz = 1;
+};
+
+STRAHL_HOST_DEVICE inline RayShear ray_shear(const Vec3& d) {
+  RayShear s;
+  const Real ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+  s.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+  s.kx = s.kz == 2 ? 0 : s.kz + 1;
+  s.ky = s.kx == 2 ? 0 : s.kx + 1;
+  if (d[s.kz] < 0) { const int tmp = s.kx; s.kx = s.ky; s.ky = tmp; }
+  s.sx = d[s.kx] / d[s.kz];
+  s.sy = d[s.ky] / d[s.kz];
+  s.sz = Real(1) / d[s.kz];
+  return s;
+}
+
+// The nearest hit in (t_min, t_max), with the ray's shear computed beforehand (ray_shear): hits on
+// an edge or a vertex count (for every triangle sharing it), both sides of the triangle are hit.
+STRAHL_HOST_DEVICE inline TriangleHit intersect(const Vec3& v0, const Vec3& v1, const Vec3& v2, const Ray& ray,
+                                                const RayShear& s, Real t_min, Real t_max) {
   TriangleHit hit;
-  const Vec3 pvec = cross(ray.direction, tri.e2);
-  const Real det = dot(tri.e1, pvec);
-  if (det == 0) return hit;  // ray parallel to the triangle's plane (or a degenerate triangle)
+  const Vec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
+  const Real ax = a[s.kx] - s.sx * a[s.kz], ay = a[s.ky] - s.sy * a[s.kz];
+  const Real bx = b[s.kx] - s.sx * b[s.kz], by = b[s.ky] - s.sy * b[s.kz];
+  const Real cx = c[s.kx] - s.sx * c[s.kz], cy = c[s.ky] - s.sy * c[s.kz];
+  const Real u = cx * by - cy * bx;
+  const Real v = ax * cy - ay * cx;
+  const Real w = bx * ay - by * ax;
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return hit;
+  const Real det = u + v + w;
+  if (det == 0) return hit;  // the ray lies in the triangle's plane (or the triangle is degenerate)
+  const Real az = s.sz * a[s.kz], bz = s.sz * b[s.kz], cz = s.sz * c[s.kz];
   const Real inv_det = Real(1) / det;
-  const Vec3 tvec = ray.origin - tri.v0;
-  const Real b1 = dot(tvec, pvec) * inv_det;
-  if (b1 < 0 || b1 > 1) return hit;
-  const Vec3 qvec = cross(tvec, tri.e1);
-  const Real b2 = dot(ray.direction, qvec) * inv_det;
-  if (b2 < 0 || b1 + b2 > 1) return hit;
-  const Real t = dot(tri.e2, qvec) * inv_det;
-  if (t > t_min && t < t_max) hit = {t, b1, b2};
+  const Real t = (u * az + v * bz + w * cz) * inv_det;
+  if (t > t_min && t < t_max) hit = {t, v * inv_det, w * inv_det};
   return hit;
 }
 
+// The same arithmetic without the inside and range checks: where the ray meets the triangle's
+// plane and the barycentrics there (a little negative when rounding put the point a hair outside),
+// for a hit found by other means (Embree, in float) to get the numbers intersect() gives. t is
+// kInfinity when the ray is parallel to the plane.
+STRAHL_HOST_DEVICE inline TriangleHit plane_hit(const Triangle& tri, const Ray& ray, const RayShear& s) {
+  TriangleHit hit;
+  const Vec3 a = tri.v0 - ray.origin, b = tri.v1 - ray.origin, c = tri.v2 - ray.origin;
+  const Real ax = a[s.kx] - s.sx * a[s.kz], ay = a[s.ky] - s.sy * a[s.kz];
+  const Real bx = b[s.kx] - s.sx * b[s.kz], by = b[s.ky] - s.sy * b[s.kz];
+  const Real cx = c[s.kx] - s.sx * c[s.kz], cy = c[s.ky] - s.sy * c[s.kz];
+  const Real u = cx * by - cy * bx;
+  const Real v = ax * cy - ay * cx;
+  const Real w = bx * ay - by * ax;
+  const Real det = u + v + w;
+  if (det == 0) return hit;
+  const Real az = s.sz * a[s.kz], bz = s.sz * b[s.kz], cz = s.sz * c[s.kz];
+  const Real inv_det = Real(1) / det;
+  return {(u * az + v * bz + w * cz) * inv_det, v * inv_det, w * inv_det};
+}
+
+STRAHL_HOST_DEVICE inline TriangleHit intersect(const Triangle& tri, const Ray& ray, const RayShear& s, Real t_min,
+                                                Real t_max) {
+  return intersect(tri.v0, tri.v1, tri.v2, ray, s, t_min, t_max);
+}
+
+STRAHL_HOST_DEVICE inline TriangleHit intersect(const Triangle& tri, const Ray& ray, Real t_min, Real t_max) {
+  return intersect(tri, ray, ray_shear(ray.direction), t_min, t_max);
+}
+
 // Unit geometric normal, oriented by the winding v0 → v1 → v2 (counter-clockwise seen from the front).
-STRAHL_HOST_DEVICE inline Vec3 geometric_normal(const Triangle& tri) { return normalize(cross(tri.e1, tri.e2)); }
+STRAHL_HOST_DEVICE inline Vec3 geometric_normal(const Triangle& tri) {
+  return normalize(cross(tri.edge1(), tri.edge2()));
+}
 
 }  // namespace strahl::kernel

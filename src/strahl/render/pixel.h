@@ -1,29 +1,42 @@
 #pragma once
-// Radiance of one pixel: N×N regular supersampling with a box filter (N = 1: the lecture's one
-// ray through the pixel centre). `row` counts from the top of the image.
+// One camera sample of a pixel through the pixel sampler and the integrator, and the box-filtered
+// mean of a pixel's first `spp` samples: the reference the film reproduces exactly for
+// pixel-local filters (render/film.h). `row` counts from the top of the image.
 
 #include "strahl/render/integrator.h"
+#include "strahl/sampling/pixel_sampler.h"
 
 namespace strahl {
 
+// Sample `index` of pixel (x, row); `cs` receives the camera sample it used.
+STRAHL_HOST_DEVICE inline Vec3 pixel_sample(const SceneView& s, const PixelSampler& sampler, int x, int row,
+                                            std::uint32_t index, CameraSample& cs, RayCounters& counters) {
+  const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
+  const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x);
+  cs = sampler.sample(x, y, pixel, index);
+  SampleStream rng{sampler.seed, pixel, index};
+  return sample_radiance(s, cs, rng, counters);
+}
+
+// Mean of samples 0 … spp−1 (in index order, as the film adds them).
+STRAHL_HOST_DEVICE inline Vec3 render_pixel(const SceneView& s, int x, int row, const SamplingSettings& settings,
+                                            RayCounters& counters) {
+  const PixelSampler sampler = make_pixel_sampler(settings);
+  const int spp = effective_spp(settings.sampler, settings.spp);
+  Vec3 sum{0};
+  for (int i = 0; i < spp; ++i) {
+    CameraSample cs;
+    sum += pixel_sample(s, sampler, x, row, std::uint32_t(i), cs, counters);
+  }
+  return sum / Real(spp);
+}
+
+// The lecture's N×N regular supersampling (N = 1: one ray through the pixel centre).
 STRAHL_HOST_DEVICE inline Vec3 render_pixel(const SceneView& s, int x, int row, int supersample,
                                             RayCounters& counters) {
-  const int n = supersample;
-  const Real inv_n = Real(1) / n;
-  const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
-  Vec3 sum{0};
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      CameraSample cs;
-      cs.film_x = x + (i + Real(0.5)) * inv_n;
-      cs.film_y = y + (j + Real(0.5)) * inv_n;
-      SampleStream rng{0, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x), std::uint32_t(j * n + i)};
-      if (s.camera.lens_radius > 0) cs.lens = {random_real(0, rng.pixel, rng.sample, kDimLens), random_real(0, rng.pixel, rng.sample, kDimLens + 1)};
-      if (s.moving_sphere_count + s.moving_triangle_count > 0) cs.time = random_real(0, rng.pixel, rng.sample, kDimTime);
-      sum += sample_radiance(s, cs, rng, counters);
-    }
-  }
-  return sum * (inv_n * inv_n);
+  SamplingSettings settings;
+  settings.spp = supersample * supersample;
+  return render_pixel(s, x, row, settings, counters);
 }
 
 }  // namespace strahl

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "strahl/render/scene_view.h"
+#include "strahl/sampling/pixel_sampler.h"
 
 namespace strahl {
 
@@ -21,7 +22,8 @@ struct RenderScene {
   std::vector<Light> lights;
   Camera camera;
   TraceSettings settings;
-  int supersample = 1;  // N×N regular samples per pixel
+  int supersample = 1;  // N×N regular samples per pixel (what `sampling` holds when no spp is given)
+  SamplingSettings sampling;  // pixel sampler, spp (made square for grid/stratified), filter, seed
 
   PrimitiveSet primitives() const {
     return {spheres.data(), static_cast<std::uint32_t>(spheres.size()), triangles.data(),

@@ -125,8 +125,7 @@ namespace {
 // Appends the triangle unless it is degenerate; returns whether it did.
 bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t material,
                    std::int32_t normals, std::uint32_t object_id, const Vec3* keyed = nullptr) {
-  const Vec3 e1 = b - a, e2 = c - a;
-  if (!(length_squared(cross(e1, e2)) > 0)) return false;
+  if (!(length_squared(cross(b - a, c - a)) > 0)) return false;
   if (keyed != nullptr) {  // moving: a, b, c at shutter open, then at close
     kernel::MovingTriangle t;
     for (int i = 0; i < 3; ++i) {
@@ -139,7 +138,7 @@ bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c
     out.moving_triangles.push_back(t);
     return true;
   }
-  out.triangles.push_back({a, e1, e2, material, normals, object_id});
+  out.triangles.push_back({a, b, c, material, normals, object_id});
   return true;
 }
 }  // namespace
@@ -239,6 +238,19 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
                          " are degenerate)");
 }
 
+// Checks the sampling settings; spp 0 means the N×N grid of `supersample`.
+static SamplingSettings compile_sampling(const RenderSettings& s) {
+  SamplingSettings out = s.sampling;
+  validate::int_range(out.spp, 0, kMaxSpp, s.loc, "spp");
+  if (out.spp == 0) out.spp = s.supersample * s.supersample;
+  out.spp = effective_spp(out.sampler, out.spp);
+  validate::in_range(out.filter.radius, kMinFilterRadius, kMaxFilterRadius, s.loc, "filter_radius");
+  validate::int_range(out.adaptive_min, 1, kMaxSpp, s.loc, "adaptive_min");
+  validate::positive(out.adaptive_threshold, s.loc, "adaptive_threshold");
+  validate::finite(out.adaptive_threshold, s.loc, "adaptive_threshold");
+  return out;
+}
+
 namespace {
 void validate_area_light(Light& light, const FileLoc& loc) {
   validate::finite(light.position, loc, light.kind == LightKind::Rect ? "light corner" : "light center");
@@ -263,7 +275,7 @@ RenderScene compile(const Scene& scene) {
   const RenderSettings& s = scene.settings;
   validate::int_range(s.width, 1, 65536, s.loc, "width");
   validate::int_range(s.height, 1, 65536, s.loc, "height");
-  // 12 bytes a pixel for the film: refuse what would not fit in memory before allocating it.
+  // About 50 bytes a pixel for the film and image (render/film.h): refuse what would not fit in memory before allocating it.
   if (double(s.width) * s.height > double(1u << 28)) throw Error(s.loc, "resolution too large (over 268 million pixels)");
   validate::int_range(s.max_depth, 1, 64, s.loc, "max_depth");
   validate::int_range(s.supersample, 1, 64, s.loc, "supersample");
@@ -276,6 +288,7 @@ RenderScene compile(const Scene& scene) {
   out.camera = build_camera(scene.camera, s.width, s.height);
   out.settings = {s.max_depth, s.min_weight, s.background, s.ambient_light, s.medium_ior};
   out.supersample = s.supersample;
+  out.sampling = compile_sampling(s);
 
   std::uint32_t object_id = 0;  // (the camera, with its shutter, is built first: moving shapes need it)
   for (const auto& object : scene.objects()) {

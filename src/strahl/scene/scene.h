@@ -17,6 +17,7 @@
 
 #include "strahl/accel/accel.h"
 #include "strahl/math/transform.h"
+#include "strahl/sampling/pixel_sampler.h"
 #include "strahl/scene/mesh_data.h"
 #include "strahl/shading/light.h"
 #include "strahl/shading/material.h"
@@ -191,6 +192,12 @@ struct RenderSettings {
   Vec3 ambient_light{1};
   Real medium_ior = 1;
   AccelKind accel = AccelKind::Bvh;
+  // Pixel sampler, spp, seed, filter, adaptive settings; spp 0: supersample² on the grid.
+  SamplingSettings sampling = [] {
+    SamplingSettings s;
+    s.spp = 0;
+    return s;
+  }();
   FileLoc loc;
 };
 

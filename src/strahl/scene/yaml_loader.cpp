@@ -166,7 +166,7 @@ class Reader {
   void render(const YAML::Node& n, RenderSettings& s) const {
     map(n, "render");
     keys(n, {"width", "height", "max_depth", "min_weight", "supersample", "background", "ambient_light", "medium_ior",
-             "accel"},
+             "accel", "sampler", "spp", "seed", "filter", "filter_radius", "adaptive_min", "adaptive_threshold"},
          "render");
     s.loc = loc(n);
     if (const auto v = n["width"]) s.width = integer(v, "width", 1, 65536);
@@ -182,6 +182,29 @@ class Reader {
       if (!kind) fail(v, "unknown accel '" + v.Scalar() + "' (" + accel_names() + ")");
       s.accel = *kind;
     }
+    sampling(n, s.sampling);
+  }
+
+  void sampling(const YAML::Node& n, SamplingSettings& s) const {
+    if (const auto v = n["sampler"]) {
+      const std::optional<SamplerKind> kind = sampler_from_name(scalar(v, "sampler"));
+      if (!kind) fail(v, "unknown sampler '" + v.Scalar() + "' (" + kSamplerNames + ")");
+      s.sampler = *kind;
+    }
+    if (const auto v = n["spp"]) s.spp = integer(v, "spp", 1, kMaxSpp);
+    if (const auto v = n["seed"]) s.seed = std::uint64_t(integer(v, "seed", 0, 2147483647));
+    if (const auto v = n["filter"]) {
+      const std::optional<FilterKind> kind = filter_from_name(scalar(v, "filter"));
+      if (!kind) fail(v, "unknown filter '" + v.Scalar() + "' (" + kFilterNames + ")");
+      s.filter.kind = *kind;
+    }
+    if (const auto v = n["filter_radius"]) {
+      s.filter.radius = number(v, "filter_radius");
+      if (!(s.filter.radius >= kMinFilterRadius && s.filter.radius <= kMaxFilterRadius))
+        fail(v, "filter_radius must lie in [0.5, 4] pixels");
+    }
+    if (const auto v = n["adaptive_min"]) s.adaptive_min = integer(v, "adaptive_min", 1, kMaxSpp);
+    if (const auto v = n["adaptive_threshold"]) s.adaptive_threshold = positive(v, "adaptive_threshold");
   }
 
   void camera(const YAML::Node& n, CameraDescription& c) const {

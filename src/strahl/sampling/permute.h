@@ -1,0 +1,69 @@
+#pragma once
+// Hash-based permutations for the pixel samplers: Owen scrambling of 32-bit fixed-point values
+// (Laine–Karras, as in Burley 2020, "Practical Hash-based Owen Scrambling") and random
+// permutations of [0, n) evaluated element by element (Kensler 2013, "Correlated Multi-Jittered
+// Sampling"). Pure functions of their arguments: no tables, no state.
+
+#include <cstdint>
+
+#include "strahl/math/config.h"
+
+namespace strahl {
+
+STRAHL_HOST_DEVICE constexpr std::uint32_t reverse_bits(std::uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// Each bit flipped by a hash of the bits below it (a Laine–Karras permutation). Applied to
+// bit-reversed values it is an Owen scramble: a bit's flip depends only on the more significant ones.
+STRAHL_HOST_DEVICE constexpr std::uint32_t laine_karras(std::uint32_t x, std::uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+// Owen scrambling (nested uniform scrambling) of a 0.32 fixed-point value.
+STRAHL_HOST_DEVICE constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
+  return reverse_bits(laine_karras(reverse_bits(x), seed));
+}
+
+// Element i of a random permutation of [0, n) chosen by `seed` (Kensler's cycle-walking hash).
+STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_element(std::uint32_t i, std::uint32_t n, std::uint32_t seed) {
+  if (n <= 1) return 0;
+  std::uint32_t w = n - 1;
+  w |= w >> 1;
+  w |= w >> 2;
+  w |= w >> 4;
+  w |= w >> 8;
+  w |= w >> 16;
+  do {
+    i ^= seed;
+    i *= 0xe170893du;
+    i ^= seed >> 16;
+    i ^= (i & w) >> 4;
+    i ^= seed >> 8;
+    i *= 0x0929eb3fu;
+    i ^= seed >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1 | seed >> 27;
+    i *= 0x6935fa69u;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303u;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3u;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3dfu;
+    i &= w;
+    i ^= i >> 5;
+  } while (i >= n);
+  return (i + seed) % n;
+}
+
+}  // namespace strahl

@@ -1,0 +1,242 @@
+// The film and the render loop: images independent of threads and tile size for every sampler
+// and filter; filters keep a flat image flat; progressive passes equal one pass; adaptive sampling
+// spends its samples on edges and beats stratified sampling there; time limits, checkpoints and
+// AOVs.
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+
+#include "strahl/image/metrics.h"
+#include "strahl/render/adaptive.h"
+#include "strahl/render/aov.h"
+#include "strahl/scene/scene_file.h"
+#include "test_helpers.h"
+
+namespace strahl {
+namespace {
+
+Image render_with(const RenderScene& rs, int threads, int tile, RenderStats* stats = nullptr) {
+  RenderOptions o;
+  o.threads = threads;
+  o.tile_size = tile;
+  return render(rs, o, stats);
+}
+
+SamplingSettings sampling(SamplerKind kind, int spp, FilterKind filter = FilterKind::Box, Real radius = 0.5) {
+  SamplingSettings s;
+  s.sampler = kind;
+  s.spp = spp;
+  s.seed = 11;
+  s.filter = {filter, radius};
+  s.adaptive_min = 2;
+  return s;
+}
+
+RenderScene whitted(const SamplingSettings& s) {
+  Scene scene = load_scene(fs::path(STRAHL_SOURCE_DIR) / "scenes" / "lecture-whitted.yaml");
+  scene.settings.width = 40;
+  scene.settings.height = 24;
+  scene.settings.sampling = s;
+  return compile(scene);
+}
+
+TEST(Film, EverySamplerAndFilterIsIndependentOfThreadsAndTiles) {
+  for (const SamplingSettings& s :
+       {sampling(SamplerKind::Grid, 4), sampling(SamplerKind::Stratified, 4, FilterKind::Gaussian, 1.5),
+        sampling(SamplerKind::Random, 4, FilterKind::Mitchell, 2), sampling(SamplerKind::Sobol, 4, FilterKind::Tent, 1),
+        sampling(SamplerKind::Adaptive, 8, FilterKind::Mitchell, 2)}) {
+    const RenderScene rs = whitted(s);
+    RenderStats ref_stats;
+    const Image reference = render_with(rs, 1, 32, &ref_stats);
+    for (const auto& [threads, tile] : {std::pair{2, 7}, std::pair{2, 1}, std::pair{0, 16}}) {
+      RenderStats stats;
+      const Image img = render_with(rs, threads, tile, &stats);
+      EXPECT_TRUE(img == reference) << sampler_name(s.sampler) << " " << filter_name(s.filter.kind) << ", " << threads
+                                    << " threads, tile " << tile << ": max difference "
+                                    << test::max_abs_diff(img, reference);
+      EXPECT_EQ(stats.samples, ref_stats.samples);
+      EXPECT_EQ(stats.pixel_samples, ref_stats.pixel_samples);
+    }
+  }
+}
+
+// With the pixel-local box filter the film equals render_pixel() (samples 0 … spp−1 averaged)
+// bit for bit, for every sampler; seeds change stochastic samplers' images.
+TEST(Film, PixelLocalFilterEqualsRenderPixel) {
+  for (const SamplerKind kind : {SamplerKind::Stratified, SamplerKind::Random, SamplerKind::Sobol}) {
+    const RenderScene rs = whitted(sampling(kind, 4));
+    const Image img = render_with(rs, 2, 5);
+    RayCounters counters;
+    for (int row = 0; row < img.height(); ++row)
+      for (int x = 0; x < img.width(); ++x) {
+        const Vec3 c = render_pixel(rs.view(), x, row, rs.sampling, counters);
+        ASSERT_TRUE(img.at(x, row) == (Rgb{float(c.x), float(c.y), float(c.z)})) << sampler_name(kind) << " " << x;
+      }
+    SamplingSettings other = rs.sampling;
+    other.seed = 12;
+    EXPECT_FALSE(render_with(whitted(other), 2, 5) == img) << sampler_name(kind);
+  }
+}
+
+// An emitter filling the view: every filter, negative lobes included, reproduces its colour.
+TEST(Film, FiltersKeepAFlatImageFlat) {
+  const Vec3 colour(0.25, 0.5, 0.75);
+  for (const FilterKind kind : {FilterKind::Box, FilterKind::Tent, FilterKind::Gaussian, FilterKind::Mitchell})
+    for (const Real radius : {Real(0.5), Real(1.5), Real(4)}) {
+      // Mitchell at radius 0.5 has its negative lobes inside the pixel: sparse weights can sum to ~0.
+      if (kind == FilterKind::Mitchell && radius < 1) continue;
+      Scene s;
+      s.add(Plane({0, 0, 1}, -2, test::emissive_like(colour)));
+      test::set_camera(s, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, -1, 1, -1, 1, 1, 12, 9);
+      s.settings.sampling = sampling(SamplerKind::Stratified, 4, kind, radius);
+      const Image img = test::render_image(s, 2, 5);
+      for (const Rgb& p : img.pixels())
+        ASSERT_TRUE(test::vec_near(test::to_vec(p), colour, 1e-6)) << filter_name(kind) << " r " << radius;
+    }
+}
+
+// A white emitting sphere on black: its silhouette is the only edge.
+Scene edge_scene(int n) {
+  Scene s;
+  s.add(Sphere({0.1, 0.05, -3}, 1, test::emissive_like(Vec3(1))));
+  test::set_camera(s, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, -0.5, 0.5, -0.5, 0.5, 1, n, n);
+  return s;
+}
+
+TEST(Adaptive, SpendsSamplesOnEdgesAndBeatsStratifiedAtTheSameCount) {
+  constexpr int n = 32;
+  Scene s = edge_scene(n);
+  s.settings.sampling = sampling(SamplerKind::Stratified, 1024);
+  const Image reference = test::render_image(s, 0);
+
+  s.settings.sampling = sampling(SamplerKind::Adaptive, 256);
+  s.settings.sampling.adaptive_min = 4;
+  s.settings.sampling.adaptive_threshold = 0.02;
+  RenderStats stats;
+  const Image adaptive = test::render_image(s, 0, 32, &stats);
+  // Edge pixels (reference strictly between black and white) against flat ones.
+  double edge_samples = 0, flat_samples = 0;
+  int edges = 0, flats = 0, flats_at_minimum = 0;
+  for (int row = 0; row < n; ++row)
+    for (int x = 0; x < n; ++x) {
+      const float v = reference.at(x, row).r;
+      const double c = stats.pixel_samples[std::size_t(row * n + x)];
+      if (v > 0.02f && v < 0.98f) {
+        edge_samples += c;
+        ++edges;
+      } else if (v == 0 || v == 1) {
+        flat_samples += c;
+        ++flats;
+        flats_at_minimum += c == 4;
+      }
+    }
+  std::uint32_t most = 0;
+  for (std::uint32_t c : stats.pixel_samples) most = std::max(most, c);
+  EXPECT_LE(most, 256u);
+  ASSERT_GT(edges, 20);
+  ASSERT_GT(flats, 200);
+  // Flat pixels next to an edge refine too (the neighbour rule); most flat pixels stop at the minimum.
+  EXPECT_GT(edge_samples / edges, 4 * (flat_samples / flats)) << "mean samples on edges vs flat pixels";
+  EXPECT_GT(flats_at_minimum, flats / 2);
+  const double average = double(stats.samples) / (n * n);
+  EXPECT_LT(average, 128);
+
+  // Stratified with at least as many samples per pixel.
+  const int side = int(std::ceil(std::sqrt(average)));
+  s.settings.sampling = sampling(SamplerKind::Stratified, side * side);
+  const Image stratified = test::render_image(s, 0);
+  const double e_adaptive = rmse(adaptive, reference), e_stratified = rmse(stratified, reference);
+  EXPECT_LT(e_adaptive, e_stratified) << "adaptive " << average << " spp vs stratified " << side * side << " spp";
+}
+
+TEST(Adaptive, RelativeErrorIsTheStandardErrorOverTheMean) {
+  PixelStats p;
+  for (const double v : {0.5, 1.5, 0.5, 1.5}) {
+    p.sum += v;
+    p.sum_sq += v * v;
+    ++p.n;
+  }
+  // mean 1, sample variance 1/3, standard error sqrt(1/12).
+  EXPECT_NEAR(relative_error(p), std::sqrt(1.0 / 12), 1e-12);
+  EXPECT_EQ(relative_error(PixelStats{0, 0, 8}), 0) << "black pixels are converged";
+  EXPECT_TRUE(std::isinf(relative_error(PixelStats{1, 1, 1})));
+}
+
+// Passes of 1, 1, 2, 4, … samples add up to the same image as one pass of all of them.
+TEST(Progressive, PassesGiveTheSameImageAsOnePass) {
+  for (const SamplingSettings& s :
+       {sampling(SamplerKind::Sobol, 8), sampling(SamplerKind::Stratified, 9, FilterKind::Gaussian, 2)}) {
+    const RenderScene rs = whitted(s);
+    RenderStats one_stats, stats;
+    const Image one = render(rs, {}, &one_stats);
+    RenderOptions o;
+    o.threads = 2;
+    o.tile_size = 8;
+    int checkpoints = 0;
+    o.checkpoint_interval = 1e-9;  // after every tile
+    o.checkpoint = [&](const Image& partial) {
+      EXPECT_EQ(partial.width(), 40);
+      ++checkpoints;
+    };
+    const Image passes = render(rs, o, &stats);
+    EXPECT_TRUE(passes == one) << sampler_name(s.sampler) << ": max difference " << test::max_abs_diff(passes, one);
+    EXPECT_EQ(one_stats.passes, 1);
+    EXPECT_EQ(stats.passes, s.spp == 8 ? 4 : 5);
+    EXPECT_EQ(stats.samples, 40u * 24u * std::uint64_t(rs.sampling.spp));
+    EXPECT_GE(checkpoints, 1);
+  }
+}
+
+TEST(Progressive, TimeLimitStopsWithTheImageSoFar) {
+  const RenderScene rs = whitted(sampling(SamplerKind::Sobol, 1 << 16));
+  RenderOptions o;
+  o.time_limit = 1e-9;
+  RenderStats stats;
+  const Image img = render(rs, o, &stats);
+  EXPECT_TRUE(stats.time_limited);
+  EXPECT_FALSE(stats.cancelled);
+  EXPECT_LT(stats.samples, 40u * 24u * (1u << 16));
+  EXPECT_EQ(img.width(), 40);
+  // Cancelled through the shared flag: same mechanism, reported as cancelled.
+  std::atomic<bool> cancel{true};
+  RenderOptions c;
+  c.cancel = &cancel;
+  RenderStats cstats;
+  render(rs, c, &cstats);
+  EXPECT_TRUE(cstats.cancelled);
+  EXPECT_EQ(cstats.samples, 0u);
+}
+
+// AOVs on a known scene: a plane at distance 3 facing the camera, a sphere in front of its centre.
+TEST(Aov, DepthNormalAlbedoAndIdOfAKnownScene) {
+  Scene s;
+  s.add(Plane({0, 0, 1}, -3, material_with_color({0.2, 0.4, 0.6})));  // object 0: z = −3
+  s.add(Sphere({0, 0, -1.5}, 0.2, material_with_color({0.9, 0.1, 0.1})));  // object 1
+  test::set_camera(s, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, -1, 1, -1, 1, 1, 9, 9);
+  const RenderScene rs = compile(s);
+  const AovImages a = render_aovs(rs, 2);
+  // The centre pixel looks straight down −z at the sphere's front, 1.5 − 0.2 away.
+  EXPECT_NEAR(a.depth.at(4, 4).r, 1.3, 1e-6);
+  EXPECT_VEC_NEAR(test::to_vec(a.normal.at(4, 4)), Vec3(0, 0, 1), 1e-6);
+  EXPECT_VEC_NEAR(test::to_vec(a.albedo.at(4, 4)), Vec3(0.9, 0.1, 0.1), 1e-6);
+  EXPECT_EQ(a.id.at(4, 4).r, 1);
+  // A corner pixel sees the plane at 3 / cos θ.
+  const Ray ray = rs.camera.generate_ray(0.5, 0.5);  // bottom-left pixel = row 8
+  EXPECT_NEAR(a.depth.at(0, 8).r, 3 / std::fabs(ray.direction.z), 1e-5);
+  EXPECT_VEC_NEAR(test::to_vec(a.normal.at(0, 8)), Vec3(0, 0, 1), 1e-6);
+  EXPECT_VEC_NEAR(test::to_vec(a.albedo.at(0, 8)), Vec3(0.2, 0.4, 0.6), 1e-6);
+  EXPECT_EQ(a.id.at(0, 8).r, 0);
+  // Looking away from everything: background values.
+  Scene away;
+  away.add(Plane({0, 0, 1}, -3, material_with_color({0.2, 0.4, 0.6})));
+  test::set_camera(away, {0, 0, 0}, {0, 0, 1}, {0, 1, 0}, -1, 1, -1, 1, 1, 3, 3);
+  const AovImages b = render_aovs(compile(away));
+  EXPECT_TRUE(std::isinf(b.depth.at(1, 1).r));
+  EXPECT_EQ(b.id.at(1, 1).r, -1);
+  EXPECT_EQ(b.albedo.at(1, 1).g, 0);
+}
+
+}  // namespace
+}  // namespace strahl

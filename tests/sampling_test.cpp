@@ -1,0 +1,258 @@
+// Sampling routines: every warp of sampling/warp.h follows its density (chi-square), the pixel
+// samplers are stratified as they claim (exact checks) and uniform (chi-square), and the
+// reconstruction filters integrate to their closed forms with the stated support.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <set>
+#include <vector>
+
+#include "chi_square.h"
+#include "strahl/sampling/filter.h"
+#include "strahl/sampling/pixel_sampler.h"
+#include "strahl/sampling/warp.h"
+
+namespace strahl {
+namespace {
+
+constexpr int kSamples = 200000;
+constexpr int kThetaBins = 10, kPhiBins = 20;
+const double kAlpha = test::significance(0.01, 8);  // eight chi-square tests below
+
+Vec2 uniform2(std::uint32_t i) { return {random_real(42, 7, i, 0), random_real(42, 7, i, 1)}; }
+
+// Directions binned by (z, φ): equal steps of z over [z_min, 1] are equal solid angles, so
+// a bin's probability is ∫ pdf dz dφ, integrated here numerically from the routine's own pdf.
+test::ChiSquare direction_test(const std::function<Vec3(Vec2)>& warp, const std::function<Real(const Vec3&)>& pdf,
+                               Real z_min) {
+  std::vector<double> observed(kThetaBins * kPhiBins, 0), expected(kThetaBins * kPhiBins, 0);
+  const Real dz = (1 - z_min) / kThetaBins, dphi = 2 * kPi / kPhiBins;
+  for (int i = 0; i < kSamples; ++i) {
+    const Vec3 d = warp(uniform2(std::uint32_t(i)));
+    EXPECT_NEAR(d.length(), 1, 1e-9);
+    Real phi = std::atan2(d.y, d.x);
+    if (phi < 0) phi += 2 * kPi;
+    const int zi = std::min(kThetaBins - 1, std::max(0, int((d.z - z_min) / dz)));
+    const int pi = std::min(kPhiBins - 1, int(phi / dphi));
+    observed[std::size_t(zi * kPhiBins + pi)] += 1;
+  }
+  constexpr int kSub = 16;  // midpoint rule per bin
+  for (int zi = 0; zi < kThetaBins; ++zi)
+    for (int pi = 0; pi < kPhiBins; ++pi) {
+      double integral = 0;
+      for (int a = 0; a < kSub; ++a)
+        for (int b = 0; b < kSub; ++b) {
+          const Real z = z_min + (zi + (a + 0.5) / kSub) * dz, phi = (pi + (b + 0.5) / kSub) * dphi;
+          const Real r = std::sqrt(std::fmax(Real(0), 1 - z * z));
+          integral += pdf(Vec3(r * std::cos(phi), r * std::sin(phi), z));
+        }
+      expected[std::size_t(zi * kPhiBins + pi)] = integral * (dz / kSub) * (dphi / kSub) * kSamples;
+    }
+  return test::chi_square(observed, expected);
+}
+
+TEST(Warp, UniformHemisphereFollowsItsDensity) {
+  const auto r = direction_test(square_to_uniform_hemisphere, [](const Vec3&) { return uniform_hemisphere_pdf(); }, 0);
+  EXPECT_GT(r.p_value, kAlpha) << "chi² " << r.statistic << " dof " << r.dof;
+}
+
+TEST(Warp, CosineHemisphereFollowsItsDensity) {
+  const auto r =
+      direction_test(square_to_cosine_hemisphere, [](const Vec3& d) { return cosine_hemisphere_pdf(d.z); }, 0);
+  EXPECT_GT(r.p_value, kAlpha) << "chi² " << r.statistic << " dof " << r.dof;
+}
+
+TEST(Warp, UniformSphereFollowsItsDensity) {
+  const auto r = direction_test(square_to_uniform_sphere, [](const Vec3&) { return uniform_sphere_pdf(); }, -1);
+  EXPECT_GT(r.p_value, kAlpha) << "chi² " << r.statistic << " dof " << r.dof;
+}
+
+TEST(Warp, ConeFollowsItsDensity) {
+  for (const Real cos_max : {Real(0.3), Real(0.9), Real(0.999)}) {
+    const auto r = direction_test([&](Vec2 u) { return square_to_uniform_cone(u, cos_max); },
+                                  [&](const Vec3&) { return uniform_cone_pdf(cos_max); }, cos_max);
+    EXPECT_GT(r.p_value, kAlpha) << "cos_max " << cos_max << ": chi² " << r.statistic << " dof " << r.dof;
+  }
+}
+
+// The test has power: cosine-distributed directions are not uniform.
+TEST(Warp, ChiSquareRejectsAWrongDensity) {
+  const auto r = direction_test(square_to_cosine_hemisphere, [](const Vec3&) { return uniform_hemisphere_pdf(); }, 0);
+  EXPECT_LT(r.p_value, 1e-6);
+}
+
+// The disk, binned by (r², φ): equal steps of r² are equal areas; the pdf is per unit area.
+TEST(Warp, DiskFollowsItsDensity) {
+  constexpr int kR = 10;
+  std::vector<double> observed(kR * kPhiBins, 0), expected(kR * kPhiBins, 0);
+  for (int i = 0; i < kSamples; ++i) {
+    const Vec2 p = square_to_disk(uniform2(std::uint32_t(i)));
+    const Real r2 = p.x * p.x + p.y * p.y;
+    ASSERT_LE(r2, 1 + 1e-12);
+    Real phi = std::atan2(p.y, p.x);
+    if (phi < 0) phi += 2 * kPi;
+    observed[std::size_t(std::min(kR - 1, int(r2 * kR)) * kPhiBins + std::min(kPhiBins - 1, int(phi / (2 * kPi) * kPhiBins)))] += 1;
+  }
+  // Bin area = Δ(r²)/2 · Δφ.
+  for (double& e : expected) e = disk_pdf() * (1.0 / kR) / 2 * (2 * kPi / kPhiBins) * kSamples;
+  const auto r = test::chi_square(observed, expected);
+  EXPECT_GT(r.p_value, kAlpha) << "chi² " << r.statistic << " dof " << r.dof;
+}
+
+// ---- pixel samplers ----
+
+SamplingSettings settings(SamplerKind kind, int spp, std::uint64_t seed = 3) {
+  SamplingSettings s;
+  s.sampler = kind;
+  s.spp = spp;
+  s.seed = seed;
+  return s;
+}
+
+TEST(PixelSampler, GridPutsOneSampleAtEachSubpixelCentre) {
+  const PixelSampler ps = make_pixel_sampler(settings(SamplerKind::Grid, 16));
+  for (std::uint64_t pixel : {0ull, 5ull, 99ull}) {
+    std::set<std::pair<int, int>> seen;
+    for (std::uint32_t i = 0; i < 16; ++i) {
+      const CameraSample cs = ps.sample(2, 3, pixel, i);
+      const Real fx = (cs.film_x - 2) * 4 - 0.5, fy = (cs.film_y - 3) * 4 - 0.5;
+      EXPECT_NEAR(fx, std::round(fx), 1e-12);
+      EXPECT_NEAR(fy, std::round(fy), 1e-12);
+      seen.insert({int(std::round(fx)), int(std::round(fy))});
+    }
+    EXPECT_EQ(seen.size(), 16u);
+  }
+  // One sample: the lecture's ray through the pixel centre.
+  const CameraSample c = make_pixel_sampler(settings(SamplerKind::Grid, 1)).sample(7, 9, 0, 0);
+  EXPECT_EQ(c.film_x, 7.5);
+  EXPECT_EQ(c.film_y, 9.5);
+}
+
+// Stratified: each of the n×n film strata, lens strata and n² time strata holds exactly one of
+// the first n² samples, and again one of the next n².
+TEST(PixelSampler, StratifiedFillsEveryStratumOncePerRound) {
+  constexpr int n = 5;
+  const PixelSampler ps = make_pixel_sampler(settings(SamplerKind::Stratified, n * n));
+  EXPECT_EQ(effective_spp(SamplerKind::Stratified, 24), 25);
+  EXPECT_EQ(effective_spp(SamplerKind::Stratified, 10), 9);
+  for (std::uint64_t pixel = 0; pixel < 50; ++pixel)
+    for (std::uint32_t round = 0; round < 2; ++round) {
+      std::set<int> film, lens, time;
+      for (std::uint32_t i = round * n * n; i < (round + 1) * n * n; ++i) {
+        const CameraSample cs = ps.sample(0, 0, pixel, i);
+        film.insert(int(cs.film_x * n) + n * int(cs.film_y * n));
+        lens.insert(int(cs.lens.x * n) + n * int(cs.lens.y * n));
+        time.insert(int(cs.time * n * n));
+      }
+      ASSERT_EQ(film.size(), std::size_t(n * n)) << pixel;
+      ASSERT_EQ(lens.size(), std::size_t(n * n)) << pixel;
+      ASSERT_EQ(time.size(), std::size_t(n * n)) << pixel;
+    }
+}
+
+// Sobol: the first 2^m samples of a pixel form a (0, m, 2)-net in film and in lens: every
+// elementary interval of area 2^-m holds exactly one; time takes one value per 1/2^m.
+TEST(PixelSampler, SobolPrefixesAreZeroTwoNets) {
+  const PixelSampler ps = make_pixel_sampler(settings(SamplerKind::Sobol, 64));
+  for (std::uint64_t pixel = 0; pixel < 40; ++pixel)
+    for (int m = 0; m <= 6; ++m) {
+      const std::uint32_t count = 1u << m;
+      for (int a = 0; a <= m; ++a) {
+        const int b = m - a;
+        std::set<std::pair<int, int>> film, lens;
+        std::set<int> time;
+        for (std::uint32_t i = 0; i < count; ++i) {
+          const CameraSample cs = ps.sample(0, 0, pixel, i);
+          film.insert({int(cs.film_x * (1 << a)), int(cs.film_y * (1 << b))});
+          lens.insert({int(cs.lens.x * (1 << a)), int(cs.lens.y * (1 << b))});
+          time.insert(int(cs.time * count));
+        }
+        ASSERT_EQ(film.size(), count) << "pixel " << pixel << " m " << m << " a " << a;
+        ASSERT_EQ(lens.size(), count) << "pixel " << pixel << " m " << m << " a " << a;
+        ASSERT_EQ(time.size(), count) << "pixel " << pixel << " m " << m;
+      }
+    }
+}
+
+// Over many pixels every sampler's film, lens and time values are uniform, and the film and lens
+// values of one sample are independent (chi-square on the 4D product of 3×3 bins).
+TEST(PixelSampler, SamplesAreUniformAndFilmIndependentOfLens) {
+  for (const SamplerKind kind : {SamplerKind::Stratified, SamplerKind::Random, SamplerKind::Sobol}) {
+    const PixelSampler ps = make_pixel_sampler(settings(kind, 16));
+    std::vector<double> observed(81, 0), time_obs(16, 0);
+    int total = 0;
+    for (std::uint64_t pixel = 0; pixel < 4000; ++pixel)
+      for (std::uint32_t i = 0; i < 16; ++i) {
+        const CameraSample cs = ps.sample(0, 0, pixel, i);
+        ASSERT_TRUE(cs.film_x >= 0 && cs.film_x < 1 && cs.film_y >= 0 && cs.film_y < 1);
+        ASSERT_TRUE(cs.lens.x >= 0 && cs.lens.x < 1 && cs.lens.y >= 0 && cs.lens.y < 1 && cs.time >= 0 && cs.time < 1);
+        const int bin = int(cs.film_x * 3) + 3 * int(cs.film_y * 3) + 9 * int(cs.lens.x * 3) + 27 * int(cs.lens.y * 3);
+        observed[std::size_t(bin)] += 1;
+        time_obs[std::size_t(cs.time * 16)] += 1;
+        ++total;
+      }
+    const auto r = test::chi_square(observed, std::vector<double>(81, total / 81.0));
+    EXPECT_GT(r.p_value, test::significance(0.01, 6)) << sampler_name(kind) << ": chi² " << r.statistic;
+    // Time: stratified and Sobol are exact per pixel; random is checked statistically.
+    const auto t = test::chi_square(time_obs, std::vector<double>(16, total / 16.0));
+    EXPECT_GT(t.p_value, test::significance(0.01, 6)) << sampler_name(kind) << " time: chi² " << t.statistic;
+  }
+}
+
+TEST(PixelSampler, SeedsChangeTheSamplesAndNamesRoundTrip) {
+  const CameraSample a = make_pixel_sampler(settings(SamplerKind::Sobol, 4, 1)).sample(0, 0, 3, 2);
+  const CameraSample b = make_pixel_sampler(settings(SamplerKind::Sobol, 4, 2)).sample(0, 0, 3, 2);
+  EXPECT_NE(a.film_x, b.film_x);
+  for (const SamplerKind k :
+       {SamplerKind::Grid, SamplerKind::Stratified, SamplerKind::Random, SamplerKind::Sobol, SamplerKind::Adaptive})
+    EXPECT_EQ(sampler_from_name(sampler_name(k)), k);
+  EXPECT_FALSE(sampler_from_name("halton"));
+}
+
+// ---- filters ----
+
+TEST(Filter, IntegralsMatchTheClosedFormsAndSupportIsHalfOpen) {
+  for (const FilterKind kind : {FilterKind::Box, FilterKind::Tent, FilterKind::Gaussian, FilterKind::Mitchell})
+    for (const Real radius : {Real(0.5), Real(1), Real(1.5), Real(2), Real(4)}) {
+      const Filter f{kind, radius};
+      constexpr int kSteps = 200000;
+      double integral = 0;
+      for (int i = 0; i < kSteps; ++i) integral += filter_1d(f, -radius + (i + 0.5) * 2 * radius / kSteps);
+      integral *= 2 * radius / kSteps;
+      EXPECT_NEAR(integral, filter_integral_1d(f), 1e-6 * radius) << filter_name(kind) << " r " << radius;
+      EXPECT_EQ(filter_1d(f, radius), 0) << filter_name(kind);
+      EXPECT_EQ(filter_1d(f, radius + 1e-9), 0);
+      EXPECT_EQ(filter_1d(f, -radius - 1e-9), 0);
+      EXPECT_GT(filter_1d(f, 0), 0);
+      EXPECT_EQ(filter_1d(f, Real(0.3) * radius), filter_1d(f, Real(-0.3) * radius)) << "symmetric";
+      EXPECT_EQ(filter_weight(f, 0.2, 0.1), filter_1d(f, 0.2) * filter_1d(f, 0.1));
+    }
+}
+
+// Box 0.5 gives every sample to exactly one pixel; tent 1 and Mitchell 2 are partitions of
+// unity (their integer translates sum to 1), so a flat image stays flat.
+TEST(Filter, PartitionsOfUnity) {
+  const Filter box{FilterKind::Box, 0.5}, tent{FilterKind::Tent, 1}, mitchell{FilterKind::Mitchell, 2};
+  for (Real x = -0.5; x < 0.5; x += 0.0137) {
+    double b = 0, t = 0, m = 0;
+    int owners = 0;
+    for (int k = -4; k <= 4; ++k) {
+      b += filter_1d(box, x + k);
+      owners += filter_1d(box, x + k) > 0;
+      t += filter_1d(tent, x + k);
+      m += filter_1d(mitchell, x + k);
+    }
+    EXPECT_EQ(owners, 1) << x;
+    EXPECT_NEAR(b, 1, 1e-12);
+    EXPECT_NEAR(t, 1, 1e-12);
+    EXPECT_NEAR(m, 1, 1e-12);
+  }
+  EXPECT_TRUE(filter_is_pixel_local(box));
+  EXPECT_FALSE(filter_is_pixel_local(tent));
+  EXPECT_LT(filter_1d(mitchell, 1.5), 0) << "Mitchell's negative lobe";
+}
+
+}  // namespace
+}  // namespace strahl
