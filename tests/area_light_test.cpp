@@ -231,6 +231,17 @@ TEST(AreaLightShading, EmittersAreVisibleFromTheirFrontOnly) {
   EXPECT_EQ(test::pixel(s), Vec3(5));
 }
 
+// A mirror shows the light: the mirror ray meeting the emitter returns L, weighted by k_r.
+TEST(AreaLightShading, EmittersAreVisibleInMirrors) {
+  Scene s;
+  s.add(Plane({0, 1, 0}, 0, test::mirror(0.5)));
+  s.add(rect_light({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, Vec3(4, 2, 1)));  // faces down
+  test::one_ray_camera(s, {-0.25, 1, 0}, {0, 0, 0});  // reflected towards (0.5, 2, 0)
+  EXPECT_VEC_NEAR(test::pixel(s), Vec3(2, 1, 0.5), 1e-12);
+  test::one_ray_camera(s, {-1, 1, 0}, {0, 0, 0});  // reflected past the light's edge
+  EXPECT_EQ(test::pixel(s), Vec3(0));
+}
+
 // Light shapes cast no shadow: a sphere light between a point light and the floor blocks nothing.
 TEST(AreaLightShading, LightShapesCastNoShadows) {
   Scene s;
