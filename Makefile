@@ -15,7 +15,7 @@ FUZZ_SECONDS ?= 20
 render: build
 	$(BUILD_DIR)/bin/strahl -o lecture.png
 
-test: test-release
+test: test-release test-asan fuzz
 
 test-release: deps
 	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DSTRAHL_WERROR=ON
