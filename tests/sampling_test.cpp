@@ -152,6 +152,22 @@ TEST(PixelSampler, StratifiedFillsEveryStratumOncePerRound) {
     }
 }
 
+// The O(1) Sobol dimensions against the textbook loop over the index's bits.
+TEST(PixelSampler, SobolDimensionsMatchTheDirectionNumbers) {
+  for (std::uint32_t index : {0u, 1u, 2u, 3u, 7u, 100u, 12345u, 0x80000000u, 0xdeadbeefu, 0xffffffffu}) {
+    std::uint32_t d0 = 0, d1 = 0;
+    std::uint32_t v0 = 0x80000000u, v1 = 0x80000000u;
+    for (std::uint32_t i = index; i != 0; i >>= 1, v0 >>= 1, v1 ^= v1 >> 1) {
+      if (i & 1u) {
+        d0 ^= v0;
+        d1 ^= v1;
+      }
+    }
+    EXPECT_EQ(sobol_dim0(index), d0) << index;
+    EXPECT_EQ(sobol_dim1(index), d1) << index;
+  }
+}
+
 // Sobol: the first 2^m samples of a pixel form a (0, m, 2)-net in film and in lens: every
 // elementary interval of area 2^-m holds exactly one; time takes one value per 1/2^m.
 TEST(PixelSampler, SobolPrefixesAreZeroTwoNets) {

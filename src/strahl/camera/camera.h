@@ -38,13 +38,16 @@ struct Camera {
   STRAHL_HOST_DEVICE Ray generate_ray(const CameraSample& cs) const {
     Ray ray = generate_ray(cs.film_x, cs.film_y);
     ray.time = shutter_open + cs.time * (shutter_close - shutter_open);
-    if (lens_radius > 0) {
-      const Vec3 focus = ray.at(focus_distance / -dot(ray.direction, basis.w));
-      const Vec2 on_lens = square_to_disk(cs.lens);
-      ray.origin = eye + (basis.u * on_lens.x + basis.v * on_lens.y) * lens_radius;
-      ray.direction = normalize(focus - ray.origin);
-    }
+    if (lens_radius > 0) through_lens(ray, cs.lens);
     return ray;
+  }
+
+  // The pinhole ray turned into the thin-lens ray from lens sample `lens` (see above).
+  STRAHL_HOST_DEVICE STRAHL_NOINLINE void through_lens(Ray& ray, const Vec2& lens) const {
+    const Vec3 focus = ray.at(focus_distance / -dot(ray.direction, basis.w));
+    const Vec2 on_lens = square_to_disk(lens);
+    ray.origin = eye + (basis.u * on_lens.x + basis.v * on_lens.y) * lens_radius;
+    ray.direction = normalize(focus - ray.origin);
   }
 };
 

@@ -18,6 +18,16 @@
 #define STRAHL_FORCE_INLINE inline
 #endif
 
+// For rarely taken branches kept out of hot loops (thin lens, area lights), so their code does
+// not crowd the registers of the common path.
+#if defined(__CUDACC__)
+#define STRAHL_NOINLINE __noinline__
+#elif defined(__GNUC__)
+#define STRAHL_NOINLINE __attribute__((noinline))
+#else
+#define STRAHL_NOINLINE
+#endif
+
 namespace strahl {
 
 // Radiance, geometry and ray parameters use this type everywhere; double keeps

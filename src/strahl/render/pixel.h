@@ -8,25 +8,29 @@
 
 namespace strahl {
 
-// Sample `index` of pixel (x, row); `cs` receives the camera sample it used.
-STRAHL_HOST_DEVICE inline Vec3 pixel_sample(const SceneView& s, const PixelSampler& sampler, int x, int row,
-                                            std::uint32_t index, CameraSample& cs, RayCounters& counters) {
+// The samples of pixel (x, row).
+STRAHL_HOST_DEVICE inline PixelSequence pixel_sequence(const SceneView& s, const PixelSampler& sampler, int x, int row) {
   const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
-  const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x);
-  cs = sampler.sample(x, y, pixel, index);
-  SampleStream rng{sampler.seed, pixel, index};
+  return sampler.pixel(x, y, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x));
+}
+
+// Radiance of sample `index` of a pixel; `cs` receives the camera sample it used.
+STRAHL_HOST_DEVICE inline Vec3 pixel_sample(const SceneView& s, const PixelSequence& p, std::uint32_t index,
+                                            CameraSample& cs, RayCounters& counters) {
+  cs = p.sample(index);
+  SampleStream rng{p.seed, p.pixel, index};
   return sample_radiance(s, cs, rng, counters);
 }
 
 // Mean of samples 0 … spp−1 (in index order, as the film adds them).
 STRAHL_HOST_DEVICE inline Vec3 render_pixel(const SceneView& s, int x, int row, const SamplingSettings& settings,
                                             RayCounters& counters) {
-  const PixelSampler sampler = make_pixel_sampler(settings);
+  const PixelSequence p = pixel_sequence(s, make_pixel_sampler(settings), x, row);
   const int spp = effective_spp(settings.sampler, settings.spp);
   Vec3 sum{0};
   for (int i = 0; i < spp; ++i) {
     CameraSample cs;
-    sum += pixel_sample(s, sampler, x, row, std::uint32_t(i), cs, counters);
+    sum += pixel_sample(s, p, std::uint32_t(i), cs, counters);
   }
   return sum / Real(spp);
 }

@@ -50,6 +50,7 @@ struct RenderScene {
     v.materials = materials.data();
     v.lights = lights.data();
     v.light_count = static_cast<std::uint32_t>(lights.size());
+    for (const Light& l : lights) v.area_light_count += l.is_area() ? 1u : 0u;
     v.camera = camera;
     v.settings = settings;
     return v;

@@ -96,9 +96,11 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
         }
         const std::size_t p = std::size_t(row) * std::size_t(width) + std::size_t(x);
         const std::uint32_t begin = counts[p], end = begin + add[p];
+        if (begin == end) continue;
+        const PixelSequence sequence = pixel_sequence(view, sampler, x, row);
         for (std::uint32_t k = begin; k < end; ++k) {
           CameraSample cs;
-          const Vec3 L = pixel_sample(view, sampler, x, row, k, cs, counters);
+          const Vec3 L = pixel_sample(view, sequence, k, cs, counters);
           film.add_sample(ft, x, row, cs, L);
         }
         counts[p] = end;

@@ -44,6 +44,7 @@ struct SceneView {
   const Material* materials = nullptr;
   const Light* lights = nullptr;
   std::uint32_t light_count = 0;
+  std::uint32_t area_light_count = 0;  // of those, area lights (0: no emitter tests per ray)
   Camera camera;
   TraceSettings settings;
 };

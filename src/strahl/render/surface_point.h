@@ -16,7 +16,7 @@ struct SurfacePoint {
   Real time = 0;         // the ray's time (motion blur): secondary rays keep it
 };
 
-STRAHL_HOST_DEVICE inline SurfacePoint surface_at(const SceneView& s, const Ray& ray, const Hit& hit) {
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& s, const Ray& ray, const Hit& hit) {
   SurfacePoint sp;
   sp.p = ray.at(hit.t);
   sp.time = ray.time;

@@ -48,7 +48,7 @@ STRAHL_HOST_DEVICE inline Real specular_power(Real x, Real e) {
 
 // Light of intensity `intensity` arriving from unit direction `to_light` over `distance`:
 // Lambert + Blinn-Phong, times the shadow ray's transmittance.
-STRAHL_HOST_DEVICE inline Vec3 shade_from(const SceneView& s, const SurfacePoint& sp, const Vec3& n, const Vec3& view,
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Vec3 shade_from(const SceneView& s, const SurfacePoint& sp, const Vec3& n, const Vec3& view,
                                           const Vec3& c, const Material& m, const Vec3& to_light, Real distance,
                                           const Vec3& intensity, RayCounters& counters) {
   const Real n_dot_l = dot(n, to_light);
@@ -64,6 +64,23 @@ STRAHL_HOST_DEVICE inline Vec3 shade_from(const SceneView& s, const SurfacePoint
   return contribution * intensity * tr;
 }
 
+// An area light's contribution: the mean over n×n jittered strata of its sample domain.
+STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const SceneView& s, const Light& light,
+                                                                     const SurfacePoint& sp, const Vec3& n,
+                                                                     const Vec3& view, const Vec3& c, const Material& m,
+                                                                     RayCounters& counters, SampleStream& rng) {
+  const int k = light.samples;
+  Vec3 sum{0};
+  for (int j = 0; j < k; ++j) {
+    for (int q = 0; q < k; ++q) {
+      const AreaLightSample ls = sample_area_light(light, sp.p, stratified(q, j, k, rng.next2()));
+      if (is_black(ls.intensity)) continue;
+      sum += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, ls.intensity, counters);
+    }
+  }
+  return sum * (Real(1) / (k * k));
+}
+
 STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
                                                   const Vec3& view, RayCounters& counters, SampleStream& rng) {
   const Material& m = s.materials[sp.material];
@@ -77,17 +94,7 @@ STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const Surf
       result += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance, counters);
       continue;
     }
-    // Area light: the mean over n×n jittered strata of the light's sample domain.
-    const int k = light.samples;
-    Vec3 sum{0};
-    for (int j = 0; j < k; ++j) {
-      for (int q = 0; q < k; ++q) {
-        const AreaLightSample ls = sample_area_light(light, sp.p, stratified(q, j, k, rng.next2()));
-        if (is_black(ls.intensity)) continue;
-        sum += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, ls.intensity, counters);
-      }
-    }
-    result += sum * (Real(1) / (k * k));
+    result += area_light_illumination(s, light, sp, n, view, c, m, counters, rng);
   }
   return result;
 }
@@ -110,8 +117,10 @@ STRAHL_HOST_DEVICE inline int nearest_emitter(const SceneView& s, const Ray& ray
 STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int depth, Real weight,
                                      const MediumStack& media, RayCounters& counters, SampleStream& rng) {
   const Hit hit = closest_hit(s, ray, 0, kInfinity);
-  const int emitter = nearest_emitter(s, ray, hit.t);
-  if (emitter >= 0) return s.lights[emitter].radiance;
+  if (s.area_light_count > 0) {
+    const int emitter = nearest_emitter(s, ray, hit.t);
+    if (emitter >= 0) return s.lights[emitter].radiance;
+  }
   if (!hit.found()) return s.settings.background;
 
   const SurfacePoint sp = surface_at(s, ray, hit);

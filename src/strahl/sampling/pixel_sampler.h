@@ -89,35 +89,32 @@ inline const char* filter_name(FilterKind kind) {
 }
 inline constexpr const char* kFilterNames = "box, tent, gaussian, mitchell";
 
-// Kernel side: what one pixel sample needs, plain data.
-struct PixelSampler {
+// The samples of one pixel, with the pixel's hashes (permutation and scrambling seeds) computed
+// once rather than per sample.
+struct PixelSequence {
   SamplerKind kind = SamplerKind::Grid;
-  std::uint32_t side = 1;  // grid/stratified: n
-  std::uint64_t seed = 0;
+  std::uint32_t side = 1;
+  std::uint64_t seed = 0, pixel = 0, key = 0;
+  int x = 0, y = 0;
+  std::uint32_t h[9] = {};  // grid/stratified: round 0's film, lens, time orders; sobol: 3 per pair
 
-  // A 32-bit hash per (pixel, purpose, round), independent of the per-sample random numbers
-  // (those use sample indices, these the index 0xffffffff which no sample reaches).
-  STRAHL_HOST_DEVICE std::uint32_t hash(std::uint64_t pixel, std::uint32_t purpose) const {
-    return std::uint32_t(random_bits(seed, pixel, 0xffffffffu, purpose) >> 32);
+  // A 32-bit hash per (pixel, purpose), independent of the per-sample random numbers.
+  STRAHL_HOST_DEVICE std::uint32_t hash(std::uint32_t purpose) const {
+    return std::uint32_t(mix64(key + (std::uint64_t(purpose) + 1) * 0x9e3779b97f4a7c15ULL) >> 32);
   }
 
-  // Stratum `k` of `count` visited at position k in round `round`, with the value's jitter.
-  STRAHL_HOST_DEVICE Real stratum_1d(std::uint64_t pixel, std::uint32_t k, std::uint32_t count, std::uint32_t purpose,
-                                     Real jitter) const {
-    return (Real(permutation_element(k, count, hash(pixel, purpose))) + jitter) / Real(count);
-  }
-  STRAHL_HOST_DEVICE Vec2 stratum_2d(std::uint64_t pixel, std::uint32_t k, std::uint32_t purpose, Vec2 jitter) const {
-    const std::uint32_t s = permutation_element(k, side * side, hash(pixel, purpose));
+  STRAHL_HOST_DEVICE Vec2 stratum_2d(std::uint32_t k, std::uint32_t order, Vec2 jitter) const {
+    const std::uint32_t s = permutation_element(k, side * side, order);
     return {(Real(s % side) + jitter.x) / Real(side), (Real(s / side) + jitter.y) / Real(side)};
   }
-  STRAHL_HOST_DEVICE Vec2 sobol_2d(std::uint64_t pixel, std::uint32_t index, std::uint32_t pair) const {
-    const std::uint32_t shuffled = owen_scramble(index, hash(pixel, 3 * pair));
-    return {fixed_to_unit(owen_scramble(sobol_dim0(shuffled), hash(pixel, 3 * pair + 1))),
-            fixed_to_unit(owen_scramble(sobol_dim1(shuffled), hash(pixel, 3 * pair + 2)))};
+  STRAHL_HOST_DEVICE Vec2 sobol_2d(std::uint32_t index, std::uint32_t pair) const {
+    const std::uint32_t shuffled = owen_scramble(index, h[3 * pair]);
+    return {fixed_to_unit(owen_scramble(sobol_dim0(shuffled), h[3 * pair + 1])),
+            fixed_to_unit(owen_scramble(sobol_dim1(shuffled), h[3 * pair + 2]))};
   }
 
-  // Sample `index` of pixel (x, y), y counted from the bottom row; `pixel` = y · width + x.
-  STRAHL_HOST_DEVICE CameraSample sample(int x, int y, std::uint64_t pixel, std::uint32_t index) const {
+  // Sample number `index` of the pixel.
+  STRAHL_HOST_DEVICE CameraSample sample(std::uint32_t index) const {
     Vec2 film, lens;
     Real time;
     switch (kind) {
@@ -126,13 +123,14 @@ struct PixelSampler {
         const std::uint32_t count = side * side, k = index % count, round = index / count;
         const bool jitter = kind == SamplerKind::Stratified;
         const auto u = [&](std::uint32_t dim) { return random_real(seed, pixel, index, dim); };
-        // Purposes 16 + 4·round + {0, 1, 2}: a new order of the strata each round. The grid's
+        // Each round visits the strata in new orders (purposes 3·round + {0, 1, 2}). The grid's
         // film positions are the strata's centres; lens and time are jittered for both (centres
         // would bias the lens's and the shutter's averages).
-        film = stratum_2d(pixel, k, 16 + 4 * round,
-                          jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
-        lens = stratum_2d(pixel, k, 17 + 4 * round, {u(kDimLens), u(kDimLens + 1)});
-        time = stratum_1d(pixel, k, count, 18 + 4 * round, u(kDimTime));
+        const std::uint32_t o0 = round == 0 ? h[0] : hash(3 * round), o1 = round == 0 ? h[1] : hash(3 * round + 1),
+                            o2 = round == 0 ? h[2] : hash(3 * round + 2);
+        film = stratum_2d(k, o0, jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
+        lens = stratum_2d(k, o1, {u(kDimLens), u(kDimLens + 1)});
+        time = (Real(permutation_element(k, count, o2)) + u(kDimTime)) / Real(count);
         break;
       }
       case SamplerKind::Random:
@@ -143,9 +141,9 @@ struct PixelSampler {
       case SamplerKind::Sobol:
       case SamplerKind::Adaptive:
       default:
-        film = sobol_2d(pixel, index, 0);
-        lens = sobol_2d(pixel, index, 1);
-        time = sobol_2d(pixel, index, 2).x;
+        film = sobol_2d(index, 0);
+        lens = sobol_2d(index, 1);
+        time = sobol_2d(index, 2).x;
         break;
     }
     CameraSample cs;
@@ -154,6 +152,34 @@ struct PixelSampler {
     cs.lens = lens;
     cs.time = time;
     return cs;
+  }
+};
+
+// Kernel side: the sampler's settings, plain data.
+struct PixelSampler {
+  SamplerKind kind = SamplerKind::Grid;
+  std::uint32_t side = 1;  // grid/stratified: n
+  std::uint64_t seed = 0;
+
+  // The samples of pixel (x, y), y counted from the bottom row; `pixel` = y · width + x.
+  STRAHL_HOST_DEVICE PixelSequence pixel(int x, int y, std::uint64_t pixel_index) const {
+    PixelSequence p;
+    p.kind = kind;
+    p.side = side;
+    p.seed = seed;
+    p.pixel = pixel_index;
+    p.x = x;
+    p.y = y;
+    // Sample index 0xffffffff, which no sample reaches: independent of the samples' numbers.
+    p.key = random_bits(seed, pixel_index, 0xffffffffu, 0);
+    const int hashes = kind == SamplerKind::Random ? 0 : (kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) ? 9 : 3;
+    for (int i = 0; i < hashes; ++i) p.h[i] = p.hash(std::uint32_t(i));
+    return p;
+  }
+
+  // Sample `index` of pixel (x, y) (tests; the render loop keeps the PixelSequence).
+  STRAHL_HOST_DEVICE CameraSample sample(int x, int y, std::uint64_t pixel_index, std::uint32_t index) const {
+    return pixel(x, y, pixel_index).sample(index);
   }
 };
 

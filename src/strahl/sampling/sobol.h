@@ -8,23 +8,25 @@
 #include <cstdint>
 
 #include "strahl/math/config.h"
+#include "strahl/sampling/permute.h"
 
 namespace strahl {
 
 // Dimension 0: the van der Corput sequence in base 2 (the index's bits reversed).
-STRAHL_HOST_DEVICE constexpr std::uint32_t sobol_dim0(std::uint32_t index) {
-  std::uint32_t x = 0;
-  for (std::uint32_t v = 0x80000000u; index != 0; index >>= 1, v >>= 1)
-    if (index & 1u) x ^= v;
-  return x;
-}
+STRAHL_HOST_DEVICE constexpr std::uint32_t sobol_dim0(std::uint32_t index) { return reverse_bits(index); }
 
-// Dimension 1: primitive polynomial x + 1, direction numbers v_k = v_{k-1} ^ (v_{k-1} >> 1).
+// Dimension 1: primitive polynomial x + 1, direction numbers v_k = v_{k-1} ^ (v_{k-1} >> 1), i.e.
+// the Pascal matrix mod 2: by Lucas' theorem output bit k (from the top) is the parity of the
+// index bits i whose binary digits contain k's. That superset-parity transform takes five steps
+// (one per bit of the 5-bit bit position), then the bits are reversed.
 STRAHL_HOST_DEVICE constexpr std::uint32_t sobol_dim1(std::uint32_t index) {
-  std::uint32_t x = 0;
-  for (std::uint32_t v = 0x80000000u; index != 0; index >>= 1, v ^= v >> 1)
-    if (index & 1u) x ^= v;
-  return x;
+  std::uint32_t x = index;
+  x ^= (x >> 1) & 0x55555555u;
+  x ^= (x >> 2) & 0x33333333u;
+  x ^= (x >> 4) & 0x0f0f0f0fu;
+  x ^= (x >> 8) & 0x00ff00ffu;
+  x ^= (x >> 16) & 0x0000ffffu;
+  return reverse_bits(x);
 }
 
 // 0.32 fixed point to [0, 1) (never 1).

@@ -1,0 +1,23 @@
+#!/bin/sh
+# Runs each libFuzzer target (YAML scenes, OBJ, PLY) for a bounded time over its seed corpus.
+#   tools/run-fuzzers.sh [BUILD_DIR] [SECONDS]     defaults: build-fuzz 20
+# Build the targets first: cmake --preset fuzz && cmake --build --preset fuzz
+# New interesting inputs go to BUILD_DIR/fuzz-corpus/KIND (the seeds in tests/fuzz/corpus/KIND
+# are only read); a crashing input is written to BUILD_DIR/fuzz-artifacts/ and the script fails.
+# Keep such an input as a regression test: copy it to tests/fuzz/regressions/KIND/.
+set -eu
+cd "$(dirname "$0")/.."
+build=${1:-build-fuzz}
+seconds=${2:-20}
+mkdir -p "$build/fuzz-artifacts"
+for kind in scene obj ply; do
+  mkdir -p "$build/fuzz-corpus/$kind"
+  echo "fuzz: $kind for $seconds s"
+  "$build/fuzz/strahl_fuzz_$kind" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$build/fuzz-artifacts/$kind-" "$build/fuzz-corpus/$kind" "tests/fuzz/corpus/$kind" \
+    "tests/fuzz/regressions/$kind" 2>&1 | grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+==|SUMMARY|artifact_prefix|Test unit written)' || true
+  if ls "$build/fuzz-artifacts/$kind-"* >/dev/null 2>&1; then
+    echo "fuzz: $kind found a crash: $(ls "$build/fuzz-artifacts/$kind-"*)" >&2
+    exit 1
+  fi
+done
