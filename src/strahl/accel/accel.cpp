@@ -51,7 +51,7 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
       a.stats.nodes = a.stats.leaves = a.stats.max_depth = prims.size() > 0 ? 1 : 0;
       break;
     }
-    case AccelKind::Bvh: a.bvh = build_bvh(prims, &a.stats); break;
+    case AccelKind::Bvh: a.bvh = build_wide_bvh(prims, &a.stats); break;
     case AccelKind::KdTree: a.kdtree = build_kdtree(prims, &a.stats); break;
     case AccelKind::Octree: a.octree = build_octree(prims, &a.stats); break;
 #if defined(STRAHL_HAVE_EMBREE)

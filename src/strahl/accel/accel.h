@@ -17,6 +17,7 @@
 #include "strahl/accel/kdtree.h"
 #include "strahl/accel/naive.h"
 #include "strahl/accel/octree.h"
+#include "strahl/accel/wide_bvh.h"
 #if defined(STRAHL_HAVE_EMBREE)
 #include "strahl/accel/embree_accel.h"
 #endif
@@ -44,7 +45,7 @@ std::vector<AccelKind> accel_kinds();
 struct AccelView {
   AccelKind kind = AccelKind::Bvh;
   PrimitiveSet prims;
-  BvhView bvh;
+  WideBvhView bvh;
   KdTreeView kdtree;
   OctreeView octree;
 #if defined(STRAHL_HAVE_EMBREE)
@@ -56,7 +57,7 @@ struct AccelView {
 // owns both may be moved or copied (an Embree scene is shared between copies, by reference count).
 struct Accel {
   AccelKind kind = AccelKind::Bvh;
-  Bvh bvh;
+  WideBvh bvh;
   KdTree kdtree;
   Octree octree;
 #if defined(STRAHL_HAVE_EMBREE)
@@ -108,6 +109,10 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
   if (a.kind == AccelKind::Embree) return embree_nearest_hit(a, ray, t_min, t_max);
 #endif
   NearestHit result;
+  if (a.kind == AccelKind::Bvh) {  // leaf copies of the triangles: no visitor, no indirection
+    wide_bvh_nearest(a.bvh, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
+    return result;
+  }
   const kernel::RayShear shear = kernel::ray_shear(ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
     const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far);
@@ -127,6 +132,7 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
 #if defined(STRAHL_HAVE_EMBREE) && !defined(__CUDACC__)
   if (a.kind == AccelKind::Embree) return embree_occluded(a, ray, t_min, t_max);
 #endif
+  if (a.kind == AccelKind::Bvh) return wide_bvh_occluded(a.bvh, a.prims.spheres, ray, t_min, t_max);
   bool found = false;
   const kernel::RayShear shear = kernel::ray_shear(ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {

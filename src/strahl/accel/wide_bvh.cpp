@@ -1,0 +1,194 @@
+#include "strahl/accel/wide_bvh.h"
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+
+#include "strahl/accel/build_stats.h"
+#include "strahl/accel/bvh.h"
+
+namespace strahl {
+
+namespace {
+
+Real surface_area(const Bounds& b) {
+  const Vec3 d = b.hi - b.lo;
+  return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
+
+// The children of a wide node: a binary node's two children, then repeatedly the inner one with
+// the largest surface area replaced by its own two children, until there are four.
+int gather_children(const Bvh& bin, std::uint32_t at, std::uint32_t out[kWideBvhWidth]) {
+  int n = 2;
+  out[0] = bin.nodes[at].offset;
+  out[1] = bin.nodes[at].offset + 1;
+  while (n < kWideBvhWidth) {
+    int best = -1;
+    Real best_area = -1;
+    for (int i = 0; i < n; ++i) {
+      const BvhNode& c = bin.nodes[out[i]];
+      if (c.count > 0) continue;
+      const Real area = surface_area(c.bounds);
+      if (area > best_area) { best_area = area; best = i; }
+    }
+    if (best < 0) break;
+    const std::uint32_t first = bin.nodes[out[best]].offset;
+    out[best] = first;
+    out[n++] = first + 1;
+  }
+  return n;
+}
+
+// First pass (serial, cheap): how many wide nodes and leaf entries each subtree needs, so the
+// second pass can fill both arrays in parallel at precomputed positions in depth-first order.
+struct Sizes {
+  std::uint32_t nodes = 0, leaves = 0;
+};
+
+struct Collapser {
+  const Bvh& bin;
+  const PrimitiveSet& prims;
+  WideBvh& out;
+  std::vector<Sizes> sizes;  // per binary node, of the wide subtree rooted there (inner nodes only)
+
+  Sizes size_of(std::uint32_t at) {
+    std::uint32_t children[kWideBvhWidth];
+    const int n = gather_children(bin, at, children);
+    Sizes s{1, 0};
+    for (int i = 0; i < n; ++i) {
+      const BvhNode& c = bin.nodes[children[i]];
+      if (c.count > 0) {
+        s.leaves += c.count;
+      } else {
+        const Sizes cs = size_of(children[i]);
+        s.nodes += cs.nodes;
+        s.leaves += cs.leaves;
+      }
+    }
+    sizes[at] = s;
+    return s;
+  }
+
+  void copy_leaf(const BvhNode& c, std::uint32_t first) {
+    for (std::uint32_t i = 0; i < c.count; ++i) {
+      const std::uint32_t prim = bin.prims[c.offset + i];
+      WideBvhLeaf& l = out.leaves[first + i];
+      l.prim = prim;
+      if (prims.is_sphere(prim)) {
+        l.is_sphere = 1;
+      } else {
+        const kernel::Triangle& t = prims.triangles[prim - prims.sphere_count];
+        l.v0 = t.v0;
+        l.v1 = t.v1;
+        l.v2 = t.v2;
+        l.is_sphere = 0;
+      }
+    }
+  }
+
+  // Fills wide node `node` (for binary inner node `at`), its subtree's nodes from node + 1 on and
+  // its leaf entries from `leaf` on.
+  void fill(std::uint32_t at, std::uint32_t node, std::uint32_t leaf) {
+    std::uint32_t children[kWideBvhWidth];
+    const int n = gather_children(bin, at, children);
+    WideBvhNode& w = out.nodes[node];
+    std::uint32_t next_node = node + 1, next_leaf = leaf;
+    std::uint32_t sub_node[kWideBvhWidth], sub_leaf[kWideBvhWidth];
+    for (int k = 0; k < kWideBvhWidth; ++k) {
+      if (k >= n) {
+        for (int a = 0; a < 3; ++a) {
+          w.lo[a][k] = std::numeric_limits<float>::infinity();
+          w.hi[a][k] = -std::numeric_limits<float>::infinity();
+        }
+        w.child[k] = kWideBvhEmpty;
+        w.count[k] = 0;
+        continue;
+      }
+      const BvhNode& c = bin.nodes[children[k]];
+      for (int a = 0; a < 3; ++a) {
+        w.lo[a][k] = wide_bvh_detail::round_down(c.bounds.lo[a]);
+        w.hi[a][k] = wide_bvh_detail::round_up(c.bounds.hi[a]);
+      }
+      if (c.count > 0) {
+        w.child[k] = next_leaf;
+        w.count[k] = c.count;
+        sub_leaf[k] = next_leaf;
+        next_leaf += c.count;
+      } else {
+        w.child[k] = next_node;
+        w.count[k] = 0;
+        sub_node[k] = next_node;
+        sub_leaf[k] = next_leaf;
+        next_node += sizes[children[k]].nodes;
+        next_leaf += sizes[children[k]].leaves;
+      }
+    }
+    const auto fill_child = [&](int k) {
+      const BvhNode& c = bin.nodes[children[k]];
+      if (c.count > 0) copy_leaf(c, sub_leaf[k]);
+      else fill(children[k], sub_node[k], sub_leaf[k]);
+    };
+    if (sizes[at].leaves > 4096) {
+      tbb::parallel_invoke([&] { fill_child(0); }, [&] { fill_child(1); },
+                           [&] { if (n > 2) fill_child(2); }, [&] { if (n > 3) fill_child(3); });
+    } else {
+      for (int k = 0; k < n; ++k) fill_child(k);
+    }
+  }
+};
+
+}  // namespace
+
+WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
+  const auto start = std::chrono::steady_clock::now();
+  AccelBuildStats stats;
+  const Bvh bin = build_bvh(prims, &stats);
+  WideBvh out;
+  stats.nodes = stats.leaves = stats.max_depth = 0;
+  if (!bin.nodes.empty()) {
+    const Bounds& root = bin.nodes[0].bounds;
+    for (int a = 0; a < 3; ++a)
+      out.extent[a] = wide_bvh_detail::round_up(std::max(std::fabs(root.lo[a]), std::fabs(root.hi[a])));
+    Collapser c{bin, prims, out, {}};
+    if (bin.nodes[0].count > 0) {
+      // One leaf (the lecture's five spheres): no nodes, no box test.
+      out.leaves.resize(bin.nodes[0].count);
+      c.copy_leaf(bin.nodes[0], 0);
+      out.root_leaf_count = bin.nodes[0].count;
+      stats.leaves = 1;
+      stats.max_depth = 1;
+    } else {
+      c.sizes.resize(bin.nodes.size());
+      const Sizes total = c.size_of(0);
+      out.nodes.resize(total.nodes);
+      out.leaves.resize(total.leaves);
+      c.fill(0, 0, 0);
+      // Depth and leaf count of the wide tree.
+      std::vector<std::pair<std::uint32_t, std::size_t>> stack{{0, 1}};
+      while (!stack.empty()) {
+        const auto [at, depth] = stack.back();
+        stack.pop_back();
+        stats.max_depth = std::max(stats.max_depth, depth);
+        const WideBvhNode& w = out.nodes[at];
+        for (int k = 0; k < kWideBvhWidth; ++k) {
+          if (w.count[k] > 0) {
+            ++stats.leaves;
+            stats.max_depth = std::max(stats.max_depth, depth + 1);
+          } else if (w.child[k] != kWideBvhEmpty) {
+            stack.push_back({w.child[k], depth + 1});
+          }
+        }
+      }
+    }
+  }
+  stats.nodes = out.nodes.size() + stats.leaves;  // inner nodes and leaves, as the other structures count
+  stats.primitives = stats.primitive_references = prims.size();
+  stats.bytes = out.nodes.size() * sizeof(WideBvhNode) + out.leaves.size() * sizeof(WideBvhLeaf);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (stats_out) *stats_out = stats;
+  return out;
+}
+
+}  // namespace strahl

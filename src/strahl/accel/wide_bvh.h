@@ -1,0 +1,287 @@
+#pragma once
+// The BVH the renderer uses (--accel bvh): the binary SAH BVH of bvh.h collapsed into a 4-wide
+// one, as Embree does on AVX2 machines. Each node holds the boxes of its (up to) four children
+// side by side in float (structure of arrays, rounded outward so no box shrinks), and one SIMD slab
+// test checks a ray against all four at once; the children hit are visited nearest first and the
+// traversal stops at a hit nearer than every box still waiting. Leaves hold contiguous copies of
+// their triangles' vertices (no indirection through primitive indices in the hot loop), tested in
+// double with the watertight test of geometry/triangle.h.
+//
+// The float slab test is made conservative: per ray and axis, t = box·(1/d) + (−o/d) is computed
+// with a margin covering every rounding of the float arithmetic (and of o and 1/d converted to
+// float), so a box the exact test would meet within (t_min, t_max) is never culled. An axis whose
+// direction component is zero (or whose figures overflow float) culls nothing. The answers are
+// therefore exactly those of the naive loop, which the cross-check tests demand.
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "strahl/accel/primitive.h"
+#include "strahl/accel/traversal.h"
+
+#if !defined(__CUDACC__) && (defined(__SSE4_1__) || defined(__AVX__))
+#include <immintrin.h>
+#define STRAHL_WIDE_BVH_SSE 1
+#endif
+
+namespace strahl {
+
+inline constexpr int kWideBvhWidth = 4;
+inline constexpr std::uint32_t kWideBvhEmpty = ~std::uint32_t(0);
+
+struct alignas(64) WideBvhNode {
+  float lo[3][kWideBvhWidth];  // [axis][child]; an empty slot has lo = +∞, hi = −∞
+  float hi[3][kWideBvhWidth];
+  std::uint32_t child[kWideBvhWidth];  // inner child: its node index; leaf: its first leaf entry;
+                                       // empty slot: kWideBvhEmpty
+  std::uint32_t count[kWideBvhWidth];  // leaf: number of entries (≥ 1); inner child or empty: 0
+};
+static_assert(sizeof(WideBvhNode) == 128);
+
+// One primitive in a leaf: a triangle's vertices copied, or a sphere (tested from the scene's own
+// array: spheres are few where speed matters).
+struct WideBvhLeaf {
+  Vec3 v0, v1, v2;
+  std::uint32_t prim = 0;       // its id in the PrimitiveSet
+  std::uint32_t is_sphere = 0;  // 1: a sphere, v0..v2 unused
+};
+static_assert(sizeof(WideBvhLeaf) == 80);
+
+struct WideBvhView {
+  const WideBvhNode* nodes = nullptr;
+  const WideBvhLeaf* leaves = nullptr;
+  std::uint32_t root_leaf_count = 0;  // > 0: the whole tree is one leaf of this many entries (no nodes)
+  float extent[3] = {0, 0, 0};        // the largest |coordinate| of any box, per axis (for the margins)
+};
+
+// Owns the arrays (nodes aligned to 64 bytes, a cache line).
+struct WideBvh {
+  std::vector<WideBvhNode> nodes;
+  std::vector<WideBvhLeaf> leaves;
+  std::uint32_t root_leaf_count = 0;
+  float extent[3] = {0, 0, 0};
+  WideBvhView view() const {
+    return {nodes.empty() ? nullptr : nodes.data(), leaves.empty() ? nullptr : leaves.data(), root_leaf_count,
+            {extent[0], extent[1], extent[2]}};
+  }
+};
+
+struct AccelBuildStats;
+WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
+
+namespace wide_bvh_detail {
+
+// The float nearest x from below / above.
+STRAHL_HOST_DEVICE inline float round_down(Real x) {
+  float f = float(x);
+  if (Real(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+STRAHL_HOST_DEVICE inline float round_up(Real x) {
+  float f = float(x);
+  if (Real(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// Per ray: t_entry(axis) = near·inv + near_offset, t_exit(axis) = far·inv + far_offset, where
+// near/far are the box's lo/hi by the sign of the direction.
+struct RayBoxes {
+  float inv[3];
+  float near_offset[3], far_offset[3];
+  int negative[3];
+};
+
+STRAHL_HOST_DEVICE inline RayBoxes ray_boxes(const WideBvhView& bvh, const Ray& ray) {
+  RayBoxes r;
+  const Real o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  const Real d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+  for (int a = 0; a < 3; ++a) {
+    const Real inv = Real(1) / d[a];
+    // Every rounding of the float evaluation of (x − o)·inv for |x| ≤ extent is below
+    // 4·2⁻²⁴·(|x| + |o|)·|inv|; the margin is twice that.
+    const Real margin = (Real(bvh.extent[a]) + std::fabs(o[a])) * std::fabs(inv) * 0x1p-21;
+    const float inv_f = float(inv), offset = float(-o[a] * inv), margin_f = float(margin);
+    r.negative[a] = std::signbit(d[a]) ? 1 : 0;
+    if (std::isfinite(inv_f) && std::isfinite(offset) && std::isfinite(margin_f) && std::isfinite(offset + margin_f) &&
+        std::isfinite(offset - margin_f)) {
+      r.inv[a] = inv_f;
+      r.near_offset[a] = offset - margin_f;
+      r.far_offset[a] = offset + margin_f;
+    } else {  // parallel to the axis (or beyond float): no constraint from this axis
+      r.inv[a] = 0;
+      r.near_offset[a] = -std::numeric_limits<float>::infinity();
+      r.far_offset[a] = std::numeric_limits<float>::infinity();
+    }
+  }
+  return r;
+}
+
+struct StackEntry {
+  std::uint32_t child, count;
+  float t_near;
+};
+
+}  // namespace wide_bvh_detail
+
+// Calls leaf(first, count, t_max) for the entries of every leaf whose box the ray meets within
+// (t_min, t_max), nearer boxes first; leaf may lower t_max and returns true to stop at once.
+template <class Leaf>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const WideBvhView& bvh, const Ray& ray, Real t_min,
+                                                           Real& t_max, Leaf& leaf) {
+  using namespace wide_bvh_detail;
+  if (bvh.root_leaf_count > 0) {
+    leaf(bvh.leaves, bvh.root_leaf_count, t_max);
+    return;
+  }
+  if (bvh.nodes == nullptr) return;
+  const RayBoxes rb = ray_boxes(bvh, ray);
+  const float t_min_f = round_down(t_min);
+  float t_max_f = round_up(t_max);
+  // A binary tree at most 64 deep (bvh.cpp) collapses into at most 64 levels, each leaving at
+  // most three siblings waiting.
+  StackEntry stack[3 * 64 + 4];
+  int top = 0;
+  std::uint32_t child = 0, count = 0;  // the root node
+#if defined(STRAHL_WIDE_BVH_SSE)
+  const __m128 inv_x = _mm_set1_ps(rb.inv[0]), inv_y = _mm_set1_ps(rb.inv[1]), inv_z = _mm_set1_ps(rb.inv[2]);
+  const __m128 no_x = _mm_set1_ps(rb.near_offset[0]), no_y = _mm_set1_ps(rb.near_offset[1]),
+               no_z = _mm_set1_ps(rb.near_offset[2]);
+  const __m128 fo_x = _mm_set1_ps(rb.far_offset[0]), fo_y = _mm_set1_ps(rb.far_offset[1]),
+               fo_z = _mm_set1_ps(rb.far_offset[2]);
+  // Byte offsets of the near and far planes of each axis within a node.
+  const std::size_t near_x = rb.negative[0] ? 48 : 0, far_x = rb.negative[0] ? 0 : 48;
+  const std::size_t near_y = 16 + (rb.negative[1] ? 48 : 0), far_y = 16 + (rb.negative[1] ? 0 : 48);
+  const std::size_t near_z = 32 + (rb.negative[2] ? 48 : 0), far_z = 32 + (rb.negative[2] ? 0 : 48);
+  const __m128 t_min_v = _mm_set1_ps(t_min_f);
+  __m128 t_max_v = _mm_set1_ps(t_max_f);
+#endif
+  for (;;) {
+    if (count == 0) {
+      const WideBvhNode& n = bvh.nodes[child];
+      alignas(16) float t_near[4];
+      int mask = 0;
+#if defined(STRAHL_WIDE_BVH_SSE)
+      const char* base = reinterpret_cast<const char*>(&n);
+      const auto plane = [&](std::size_t offset) { return _mm_load_ps(reinterpret_cast<const float*>(base + offset)); };
+      // max/min return their second operand when either is NaN: the accumulated bound comes
+      // second, so a NaN from one axis (0·∞) constrains nothing.
+      const __m128 tn_x = _mm_add_ps(_mm_mul_ps(plane(near_x), inv_x), no_x);
+      const __m128 tn_y = _mm_add_ps(_mm_mul_ps(plane(near_y), inv_y), no_y);
+      const __m128 tn_z = _mm_add_ps(_mm_mul_ps(plane(near_z), inv_z), no_z);
+      const __m128 tf_x = _mm_add_ps(_mm_mul_ps(plane(far_x), inv_x), fo_x);
+      const __m128 tf_y = _mm_add_ps(_mm_mul_ps(plane(far_y), inv_y), fo_y);
+      const __m128 tf_z = _mm_add_ps(_mm_mul_ps(plane(far_z), inv_z), fo_z);
+      const __m128 tn = _mm_max_ps(tn_x, _mm_max_ps(tn_y, _mm_max_ps(tn_z, t_min_v)));
+      const __m128 tf = _mm_min_ps(tf_x, _mm_min_ps(tf_y, _mm_min_ps(tf_z, t_max_v)));
+      mask = _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+      _mm_store_ps(t_near, tn);
+#else
+      for (int k = 0; k < kWideBvhWidth; ++k) {
+        float lo = t_min_f, hi = t_max_f;
+        for (int a = 0; a < 3; ++a) {
+          const float near = rb.negative[a] ? n.hi[a][k] : n.lo[a][k];
+          const float far = rb.negative[a] ? n.lo[a][k] : n.hi[a][k];
+          const float t0 = near * rb.inv[a] + rb.near_offset[a], t1 = far * rb.inv[a] + rb.far_offset[a];
+          lo = t0 > lo ? t0 : lo;  // NaN keeps the bound
+          hi = t1 < hi ? t1 : hi;
+        }
+        t_near[k] = lo;
+        if (lo <= hi) mask |= 1 << k;
+      }
+#endif
+      if (mask != 0) {
+        // The children hit, nearest first. (An empty slot's box is inverted, but on a ray whose
+        // every axis is unconstrained — coordinates beyond float — it would pass: skip it.)
+        int order[4], hits = 0;
+        for (int k = 0; k < kWideBvhWidth; ++k)
+          if ((mask & (1 << k)) && n.child[k] != kWideBvhEmpty) {
+            int j = hits++;
+            for (; j > 0 && t_near[order[j - 1]] > t_near[k]; --j) order[j] = order[j - 1];
+            order[j] = k;
+          }
+        if (hits > 0) {
+          for (int i = hits - 1; i > 0; --i) stack[top++] = {n.child[order[i]], n.count[order[i]], t_near[order[i]]};
+          child = n.child[order[0]];
+          count = n.count[order[0]];
+          continue;
+        }
+      }
+    } else {
+      const Real before = t_max;
+      if (leaf(bvh.leaves + child, count, t_max)) return;
+      if (t_max != before) {
+        t_max_f = round_up(t_max);
+#if defined(STRAHL_WIDE_BVH_SSE)
+        t_max_v = _mm_set1_ps(t_max_f);
+#endif
+      }
+    }
+    // The next waiting box that still begins before the nearest hit found.
+    for (;;) {
+      if (top == 0) return;
+      const StackEntry& e = stack[--top];
+      if (e.t_near <= t_max_f) {
+        child = e.child;
+        count = e.count;
+        break;
+      }
+    }
+  }
+}
+
+// The visitor traversal of traversal.h (for queries other than nearest hit and occlusion).
+template <class Visitor>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const WideBvhView& bvh, const Ray& ray, Real t_min, Real& t_max,
+                                                     Visitor& visit) {
+  auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
+    for (std::uint32_t i = 0; i < count; ++i)
+      if (visit(first[i].prim, -kInfinity, kInfinity, t_far)) return true;
+    return false;
+  };
+  traverse_leaves(bvh, ray, t_min, t_max, leaf);
+}
+
+// The nearest hit in (t_min, t_max) among the leaves' primitives: its id and hit, t = kInfinity
+// when none. `spheres` is the PrimitiveSet's sphere array.
+STRAHL_HOST_DEVICE inline void wide_bvh_nearest(const WideBvhView& bvh, const kernel::Sphere* spheres, const Ray& ray,
+                                                Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const WideBvhLeaf& p = first[i];
+      kernel::TriangleHit h;
+      if (p.is_sphere) h.t = kernel::intersect(spheres[p.prim], ray, t_min, t_far);
+      else h = kernel::intersect(p.v0, p.v1, p.v2, ray, shear, t_min, t_far);
+      if (h.t < t_far) {
+        t_far = h.t;
+        prim = p.prim;
+        hit = h;
+      }
+    }
+    return false;
+  };
+  traverse_leaves(bvh, ray, t_min, t_max, leaf);
+}
+
+// Any hit in (t_min, t_max)? Stops at the first one.
+STRAHL_HOST_DEVICE inline bool wide_bvh_occluded(const WideBvhView& bvh, const kernel::Sphere* spheres, const Ray& ray,
+                                                 Real t_min, Real t_max) {
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  bool found = false;
+  auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const WideBvhLeaf& p = first[i];
+      const Real t = p.is_sphere ? kernel::intersect(spheres[p.prim], ray, t_min, t_far)
+                                 : kernel::intersect(p.v0, p.v1, p.v2, ray, shear, t_min, t_far).t;
+      if (t < kInfinity) return found = true;
+    }
+    return false;
+  };
+  traverse_leaves(bvh, ray, t_min, t_max, leaf);
+  return found;
+}
+
+}  // namespace strahl
