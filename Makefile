@@ -1,9 +1,7 @@
 # The README's two commands are ./quickstart render and ./quickstart test, which install what is
 # missing (make itself included) and then run these targets:
 #   make render   build (Release), render the lecture scene to lecture.png
-#   make test     the Release suite (make test-asan and make fuzz are the other two steps, to be
-#                 added to test once the sanitizer suite is green on main; see docs/testing.md)
-#   make test-release/test-asan/fuzz: the whole test suite three ways (CMakePresets.json): the Release build, then the
+#   make test     the whole test suite three ways (CMakePresets.json): the Release build, then the
 #                 library, CLI and tests again under AddressSanitizer + UBSan (build-asan), then each
 #                 libFuzzer target for $(FUZZ_SECONDS) s over its seed corpus (build-fuzz, clang)
 # Other targets: make build, make deps, make clean, make test-release (only the first of the three),
@@ -17,7 +15,7 @@ FUZZ_SECONDS ?= 20
 render: build
 	$(BUILD_DIR)/bin/strahl -o lecture.png
 
-test: test-release
+test: test-release test-asan fuzz
 
 test-release: deps
 	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DSTRAHL_WERROR=ON
