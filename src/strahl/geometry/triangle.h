@@ -60,25 +60,47 @@ STRAHL_HOST_DEVICE inline RayShear ray_shear(const Vec3& d) {
   return s;
 }
 
+// The triangle in the ray's sheared frame (the ray along +z from the origin): the vertices
+// relative to the ray's origin and the three 2D edge functions u, v, w, one per edge. Shared by
+// intersect() and plane_hit(), so both compute exactly the same numbers.
+struct ShearedTriangle {
+  Vec3 a, b, c;
+  Real u, v, w;
+};
+
+STRAHL_HOST_DEVICE inline ShearedTriangle shear_triangle(const Vec3& v0, const Vec3& v1, const Vec3& v2,
+                                                         const Ray& ray, const RayShear& s) {
+  ShearedTriangle t;
+  t.a = v0 - ray.origin;
+  t.b = v1 - ray.origin;
+  t.c = v2 - ray.origin;
+  const Real ax = t.a[s.kx] - s.sx * t.a[s.kz], ay = t.a[s.ky] - s.sy * t.a[s.kz];
+  const Real bx = t.b[s.kx] - s.sx * t.b[s.kz], by = t.b[s.ky] - s.sy * t.b[s.kz];
+  const Real cx = t.c[s.kx] - s.sx * t.c[s.kz], cy = t.c[s.ky] - s.sy * t.c[s.kz];
+  t.u = cx * by - cy * bx;
+  t.v = ax * cy - ay * cx;
+  t.w = bx * ay - by * ax;
+  return t;
+}
+
+// The distance along the ray to the triangle's plane, given det = u + v + w ≠ 0.
+STRAHL_HOST_DEVICE inline Real sheared_distance(const ShearedTriangle& t, const RayShear& s, Real inv_det) {
+  const Real az = s.sz * t.a[s.kz], bz = s.sz * t.b[s.kz], cz = s.sz * t.c[s.kz];
+  return (t.u * az + t.v * bz + t.w * cz) * inv_det;
+}
+
 // The nearest hit in (t_min, t_max), with the ray's shear computed beforehand (ray_shear): hits on
 // an edge or a vertex count (for every triangle sharing it), both sides of the triangle are hit.
 STRAHL_HOST_DEVICE inline TriangleHit intersect(const Vec3& v0, const Vec3& v1, const Vec3& v2, const Ray& ray,
                                                 const RayShear& s, Real t_min, Real t_max) {
   TriangleHit hit;
-  const Vec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
-  const Real ax = a[s.kx] - s.sx * a[s.kz], ay = a[s.ky] - s.sy * a[s.kz];
-  const Real bx = b[s.kx] - s.sx * b[s.kz], by = b[s.ky] - s.sy * b[s.kz];
-  const Real cx = c[s.kx] - s.sx * c[s.kz], cy = c[s.ky] - s.sy * c[s.kz];
-  const Real u = cx * by - cy * bx;
-  const Real v = ax * cy - ay * cx;
-  const Real w = bx * ay - by * ax;
-  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return hit;
-  const Real det = u + v + w;
+  const ShearedTriangle st = shear_triangle(v0, v1, v2, ray, s);
+  if ((st.u < 0 || st.v < 0 || st.w < 0) && (st.u > 0 || st.v > 0 || st.w > 0)) return hit;
+  const Real det = st.u + st.v + st.w;
   if (det == 0) return hit;  // the ray lies in the triangle's plane (or the triangle is degenerate)
-  const Real az = s.sz * a[s.kz], bz = s.sz * b[s.kz], cz = s.sz * c[s.kz];
   const Real inv_det = Real(1) / det;
-  const Real t = (u * az + v * bz + w * cz) * inv_det;
-  if (t > t_min && t < t_max) hit = {t, v * inv_det, w * inv_det};
+  const Real t = sheared_distance(st, s, inv_det);
+  if (t > t_min && t < t_max) hit = {t, st.v * inv_det, st.w * inv_det};
   return hit;
 }
 
@@ -88,18 +110,11 @@ STRAHL_HOST_DEVICE inline TriangleHit intersect(const Vec3& v0, const Vec3& v1, 
 // kInfinity when the ray is parallel to the plane.
 STRAHL_HOST_DEVICE inline TriangleHit plane_hit(const Triangle& tri, const Ray& ray, const RayShear& s) {
   TriangleHit hit;
-  const Vec3 a = tri.v0 - ray.origin, b = tri.v1 - ray.origin, c = tri.v2 - ray.origin;
-  const Real ax = a[s.kx] - s.sx * a[s.kz], ay = a[s.ky] - s.sy * a[s.kz];
-  const Real bx = b[s.kx] - s.sx * b[s.kz], by = b[s.ky] - s.sy * b[s.kz];
-  const Real cx = c[s.kx] - s.sx * c[s.kz], cy = c[s.ky] - s.sy * c[s.kz];
-  const Real u = cx * by - cy * bx;
-  const Real v = ax * cy - ay * cx;
-  const Real w = bx * ay - by * ax;
-  const Real det = u + v + w;
+  const ShearedTriangle st = shear_triangle(tri.v0, tri.v1, tri.v2, ray, s);
+  const Real det = st.u + st.v + st.w;
   if (det == 0) return hit;
-  const Real az = s.sz * a[s.kz], bz = s.sz * b[s.kz], cz = s.sz * c[s.kz];
   const Real inv_det = Real(1) / det;
-  return {(u * az + v * bz + w * cz) * inv_det, v * inv_det, w * inv_det};
+  return {sheared_distance(st, s, inv_det), st.v * inv_det, st.w * inv_det};
 }
 
 STRAHL_HOST_DEVICE inline TriangleHit intersect(const Triangle& tri, const Ray& ray, const RayShear& s, Real t_min,
