@@ -16,14 +16,11 @@ namespace strahl {
 namespace {
 
 constexpr int kBins = 16;
-constexpr std::uint32_t kMaxLeafSize = 8;
 constexpr std::uint32_t kParallelThreshold = 4096;  // subtrees smaller than this build on one thread
 // Past this depth the build splits at the median, which at least halves every node: with at most
 // 2^32 primitives the tree is then at most 64 deep, which the traversal stack relies on
 // (bvh.h). SAH alone can peel off one primitive per level (geometrically spaced spheres).
 constexpr std::size_t kMaxSahDepth = 32;
-// SAH cost of visiting a node relative to one primitive test.
-constexpr Real kTraversalCost = 1.0;
 
 Real surface_area(const Bounds& b) {
   if (b.empty()) return 0;
@@ -40,7 +37,11 @@ struct Builder {
   const std::vector<Vec3>& centroids;
   std::vector<std::uint32_t>& index;
   std::vector<BvhNode>& nodes;
+  const BvhBuildOptions& options;
   std::atomic<std::uint32_t> next_node{1};
+
+  // SAH cost of a leaf of n primitives, in primitive (block) tests.
+  Real leaf_cost(std::uint32_t n) const { return Real((n + options.leaf_block - 1) / options.leaf_block); }
 
   void build(std::uint32_t at, std::uint32_t begin, std::uint32_t end, std::size_t depth) {
     Bounds bounds, centroid_bounds;
@@ -56,7 +57,8 @@ struct Builder {
       node.count = std::uint16_t(count);
     };
     // Tiny scenes (the lecture's five spheres) are one leaf: see traverse().
-    if (count <= 2 || (at == 0 && count <= kMaxLeafSize)) return make_leaf();
+    const std::uint32_t max_leaf = options.max_leaf;
+    if (count <= 2 || (at == 0 && count <= max_leaf)) return make_leaf();
 
     // Binned SAH: the best of kBins − 1 candidate planes on each axis, all axes in one pass.
     std::array<std::array<Bounds, kBins>, 3> bin_bounds;
@@ -96,7 +98,7 @@ struct Builder {
       for (int b = 0; b < kBins - 1; ++b) {
         acc = merge(acc, bin_bounds[axis][b]);
         n += bin_count[axis][b];
-        const Real cost = surface_area(acc) * n + right_area[b + 1] * right_count[b + 1];
+        const Real cost = surface_area(acc) * leaf_cost(n) + right_area[b + 1] * leaf_cost(right_count[b + 1]);
         if (n > 0 && right_count[b + 1] > 0 && cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -105,10 +107,10 @@ struct Builder {
       }
     }
     const Real area = surface_area(bounds);
-    const Real split_cost = area > 0 ? kTraversalCost + best_cost / area : kInfinity;
+    const Real split_cost = area > 0 ? Real(options.traversal_cost) + best_cost / area : kInfinity;
     // A leaf when splitting does not pay and the leaf stays small. Coinciding centroids (no SAH
-    // split) are split in halves below, so leaves never exceed kMaxLeafSize.
-    if (count <= kMaxLeafSize && (best_axis < 0 || Real(count) <= split_cost)) return make_leaf();
+    // split) are split in halves below, so leaves never exceed max_leaf.
+    if (count <= max_leaf && (best_axis < 0 || leaf_cost(count) <= split_cost)) return make_leaf();
 
     std::uint32_t mid = begin + count / 2;
     std::uint8_t axis = 0;
@@ -156,7 +158,7 @@ void count_nodes(const std::vector<BvhNode>& nodes, AccelBuildStats& stats) {
 
 }  // namespace
 
-Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out) {
+Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, const BvhBuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const auto n = static_cast<std::uint32_t>(bounds.size());
   Bvh bvh;
@@ -172,7 +174,7 @@ Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out) {
       }
     });
     bvh.nodes.resize(2 * std::size_t(n) - 1);
-    Builder builder{bounds, centroids, bvh.prims, bvh.nodes};
+    Builder builder{bounds, centroids, bvh.prims, bvh.nodes, options};
     builder.build(0, 0, n, 1);
     bvh.nodes.resize(builder.next_node.load());
     bvh.nodes.shrink_to_fit();
@@ -185,13 +187,13 @@ Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out) {
   return bvh;
 }
 
-Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
+Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out, const BvhBuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<Bounds> bounds(prims.size());
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, prims.size(), 1024), [&](const auto& r) {
     for (std::uint32_t i = r.begin(); i != r.end(); ++i) bounds[i] = primitive_bounds(prims, i);
   });
-  Bvh bvh = build_bvh(bounds, stats_out);
+  Bvh bvh = build_bvh(bounds, stats_out, options);
   if (stats_out) stats_out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;
 }

@@ -29,11 +29,20 @@ struct Bvh {
   BvhView view() const { return {nodes.data(), prims.data()}; }
 };
 
+// How the SAH weighs leaves: a leaf of n primitives costs ceil(n / leaf_block) primitive tests
+// (leaf_block 4: the wide BVH tests four triangles at once, accel/triangle_block.h), a node visit
+// costs traversal_cost of them; no leaf holds more than max_leaf primitives.
+struct BvhBuildOptions {
+  std::uint32_t leaf_block = 1;
+  std::uint32_t max_leaf = 8;
+  double traversal_cost = 1.0;
+};
+
 struct AccelBuildStats;
-Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
+Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr, const BvhBuildOptions& options = {});
 // The same over arbitrary boxes (primitive i has box i), e.g. the swept boxes of moving shapes;
 // traverse() then reports indices into `boxes`.
-Bvh build_bvh(const std::vector<Bounds>& boxes, AccelBuildStats* stats = nullptr);
+Bvh build_bvh(const std::vector<Bounds>& boxes, AccelBuildStats* stats = nullptr, const BvhBuildOptions& options = {});
 
 // Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for every primitive in a leaf the ray reaches
 // within (t_min, t_max), nearer leaves first; see traversal.h for the visitor contract.

@@ -4,8 +4,9 @@
 // side by side in float (structure of arrays, rounded outward so no box shrinks), and one SIMD slab
 // test checks a ray against all four at once; the children hit are visited nearest first and the
 // traversal stops at a hit nearer than every box still waiting. Leaves hold contiguous copies of
-// their triangles' vertices (no indirection through primitive indices in the hot loop), tested in
-// double with the watertight test of geometry/triangle.h.
+// their triangles' vertices in blocks of four (accel/triangle_block.h: no indirection through
+// primitive indices in the hot loop), tested four at once in double with the watertight test of
+// geometry/triangle.h, bit for bit as the scalar test.
 //
 // The float slab test is made conservative: per ray and axis, t = box·(1/d) + (−o/d) is computed
 // with a margin covering every rounding of the float arithmetic (and of o and 1/d converted to
@@ -21,6 +22,7 @@
 
 #include "strahl/accel/primitive.h"
 #include "strahl/accel/traversal.h"
+#include "strahl/accel/triangle_block.h"
 
 #if !defined(__CUDACC__) && (defined(__SSE4_1__) || defined(__AVX__))
 #include <immintrin.h>
@@ -35,25 +37,21 @@ inline constexpr std::uint32_t kWideBvhEmpty = ~std::uint32_t(0);
 struct alignas(64) WideBvhNode {
   float lo[3][kWideBvhWidth];  // [axis][child]; an empty slot has lo = +∞, hi = −∞
   float hi[3][kWideBvhWidth];
-  std::uint32_t child[kWideBvhWidth];  // inner child: its node index; leaf: its first leaf entry;
+  std::uint32_t child[kWideBvhWidth];  // inner child: its node index; leaf: its first block;
                                        // empty slot: kWideBvhEmpty
-  std::uint32_t count[kWideBvhWidth];  // leaf: number of entries (≥ 1); inner child or empty: 0
+  std::uint32_t count[kWideBvhWidth];  // leaf: number of blocks (≥ 1); inner child or empty: 0
 };
 static_assert(sizeof(WideBvhNode) == 128);
 
-// One primitive in a leaf: a triangle's vertices copied, or a sphere (tested from the scene's own
-// array: spheres are few where speed matters).
-struct WideBvhLeaf {
-  Vec3 v0, v1, v2;
-  std::uint32_t prim = 0;       // its id in the PrimitiveSet
-  std::uint32_t is_sphere = 0;  // 1: a sphere, v0..v2 unused
-};
-static_assert(sizeof(WideBvhLeaf) == 80);
+// A leaf is a run of triangle blocks (accel/triangle_block.h: four triangles' vertices copied side
+// by side, tested four at once); its spheres sit in lanes of their own (the block's `other` bits)
+// and are tested from the scene's own array: spheres are few where speed matters.
+using WideBvhLeaf = kernel::TriangleBlock;
 
 struct WideBvhView {
   const WideBvhNode* nodes = nullptr;
   const WideBvhLeaf* leaves = nullptr;
-  std::uint32_t root_leaf_count = 0;  // > 0: the whole tree is one leaf of this many entries (no nodes)
+  std::uint32_t root_leaf_count = 0;  // > 0: the whole tree is one leaf of this many blocks (no nodes)
   float extent[3] = {0, 0, 0};        // the largest |coordinate| of any box, per axis (for the margins)
 };
 
@@ -238,26 +236,48 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const WideBvhView& bvh, con
                                                      Visitor& visit) {
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
     for (std::uint32_t i = 0; i < count; ++i)
-      if (visit(first[i].prim, -kInfinity, kInfinity, t_far)) return true;
+      for (int k = 0; k < kernel::kTriangleBlockWidth; ++k)
+        if (first[i].prim[k] != kernel::kTriangleBlockEmpty && visit(first[i].prim[k], -kInfinity, kInfinity, t_far))
+          return true;
     return false;
   };
   traverse_leaves(bvh, ray, t_min, t_max, leaf);
 }
 
+namespace wide_bvh_detail {
+
+// The spheres of a block (rare: the `other` lanes), merged into the block's triangle result as a
+// scalar loop over the lanes in order with `t < t_far` would: the nearest, the lowest lane among
+// equal t. `lane`, `hit` hold the triangles' result (lane −1: none) and are updated.
+STRAHL_HOST_DEVICE STRAHL_NOINLINE inline void block_spheres(const kernel::TriangleBlock& b, const kernel::Sphere* spheres,
+                                                            const Ray& ray, Real t_min, Real t_far, int& lane,
+                                                            kernel::TriangleHit& hit) {
+  for (int k = 0; k < kernel::kTriangleBlockWidth; ++k) {
+    if (((b.other >> k) & 1) == 0) continue;
+    const Real t = kernel::intersect(spheres[b.prim[k]], ray, t_min, t_far);
+    if (t < kInfinity && (lane < 0 || t < hit.t || (t == hit.t && k < lane))) {
+      lane = k;
+      hit = {t, 0, 0};
+    }
+  }
+}
+
+}  // namespace wide_bvh_detail
+
 // The nearest hit in (t_min, t_max) among the leaves' primitives: its id and hit, t = kInfinity
 // when none. `spheres` is the PrimitiveSet's sphere array.
 STRAHL_HOST_DEVICE inline void wide_bvh_nearest(const WideBvhView& bvh, const kernel::Sphere* spheres, const Ray& ray,
                                                 Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
     for (std::uint32_t i = 0; i < count; ++i) {
-      const WideBvhLeaf& p = first[i];
+      const WideBvhLeaf& b = first[i];
       kernel::TriangleHit h;
-      if (p.is_sphere) h.t = kernel::intersect(spheres[p.prim], ray, t_min, t_far);
-      else h = kernel::intersect(p.v0, p.v1, p.v2, ray, shear, t_min, t_far);
-      if (h.t < t_far) {
+      int lane = kernel::intersect_nearest(b, br, t_min, t_far, h);
+      if (b.other != 0) wide_bvh_detail::block_spheres(b, spheres, ray, t_min, t_far, lane, h);
+      if (lane >= 0) {
         t_far = h.t;
-        prim = p.prim;
+        prim = b.prim[lane];
         hit = h;
       }
     }
@@ -269,14 +289,16 @@ STRAHL_HOST_DEVICE inline void wide_bvh_nearest(const WideBvhView& bvh, const ke
 // Any hit in (t_min, t_max)? Stops at the first one.
 STRAHL_HOST_DEVICE inline bool wide_bvh_occluded(const WideBvhView& bvh, const kernel::Sphere* spheres, const Ray& ray,
                                                  Real t_min, Real t_max) {
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   bool found = false;
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
     for (std::uint32_t i = 0; i < count; ++i) {
-      const WideBvhLeaf& p = first[i];
-      const Real t = p.is_sphere ? kernel::intersect(spheres[p.prim], ray, t_min, t_far)
-                                 : kernel::intersect(p.v0, p.v1, p.v2, ray, shear, t_min, t_far).t;
-      if (t < kInfinity) return found = true;
+      const WideBvhLeaf& b = first[i];
+      if (kernel::intersect_any(b, br, t_min, t_far)) return found = true;
+      if (b.other != 0)
+        for (int k = 0; k < kernel::kTriangleBlockWidth; ++k)
+          if (((b.other >> k) & 1) && kernel::intersect(spheres[b.prim[k]], ray, t_min, t_far) < kInfinity)
+            return found = true;
     }
     return false;
   };
