@@ -8,7 +8,7 @@
 #include "strahl/math/bounds.h"
 #include "strahl/math/frame.h"
 #include "strahl/render/render_scene.h"
-#include "strahl/scene/obj_loader.h"
+#include "strahl/scene/mesh_file.h"
 #include "strahl/scene/scene.h"
 #include "strahl/util/error.h"
 
@@ -153,12 +153,7 @@ BenchScene procedural_bench_scene(std::size_t triangles, int width, int height) 
 }
 
 BenchScene mesh_bench_scene(const std::filesystem::path& path, int width, int height) {
-  const std::string ext = path.extension().string();
-  std::string lower = ext;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-  // PLY (and other formats) join here once the library has a loader for them.
-  if (lower != ".obj") throw Error(FileLoc{path.string()}, "unsupported mesh format '" + ext + "' (use .obj)");
-  MeshData mesh = load_obj(path);
+  MeshData mesh = load_mesh(path);
   normalise(mesh.positions);
   std::vector<kernel::Triangle> triangles = triangles_of(mesh, path.string());
   if (triangles.empty()) throw Error(FileLoc{path.string()}, "the mesh has no (non-degenerate) triangles");

@@ -36,7 +36,7 @@ BenchScene lecture_bench_scene(int width, int height);
 // size resting on y = 0, framed like a mesh file.
 BenchScene procedural_bench_scene(std::size_t triangles, int width, int height);
 
-// A mesh file (.obj), normalised to unit size (largest bounding-box side 1), centred on x = z = 0
+// A mesh file (.obj or .ply), normalised to unit size (largest bounding-box side 1), centred on x = z = 0
 // and resting on y = 0; degenerate faces dropped. Throws strahl::Error when it cannot be read.
 BenchScene mesh_bench_scene(const std::filesystem::path& path, int width, int height);
 

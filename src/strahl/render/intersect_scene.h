@@ -52,6 +52,9 @@ STRAHL_HOST_DEVICE inline Vec3 transmittance(const SceneView& s, const Ray& ray,
         !attenuate(s.materials[s.planes[i].material], tr))
       return Vec3(0);
   }
+  // Nothing transparent: the first surface found blocks the light (any-hit, no crossings to count).
+  if (s.opaque && s.moving_sphere_count + s.moving_triangle_count == 0)
+    return occluded(s.accel, ray, 0, distance) ? Vec3(0) : tr;
   bool blocked = false;
   auto cross = [&](std::uint32_t prim, int crossings) {
     const Material& m = s.materials[primitive_material(s.accel.prims, prim)];

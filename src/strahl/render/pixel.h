@@ -11,14 +11,17 @@ namespace strahl {
 // The samples of pixel (x, row).
 STRAHL_HOST_DEVICE inline PixelSequence pixel_sequence(const SceneView& s, const PixelSampler& sampler, int x, int row) {
   const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
-  return sampler.pixel(x, y, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x));
+  PixelSequence p = sampler.pixel(x, y, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x));
+  p.uses_lens = s.camera.lens_radius > 0;
+  p.uses_time = s.camera.shutter_close != s.camera.shutter_open;
+  return p;
 }
 
 // Radiance of sample `index` of a pixel; `cs` receives the camera sample it used.
 STRAHL_HOST_DEVICE inline Vec3 pixel_sample(const SceneView& s, const PixelSequence& p, std::uint32_t index,
                                             CameraSample& cs, RayCounters& counters) {
   cs = p.sample(index);
-  SampleStream rng{p.seed, p.pixel, index};
+  SampleStream rng{p.stream, index};
   return sample_radiance(s, cs, rng, counters);
 }
 

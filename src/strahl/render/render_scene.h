@@ -48,6 +48,8 @@ struct RenderScene {
     v.shutter_open = camera.shutter_open;
     v.inv_shutter = camera.shutter_close > camera.shutter_open ? 1 / (camera.shutter_close - camera.shutter_open) : 0;
     v.materials = materials.data();
+    v.opaque = true;
+    for (const Material& m : materials) v.opaque = v.opaque && !(m.transparency > 0);
     v.lights = lights.data();
     v.light_count = static_cast<std::uint32_t>(lights.size());
     for (const Light& l : lights) v.area_light_count += l.is_area() ? 1u : 0u;

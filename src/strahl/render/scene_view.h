@@ -42,6 +42,7 @@ struct SceneView {
   BvhView moving_bvh;
   Real shutter_open = 0, inv_shutter = 0;  // u = (time − open) · inv_shutter; 0 for no interval
   const Material* materials = nullptr;
+  bool opaque = false;  // no material is transparent: a shadow ray needs only an any-hit test
   const Light* lights = nullptr;
   std::uint32_t light_count = 0;
   std::uint32_t area_light_count = 0;  // of those, area lights (0: no emitter tests per ray)

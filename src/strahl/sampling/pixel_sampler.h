@@ -95,8 +95,13 @@ struct PixelSequence {
   SamplerKind kind = SamplerKind::Grid;
   std::uint32_t side = 1;
   std::uint64_t seed = 0, pixel = 0, key = 0;
+  std::uint64_t stream = 0;  // pixel_key(seed, pixel): the per-sample random numbers are keyed_bits(stream, …)
   int x = 0, y = 0;
   std::uint32_t h[9] = {};  // grid/stratified: round 0's film, lens, time orders; sobol: 3 per pair
+  // Whether the camera uses the lens and time dimensions (a thin lens, an open shutter). When it
+  // does not, sample() leaves them at lens (0.5, 0.5) and time 0 without computing them; the film
+  // positions are the same either way (each dimension has its own random numbers and orders).
+  bool uses_lens = true, uses_time = true;
 
   // A 32-bit hash per (pixel, purpose), independent of the per-sample random numbers.
   STRAHL_HOST_DEVICE std::uint32_t hash(std::uint32_t purpose) const {
@@ -115,35 +120,38 @@ struct PixelSequence {
 
   // Sample number `index` of the pixel.
   STRAHL_HOST_DEVICE CameraSample sample(std::uint32_t index) const {
-    Vec2 film, lens;
-    Real time;
+    Vec2 film, lens{Real(0.5), Real(0.5)};
+    Real time = 0;
     switch (kind) {
       case SamplerKind::Grid:
       case SamplerKind::Stratified: {
         const std::uint32_t count = side * side, k = index % count, round = index / count;
         const bool jitter = kind == SamplerKind::Stratified;
-        const auto u = [&](std::uint32_t dim) { return random_real(seed, pixel, index, dim); };
+        const auto u = [&](std::uint32_t dim) { return to_unit(keyed_bits(stream, index, dim)); };
         // Each round visits the strata in new orders (purposes 3·round + {0, 1, 2}). The grid's
         // film positions are the strata's centres; lens and time are jittered for both (centres
         // would bias the lens's and the shutter's averages).
-        const std::uint32_t o0 = round == 0 ? h[0] : hash(3 * round), o1 = round == 0 ? h[1] : hash(3 * round + 1),
-                            o2 = round == 0 ? h[2] : hash(3 * round + 2);
-        film = stratum_2d(k, o0, jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
-        lens = stratum_2d(k, o1, {u(kDimLens), u(kDimLens + 1)});
-        time = (Real(permutation_element(k, count, o2)) + u(kDimTime)) / Real(count);
+        film = stratum_2d(k, round == 0 ? h[0] : hash(3 * round),
+                          jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
+        if (uses_lens) lens = stratum_2d(k, round == 0 ? h[1] : hash(3 * round + 1), {u(kDimLens), u(kDimLens + 1)});
+        if (uses_time)
+          time = (Real(permutation_element(k, count, round == 0 ? h[2] : hash(3 * round + 2))) + u(kDimTime)) /
+                 Real(count);
         break;
       }
-      case SamplerKind::Random:
-        film = {random_real(seed, pixel, index, kDimPixel), random_real(seed, pixel, index, kDimPixel + 1)};
-        lens = {random_real(seed, pixel, index, kDimLens), random_real(seed, pixel, index, kDimLens + 1)};
-        time = random_real(seed, pixel, index, kDimTime);
+      case SamplerKind::Random: {
+        const auto u = [&](std::uint32_t dim) { return to_unit(keyed_bits(stream, index, dim)); };
+        film = {u(kDimPixel), u(kDimPixel + 1)};
+        if (uses_lens) lens = {u(kDimLens), u(kDimLens + 1)};
+        if (uses_time) time = u(kDimTime);
         break;
+      }
       case SamplerKind::Sobol:
       case SamplerKind::Adaptive:
       default:
         film = sobol_2d(index, 0);
-        lens = sobol_2d(index, 1);
-        time = sobol_2d(index, 2).x;
+        if (uses_lens) lens = sobol_2d(index, 1);
+        if (uses_time) time = sobol_2d(index, 2).x;
         break;
     }
     CameraSample cs;
@@ -171,7 +179,8 @@ struct PixelSampler {
     p.x = x;
     p.y = y;
     // Sample index 0xffffffff, which no sample reaches: independent of the samples' numbers.
-    p.key = random_bits(seed, pixel_index, 0xffffffffu, 0);
+    p.stream = pixel_key(seed, pixel_index);
+    p.key = keyed_bits(p.stream, 0xffffffffu, 0);
     const int hashes = kind == SamplerKind::Random ? 0 : (kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) ? 9 : 3;
     for (int i = 0; i < hashes; ++i) p.h[i] = p.hash(std::uint32_t(i));
     return p;

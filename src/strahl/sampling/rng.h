@@ -28,12 +28,19 @@ STRAHL_HOST_DEVICE constexpr std::uint64_t mix64(std::uint64_t x) {
 }
 
 // 64 random bits for (seed, pixel, sample, dimension).
+// The part of random_bits that depends only on (seed, pixel): computed once per pixel, it leaves
+// one mix64 per random number.
+STRAHL_HOST_DEVICE constexpr std::uint64_t pixel_key(std::uint64_t seed, std::uint64_t pixel) {
+  return mix64(mix64(seed + 0x9e3779b97f4a7c15ULL) ^ pixel);
+}
+
+STRAHL_HOST_DEVICE constexpr std::uint64_t keyed_bits(std::uint64_t key, std::uint32_t sample, std::uint32_t dimension) {
+  return mix64(key ^ ((std::uint64_t(sample) << 32) | dimension));
+}
+
 STRAHL_HOST_DEVICE constexpr std::uint64_t random_bits(std::uint64_t seed, std::uint64_t pixel, std::uint32_t sample,
                                                        std::uint32_t dimension) {
-  std::uint64_t h = mix64(seed + 0x9e3779b97f4a7c15ULL);
-  h = mix64(h ^ pixel);
-  h = mix64(h ^ ((std::uint64_t(sample) << 32) | dimension));
-  return h;
+  return keyed_bits(pixel_key(seed, pixel), sample, dimension);
 }
 
 // The top 53 bits as a double in [0, 1) (never 1).
@@ -48,12 +55,11 @@ STRAHL_HOST_DEVICE constexpr Real random_real(std::uint64_t seed, std::uint64_t 
 
 // The random numbers of one camera sample, dimension after dimension.
 struct SampleStream {
-  std::uint64_t seed = 0;
-  std::uint64_t pixel = 0;  // y · width + x
+  std::uint64_t key = 0;  // pixel_key(seed, pixel), pixel = y · width + x
   std::uint32_t sample = 0;
   std::uint32_t dimension = kDimIntegrator;
 
-  STRAHL_HOST_DEVICE Real next() { return random_real(seed, pixel, sample, dimension++); }
+  STRAHL_HOST_DEVICE Real next() { return to_unit(keyed_bits(key, sample, dimension++)); }
   STRAHL_HOST_DEVICE Vec2 next2() {
     const Real a = next();
     return {a, next()};

@@ -12,8 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "strahl/scene/obj_loader.h"
-#include "strahl/scene/ply_loader.h"
+#include "strahl/scene/mesh_file.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/validate.h"
 #include "strahl/shading/area_light.h"
@@ -32,15 +31,6 @@ bool named_ior(const std::string& name, Real& ior) {
 }
 
 namespace {
-
-// A mesh file by its extension (case-insensitive): .obj or .ply.
-MeshData load_mesh(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".obj") return load_obj(path);
-  if (ext == ".ply") return load_ply(path);
-  throw Error(FileLoc{path.string()}, "unknown mesh format '" + path.extension().string() + "' (use .obj or .ply)");
-}
 
 using Keys = std::initializer_list<std::string_view>;
 
