@@ -473,10 +473,12 @@ TEST(AccelCrossCheck, BuildStatistics) {
       EXPECT_GT(st.bytes, 0u);
     }
     if (k == AccelKind::KdTree) {
-      EXPECT_EQ(st.bytes, a.kdtree.nodes.size() * 8 + a.kdtree.prims.size() * 4);
+      EXPECT_EQ(st.bytes, a.kdtree.nodes.size() * 8 + a.kdtree.leaves.size() * sizeof(SpatialLeaf));
+      EXPECT_EQ(a.kdtree.leaves.size(), st.primitive_references);
     }
     if (k == AccelKind::Octree) {
-      EXPECT_EQ(st.bytes, a.octree.nodes.size() * 8 + a.octree.prims.size() * 4);
+      EXPECT_EQ(st.bytes, a.octree.nodes.size() * 8 + a.octree.leaves.size() * sizeof(SpatialLeaf));
+      EXPECT_EQ(a.octree.leaves.size(), st.primitive_references);
     }
   }
 }
@@ -490,7 +492,8 @@ TEST(AccelCrossCheck, KdTreeBuildIndependentOfThreads) {
   const KdTree parallel = build_kdtree(s.set());
   ASSERT_EQ(serial.nodes.size(), parallel.nodes.size());
   EXPECT_EQ(std::memcmp(serial.nodes.data(), parallel.nodes.data(), serial.nodes.size() * sizeof(KdNode)), 0);
-  EXPECT_EQ(serial.prims, parallel.prims);
+  ASSERT_EQ(serial.leaves.size(), parallel.leaves.size());
+  EXPECT_EQ(std::memcmp(serial.leaves.data(), parallel.leaves.data(), serial.leaves.size() * sizeof(SpatialLeaf)), 0);
 }
 
 // Whole renders (shadows through transparent spheres, reflection, refraction, meshes): every

@@ -311,15 +311,24 @@ KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     tree.nodes.reserve(2 * std::size_t(n));
     builder.build(tree, kd.bounds, std::move(events), n, 0, 0);
     kd.nodes = std::move(tree.nodes);
-    kd.prims = std::move(tree.refs);
     kd.nodes.shrink_to_fit();
-    kd.prims.shrink_to_fit();
+    // The leaves' entries, copied in node order (depth first: neighbouring leaves lie together).
+    kd.leaves.reserve(tree.references);
+    for (KdNode& node : kd.nodes) {
+      if (!node.is_leaf()) continue;
+      const std::uint32_t count = node.count();
+      const std::uint32_t first = std::uint32_t(kd.leaves.size());
+      if (count == 1) kd.leaves.push_back(leaf_entry(prims, node.prims));
+      else
+        for (std::uint32_t i = 0; i < count; ++i) kd.leaves.push_back(leaf_entry(prims, tree.refs[node.prims + i]));
+      node.prims = count > 0 ? first : 0;
+    }
     stats.leaves = tree.leaves;
     stats.max_depth = tree.max_depth;
     stats.primitive_references = tree.references;
   }
   stats.nodes = kd.nodes.size();
-  stats.bytes = kd.nodes.size() * sizeof(KdNode) + kd.prims.size() * sizeof(std::uint32_t);
+  stats.bytes = kd.nodes.size() * sizeof(KdNode) + kd.leaves.size() * sizeof(SpatialLeaf);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats_out) *stats_out = stats;
   return kd;

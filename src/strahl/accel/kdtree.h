@@ -2,9 +2,11 @@
 // kd-tree: axis-aligned splitting planes chosen by the surface area heuristic, built in
 // O(n log n) from bound events sorted once and kept sorted while splitting (Wald & Havran 2006);
 // primitives straddling a plane are listed on both sides, triangles clipped to each side
-// ("perfect splits"). Nodes are 8 bytes (as in pbrt): a split position or a primitive range, and
-// two bits of kind. Traversal runs front to back with a fixed stack and hands each leaf's own
-// parameter interval to the visitor (see spatial.h).
+// ("perfect splits"). Nodes are 8 bytes (as in pbrt): a split position or a range of leaf entries,
+// and two bits of kind. Leaves hold copies of their triangles' vertices (SpatialLeaf, spatial.h).
+// Traversal runs front to back with a fixed stack; nearest hit and occlusion test each leaf's
+// entries directly (kdtree_nearest, kdtree_occluded), the visitor traversal (for_each_crossing)
+// hands each leaf's own parameter interval to the visitor (see spatial.h).
 
 #include <cstdint>
 #include <vector>
@@ -18,14 +20,14 @@ inline constexpr int kKdMaxDepth = 48;  // the traversal stack holds one entry p
 
 struct KdNode {
   // Inner: the split position as an offset from KdTreeView::base (a float keeps nodes at 8 bytes;
-  // relative to the scene's corner it resolves the scene to ~1e-7 of its size). Leaf: the one
-  // primitive, or the first entry in the primitive reference array.
+  // relative to the scene's corner it resolves the scene to ~1e-7 of its size). Leaf: its first
+  // entry in the leaf array.
   union {
     float split;
     std::uint32_t prims;
   };
   // Bits 0–1: split axis (0, 1, 2) or 3 for a leaf. Bits 2–31: inner, the index of the child
-  // above the plane (the one below follows the node); leaf, the number of primitives.
+  // above the plane (the one below follows the node); leaf, the number of primitives (entries).
   std::uint32_t bits;
 
   STRAHL_HOST_DEVICE bool is_leaf() const { return (bits & 3u) == 3u; }
@@ -37,28 +39,29 @@ static_assert(sizeof(KdNode) == 8);
 
 struct KdTreeView {
   const KdNode* nodes = nullptr;
-  const std::uint32_t* prims = nullptr;
+  const SpatialLeaf* leaves = nullptr;  // the leaves' entries, each leaf's together
   Bounds bounds;  // of every leaf together (the primitives' padded bounds)
   Vec3 base;      // split positions are stored relative to this point (bounds.lo)
 };
 
 struct KdTree {
   std::vector<KdNode> nodes;
-  std::vector<std::uint32_t> prims;
+  std::vector<SpatialLeaf> leaves;
   Bounds bounds;
   Vec3 base;
-  KdTreeView view() const { return {nodes.data(), prims.data(), bounds, base}; }
+  KdTreeView view() const { return {nodes.data(), leaves.data(), bounds, base}; }
 };
 
 struct AccelBuildStats;
 KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
 
-// Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for the primitives of every leaf the ray
-// passes through within (t_min, t_max), nearer leaves first, and stops after a leaf once t_max
-// (which the visitor may lower) lies within it; see traversal.h for the visitor contract.
-template <class Visitor>
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const KdTreeView& kd, const Ray& ray, Real t_min, Real& t_max,
-                                                     Visitor& visit) {
+// Calls leaf(first, count, leaf_t_lo, leaf_t_hi, t_max) for the entries of every non-empty leaf the
+// ray passes through within (t_min, t_max), nearer leaves first; leaf_t_hi is the plane's t itself
+// (the visitor traversal below hands on next_up of it, spatial.h). leaf may lower t_max and returns
+// true to stop at once; the traversal stops after a leaf once t_max lies within it.
+template <class Leaf>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const KdTreeView& kd, const Ray& ray, Real t_min,
+                                                           Real& t_max, Leaf& leaf) {
   if (kd.nodes == nullptr) return;
   const Vec3 inv = reciprocal(ray.direction);
   Real lo, hi;
@@ -93,14 +96,8 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const KdTreeView& kd, const
       }
       continue;
     }
-    const Real leaf_hi = next_up(hi);
     const std::uint32_t count = n.count();
-    if (count == 1) {
-      if (visit(n.prims, lo, leaf_hi, t_max)) return;
-    } else {
-      for (std::uint32_t i = n.prims; i < n.prims + count; ++i)
-        if (visit(kd.prims[i], lo, leaf_hi, t_max)) return;
-    }
+    if (count > 0 && leaf(kd.leaves + n.prims, count, lo, hi, t_max)) return;
     // Every leaf nearer than hi has been searched: a hit before it is the nearest.
     if (t_max <= hi) return;
     if (top == 0) return;
@@ -109,6 +106,45 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const KdTreeView& kd, const
     lo = stack[top].lo;
     hi = stack[top].hi;
   }
+}
+
+// Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for the primitives of every leaf the ray
+// passes through within (t_min, t_max), nearer leaves first, and stops after a leaf once t_max
+// (which the visitor may lower) lies within it; see traversal.h for the visitor contract.
+template <class Visitor>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const KdTreeView& kd, const Ray& ray, Real t_min, Real& t_max,
+                                                     Visitor& visit) {
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real lo, Real hi, Real& t_far) {
+    const Real leaf_hi = next_up(hi);
+    for (std::uint32_t i = 0; i < count; ++i)
+      if (visit(first[i].prim, lo, leaf_hi, t_far)) return true;
+    return false;
+  };
+  traverse_leaves(kd, ray, t_min, t_max, leaf);
+}
+
+// The nearest hit in (t_min, t_max): its id and hit, t = kInfinity when none. `spheres` is the
+// PrimitiveSet's sphere array.
+STRAHL_HOST_DEVICE inline void kdtree_nearest(const KdTreeView& kd, const kernel::Sphere* spheres, const Ray& ray,
+                                              Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
+    leaf_nearest(first, count, spheres, ray, shear, t_min, t_far, prim, hit);
+    return false;
+  };
+  traverse_leaves(kd, ray, t_min, t_max, leaf);
+}
+
+// Any hit in (t_min, t_max)? Stops at the first one.
+STRAHL_HOST_DEVICE inline bool kdtree_occluded(const KdTreeView& kd, const kernel::Sphere* spheres, const Ray& ray,
+                                               Real t_min, Real t_max) {
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  bool found = false;
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
+    return found = leaf_any(first, count, spheres, ray, shear, t_min, t_far);
+  };
+  traverse_leaves(kd, ray, t_min, t_max, leaf);
+  return found;
 }
 
 }  // namespace strahl

@@ -125,15 +125,24 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     const OctreeNode root = builder.build(oct.center, oct.half, std::move(all), 0, 0);
     builder.nodes[0] = root;
     oct.nodes = std::move(builder.nodes);
-    oct.prims = std::move(builder.refs);
     oct.nodes.shrink_to_fit();
-    oct.prims.shrink_to_fit();
+    // The leaves' entries, copied in node order (siblings' leaves lie together).
+    oct.leaves.reserve(builder.stats.primitive_references);
+    for (OctreeNode& node : oct.nodes) {
+      if (!node.is_leaf()) continue;
+      const std::uint32_t count = node.count();
+      const std::uint32_t first = std::uint32_t(oct.leaves.size());
+      if (count == 1) oct.leaves.push_back(leaf_entry(prims, node.index));
+      else
+        for (std::uint32_t i = 0; i < count; ++i) oct.leaves.push_back(leaf_entry(prims, builder.refs[node.index + i]));
+      node.index = count > 0 ? first : 0;
+    }
     stats.leaves = builder.stats.leaves;
     stats.max_depth = builder.stats.max_depth;
     stats.primitive_references = builder.stats.primitive_references;
   }
   stats.nodes = oct.nodes.size();
-  stats.bytes = oct.nodes.size() * sizeof(OctreeNode) + oct.prims.size() * sizeof(std::uint32_t);
+  stats.bytes = oct.nodes.size() * sizeof(OctreeNode) + oct.leaves.size() * sizeof(SpatialLeaf);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats_out) *stats_out = stats;
   return oct;

@@ -5,7 +5,8 @@
 // Traversal visits the children a ray passes through in the order it enters them — the
 // parametric approach of Revelles et al. (2000): the three centre planes cut the ray's interval
 // in the node into at most four pieces, each inside one child — and hands each leaf's own
-// parameter interval to the visitor (see spatial.h).
+// parameter interval to the visitor (see spatial.h). Leaves hold copies of their triangles' vertices
+// (SpatialLeaf, spatial.h), tested directly by octree_nearest and octree_occluded.
 
 #include <cstdint>
 #include <vector>
@@ -19,8 +20,8 @@ inline constexpr int kOctreeMaxDepth = 16;
 
 struct OctreeNode {
   // Inner: the index of the first of its eight children, child k holding the octant with
-  // x above the centre when bit 0 of k is set, y for bit 1, z for bit 2. Leaf: the one
-  // primitive, or the first entry in the primitive reference array.
+  // x above the centre when bit 0 of k is set, y for bit 1, z for bit 2. Leaf: its first entry in
+  // the leaf array.
   std::uint32_t index = 0;
   // Bit 0: set for a leaf. Leaf, bits 1–31: its number of primitives. Inner, bits 1–8: which
   // children are not empty leaves (bit 1 + k for child k), so that empty ones are skipped
@@ -35,28 +36,29 @@ static_assert(sizeof(OctreeNode) == 8);
 
 struct OctreeView {
   const OctreeNode* nodes = nullptr;
-  const std::uint32_t* prims = nullptr;
+  const SpatialLeaf* leaves = nullptr;  // the leaves' entries, each leaf's together
   Vec3 center;    // of the root cube
   Real half = 0;  // half its side
 };
 
 struct Octree {
   std::vector<OctreeNode> nodes;
-  std::vector<std::uint32_t> prims;
+  std::vector<SpatialLeaf> leaves;
   Vec3 center;
   Real half = 0;
-  OctreeView view() const { return {nodes.data(), prims.data(), center, half}; }
+  OctreeView view() const { return {nodes.data(), leaves.data(), center, half}; }
 };
 
 struct AccelBuildStats;
 Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
 
-// Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for the primitives of every leaf the ray
-// passes through within (t_min, t_max), nearer leaves first, and stops after a leaf once t_max
-// (which the visitor may lower) lies within it; see traversal.h for the visitor contract.
-template <class Visitor>
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const OctreeView& oct, const Ray& ray, Real t_min, Real& t_max,
-                                                     Visitor& visit) {
+// Calls leaf(first, count, leaf_t_lo, leaf_t_hi, t_max) for the entries of every non-empty leaf the
+// ray passes through within (t_min, t_max), nearer leaves first; leaf_t_hi is the plane's t itself
+// (the visitor traversal below hands on next_up of it, spatial.h). leaf may lower t_max and returns
+// true to stop at once; the traversal stops after a leaf once t_max lies within it.
+template <class Leaf>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const OctreeView& oct, const Ray& ray, Real t_min,
+                                                           Real& t_max, Leaf& leaf) {
   if (oct.nodes == nullptr) return;
   const Vec3 inv = reciprocal(ray.direction);
   Bounds cube;
@@ -137,14 +139,8 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const OctreeView& oct, cons
         continue;
       }
     } else {
-      const Real leaf_hi = next_up(hi);
       const std::uint32_t count = n.count();
-      if (count == 1) {
-        if (visit(n.index, lo, leaf_hi, t_max)) return;
-      } else {
-        for (std::uint32_t i = n.index; i < n.index + count; ++i)
-          if (visit(oct.prims[i], lo, leaf_hi, t_max)) return;
-      }
+      if (count > 0 && leaf(oct.leaves + n.index, count, lo, hi, t_max)) return;
       // Every leaf nearer than hi has been searched: a hit before it is the nearest.
       if (t_max <= hi) return;
     }
@@ -159,6 +155,45 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const OctreeView& oct, cons
     center[2] = e.center[2];
     half = e.half;
   }
+}
+
+// Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for the primitives of every leaf the ray
+// passes through within (t_min, t_max), nearer leaves first, and stops after a leaf once t_max
+// (which the visitor may lower) lies within it; see traversal.h for the visitor contract.
+template <class Visitor>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const OctreeView& oct, const Ray& ray, Real t_min, Real& t_max,
+                                                     Visitor& visit) {
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real lo, Real hi, Real& t_far) {
+    const Real leaf_hi = next_up(hi);
+    for (std::uint32_t i = 0; i < count; ++i)
+      if (visit(first[i].prim, lo, leaf_hi, t_far)) return true;
+    return false;
+  };
+  traverse_leaves(oct, ray, t_min, t_max, leaf);
+}
+
+// The nearest hit in (t_min, t_max): its id and hit, t = kInfinity when none. `spheres` is the
+// PrimitiveSet's sphere array.
+STRAHL_HOST_DEVICE inline void octree_nearest(const OctreeView& oct, const kernel::Sphere* spheres, const Ray& ray,
+                                              Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
+    leaf_nearest(first, count, spheres, ray, shear, t_min, t_far, prim, hit);
+    return false;
+  };
+  traverse_leaves(oct, ray, t_min, t_max, leaf);
+}
+
+// Any hit in (t_min, t_max)? Stops at the first one.
+STRAHL_HOST_DEVICE inline bool octree_occluded(const OctreeView& oct, const kernel::Sphere* spheres, const Ray& ray,
+                                               Real t_min, Real t_max) {
+  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  bool found = false;
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
+    return found = leaf_any(first, count, spheres, ray, shear, t_min, t_far);
+  };
+  traverse_leaves(oct, ray, t_min, t_max, leaf);
+  return found;
 }
 
 }  // namespace strahl

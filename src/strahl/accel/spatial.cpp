@@ -52,6 +52,20 @@ bool inside(const Bounds& a, const Bounds& b) {
 
 }  // namespace
 
+SpatialLeaf leaf_entry(const PrimitiveSet& prims, std::uint32_t prim) {
+  SpatialLeaf e;
+  e.prim = prim;
+  if (prims.is_sphere(prim)) {
+    e.is_sphere = 1;
+  } else {
+    const kernel::Triangle& t = prims.triangles[prim - prims.sphere_count];
+    e.v0 = t.v0;
+    e.v1 = t.v1;
+    e.v2 = t.v2;
+  }
+  return e;
+}
+
 Real bounds_padding(const Bounds& scene) {
   if (scene.empty()) return Real(1e-300);
   const Vec3 lo(std::fabs(scene.lo.x), std::fabs(scene.lo.y), std::fabs(scene.lo.z));

@@ -55,7 +55,54 @@ STRAHL_HOST_DEVICE inline bool clip_to_box(const Bounds& b, const Vec3& origin, 
   return true;
 }
 
+// One primitive in a leaf: a triangle's vertices copied, contiguous with the leaf's others (no
+// indirection through primitive indices and no 88-byte scene triangles in the hot loop), or a
+// sphere (tested from the scene's own array: spheres are few where speed matters). A primitive
+// listed in several leaves is copied into each; the copies are the scene's vertex values, so the
+// tests compute exactly what intersect_primitive() computes.
+struct SpatialLeaf {
+  Vec3 v0, v1, v2;
+  std::uint32_t prim = 0;       // its id in the PrimitiveSet
+  std::uint32_t is_sphere = 0;  // 1: a sphere, v0..v2 unused
+};
+static_assert(sizeof(SpatialLeaf) == 80);
+
+// The nearest hit among a leaf's `count` entries in (t_min, t_far): lowers t_far and sets prim and
+// hit when one is found (the first among equal t, as the visitor loop over the entries finds).
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void leaf_nearest(const SpatialLeaf* first, std::uint32_t count,
+                                                         const kernel::Sphere* spheres, const Ray& ray,
+                                                         const kernel::RayShear& shear, Real t_min, Real& t_far,
+                                                         std::uint32_t& prim, kernel::TriangleHit& hit) {
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const SpatialLeaf& p = first[i];
+    kernel::TriangleHit h;
+    if (p.is_sphere) h.t = kernel::intersect(spheres[p.prim], ray, t_min, t_far);
+    else h = kernel::intersect(p.v0, p.v1, p.v2, ray, shear, t_min, t_far);
+    if (h.t < t_far) {
+      t_far = h.t;
+      prim = p.prim;
+      hit = h;
+    }
+  }
+}
+
+// Is any of a leaf's entries hit in (t_min, t_far)?
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool leaf_any(const SpatialLeaf* first, std::uint32_t count,
+                                                     const kernel::Sphere* spheres, const Ray& ray,
+                                                     const kernel::RayShear& shear, Real t_min, Real t_far) {
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const SpatialLeaf& p = first[i];
+    const Real t = p.is_sphere ? kernel::intersect(spheres[p.prim], ray, t_min, t_far)
+                               : kernel::intersect(p.v0, p.v1, p.v2, ray, shear, t_min, t_far).t;
+    if (t < kInfinity) return true;
+  }
+  return false;
+}
+
 // ---- for building (host code) ----
+
+// The leaf entry of one primitive.
+SpatialLeaf leaf_entry(const PrimitiveSet& prims, std::uint32_t prim);
 
 // Primitives' bounds are grown by this fraction of the scene's largest coordinate magnitude:
 // far above the rounding of hit points (~1e-16 relative), far below any feature worth splitting.
