@@ -313,16 +313,16 @@ KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     kd.nodes = std::move(tree.nodes);
     kd.nodes.shrink_to_fit();
     // The leaves' entries, copied in node order (depth first: neighbouring leaves lie together).
-    kd.leaves.reserve(tree.references);
     for (KdNode& node : kd.nodes) {
       if (!node.is_leaf()) continue;
       const std::uint32_t count = node.count();
       const std::uint32_t first = std::uint32_t(kd.leaves.size());
-      if (count == 1) kd.leaves.push_back(leaf_entry(prims, node.prims));
-      else
-        for (std::uint32_t i = 0; i < count; ++i) kd.leaves.push_back(leaf_entry(prims, tree.refs[node.prims + i]));
+      const std::uint32_t blocks =
+          append_leaf(prims, count == 1 ? &node.prims : tree.refs.data() + node.prims, count, kd.leaves);
       node.prims = count > 0 ? first : 0;
+      node.bits = 3u | blocks << 2;
     }
+    kd.leaves.shrink_to_fit();
     stats.leaves = tree.leaves;
     stats.max_depth = tree.max_depth;
     stats.primitive_references = tree.references;

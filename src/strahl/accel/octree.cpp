@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <stdexcept>
+#include <cstdlib>
 
 #include "strahl/accel/build_stats.h"
 
@@ -14,7 +15,8 @@ namespace strahl {
 
 namespace {
 
-constexpr std::size_t kLeafSize = 8;  // a node with at most this many primitives is not split
+static double env(const char* n, double d) { const char* v = std::getenv(n); return v ? std::atof(v) : d; }
+static const std::size_t kLeafSize = std::size_t(env("OC_LEAF", 8));  // a node with at most this many primitives is not split
 // When a split does not pay. By the surface area heuristic a ray through a cube passes
 // through two of its eight octants on average (their surface areas over the cube's), so after
 // the split it meets about a quarter of the octants' references, plus the cost of visiting
@@ -25,10 +27,10 @@ constexpr std::size_t kLeafSize = 8;  // a node with at most this many primitive
 // triangles split down to the depth limit, each holding the whole pile). A few bad refines are
 // tolerated on one path, to see past a local minimum: a layer of primitives in a centre plane is
 // copied into both halves before the next level separates it.
-constexpr Real kTraversalCost = 1;
-constexpr Real kMinGain = 0.1;
-constexpr Real kMaxGrowth = 2;
-constexpr int kMaxBadRefines = 2;
+static const Real kTraversalCost = env("OC_CT", 1);
+static const Real kMinGain = env("OC_GAIN", 0.1);
+static const Real kMaxGrowth = env("OC_GROW", 2);
+static const int kMaxBadRefines = int(env("OC_BAD", 2));
 constexpr std::size_t kMaxIndex = (std::size_t(1) << 31) - 1;
 
 struct Builder {
@@ -127,16 +129,16 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     oct.nodes = std::move(builder.nodes);
     oct.nodes.shrink_to_fit();
     // The leaves' entries, copied in node order (siblings' leaves lie together).
-    oct.leaves.reserve(builder.stats.primitive_references);
     for (OctreeNode& node : oct.nodes) {
       if (!node.is_leaf()) continue;
       const std::uint32_t count = node.count();
       const std::uint32_t first = std::uint32_t(oct.leaves.size());
-      if (count == 1) oct.leaves.push_back(leaf_entry(prims, node.index));
-      else
-        for (std::uint32_t i = 0; i < count; ++i) oct.leaves.push_back(leaf_entry(prims, builder.refs[node.index + i]));
+      const std::uint32_t blocks =
+          append_leaf(prims, count == 1 ? &node.index : builder.refs.data() + node.index, count, oct.leaves);
       node.index = count > 0 ? first : 0;
+      node.bits = 1u | blocks << 1;
     }
+    oct.leaves.shrink_to_fit();
     stats.leaves = builder.stats.leaves;
     stats.max_depth = builder.stats.max_depth;
     stats.primitive_references = builder.stats.primitive_references;
