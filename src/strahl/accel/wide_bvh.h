@@ -117,6 +117,15 @@ STRAHL_HOST_DEVICE inline RayBoxes ray_boxes(const WideBvhView& bvh, const Ray& 
   return r;
 }
 
+// The lowest set bit's index (m ≠ 0).
+STRAHL_HOST_DEVICE inline int lowest_bit(unsigned m) {
+#if defined(__CUDA_ARCH__)
+  return __ffs(int(m)) - 1;
+#else
+  return __builtin_ctz(m);
+#endif
+}
+
 struct StackEntry {
   std::uint32_t child, count;
   float t_near;
@@ -190,22 +199,42 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const WideBvhView& b
         if (lo <= hi) mask |= 1 << k;
       }
 #endif
+      // The children hit, nearest first (equal entries in slot order). An empty slot's box is
+      // inverted, but on a ray whose every axis is unconstrained (coordinates beyond float) it
+      // would pass: skip it.
+#if defined(STRAHL_WIDE_BVH_SSE)
+      mask &= ~_mm_movemask_ps(_mm_castsi128_ps(
+          _mm_cmpeq_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(n.child)), _mm_set1_epi32(-1))));
+#else
+      for (int k = 0; k < kWideBvhWidth; ++k)
+        if (n.child[k] == kWideBvhEmpty) mask &= ~(1 << k);
+#endif
       if (mask != 0) {
-        // The children hit, nearest first. (An empty slot's box is inverted, but on a ray whose
-        // every axis is unconstrained — coordinates beyond float — it would pass: skip it.)
-        int order[4], hits = 0;
-        for (int k = 0; k < kWideBvhWidth; ++k)
-          if ((mask & (1 << k)) && n.child[k] != kWideBvhEmpty) {
-            int j = hits++;
-            for (; j > 0 && t_near[order[j - 1]] > t_near[k]; --j) order[j] = order[j - 1];
-            order[j] = k;
+        int k0 = lowest_bit(unsigned(mask));
+        mask &= mask - 1;
+        if (mask != 0) {
+          int k1 = lowest_bit(unsigned(mask));
+          mask &= mask - 1;
+          if (mask == 0) {  // two: the common case after one
+            if (t_near[k1] < t_near[k0]) { const int tmp = k0; k0 = k1; k1 = tmp; }
+            stack[top++] = {n.child[k1], n.count[k1], t_near[k1]};
+          } else {  // three or four: insertion sort
+            int order[4] = {k0, k1, 0, 0}, hits = 2;
+            if (t_near[k1] < t_near[k0]) { order[0] = k1; order[1] = k0; }
+            while (mask != 0) {
+              const int k = lowest_bit(unsigned(mask));
+              mask &= mask - 1;
+              int j = hits++;
+              for (; j > 0 && t_near[order[j - 1]] > t_near[k]; --j) order[j] = order[j - 1];
+              order[j] = k;
+            }
+            for (int i = hits - 1; i > 0; --i) stack[top++] = {n.child[order[i]], n.count[order[i]], t_near[order[i]]};
+            k0 = order[0];
           }
-        if (hits > 0) {
-          for (int i = hits - 1; i > 0; --i) stack[top++] = {n.child[order[i]], n.count[order[i]], t_near[order[i]]};
-          child = n.child[order[0]];
-          count = n.count[order[0]];
-          continue;
         }
+        child = n.child[k0];
+        count = n.count[k0];
+        continue;
       }
     } else {
       const Real before = t_max;
