@@ -3,7 +3,8 @@
 // O(n log n) from bound events sorted once and kept sorted while splitting (Wald & Havran 2006);
 // primitives straddling a plane are listed on both sides, triangles clipped to each side
 // ("perfect splits"). Nodes are 8 bytes (as in pbrt): a split position or a range of leaf entries,
-// and two bits of kind. Leaves hold copies of their triangles' vertices (SpatialLeaf, spatial.h).
+// and two bits of kind. Leaves hold copies of their triangles' vertices in blocks of four
+// (SpatialLeaf, spatial.h), tested four at once.
 // Traversal runs front to back with a fixed stack; nearest hit and occlusion test each leaf's
 // entries directly (kdtree_nearest, kdtree_occluded), the visitor traversal (for_each_crossing)
 // hands each leaf's own parameter interval to the visitor (see spatial.h).
@@ -21,25 +22,25 @@ inline constexpr int kKdMaxDepth = 48;  // the traversal stack holds one entry p
 struct KdNode {
   // Inner: the split position as an offset from KdTreeView::base (a float keeps nodes at 8 bytes;
   // relative to the scene's corner it resolves the scene to ~1e-7 of its size). Leaf: its first
-  // entry in the leaf array.
+  // block in the leaf array.
   union {
     float split;
     std::uint32_t prims;
   };
   // Bits 0–1: split axis (0, 1, 2) or 3 for a leaf. Bits 2–31: inner, the index of the child
-  // above the plane (the one below follows the node); leaf, the number of primitives (entries).
+  // above the plane (the one below follows the node); leaf, its number of blocks.
   std::uint32_t bits;
 
   STRAHL_HOST_DEVICE bool is_leaf() const { return (bits & 3u) == 3u; }
   STRAHL_HOST_DEVICE std::uint32_t axis() const { return bits & 3u; }
   STRAHL_HOST_DEVICE std::uint32_t above_child() const { return bits >> 2; }
-  STRAHL_HOST_DEVICE std::uint32_t count() const { return bits >> 2; }
+  STRAHL_HOST_DEVICE std::uint32_t count() const { return bits >> 2; }  // (while building: primitives)
 };
 static_assert(sizeof(KdNode) == 8);
 
 struct KdTreeView {
   const KdNode* nodes = nullptr;
-  const SpatialLeaf* leaves = nullptr;  // the leaves' entries, each leaf's together
+  const SpatialLeaf* leaves = nullptr;  // the leaves' blocks, each leaf's together
   Bounds bounds;  // of every leaf together (the primitives' padded bounds)
   Vec3 base;      // split positions are stored relative to this point (bounds.lo)
 };
@@ -55,7 +56,7 @@ struct KdTree {
 struct AccelBuildStats;
 KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
 
-// Calls leaf(first, count, leaf_t_lo, leaf_t_hi, t_max) for the entries of every non-empty leaf the
+// Calls leaf(first, count, leaf_t_lo, leaf_t_hi, t_max) for the blocks of every non-empty leaf the
 // ray passes through within (t_min, t_max), nearer leaves first; leaf_t_hi is the plane's t itself
 // (the visitor traversal below hands on next_up of it, spatial.h). leaf may lower t_max and returns
 // true to stop at once; the traversal stops after a leaf once t_max lies within it.
@@ -116,9 +117,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const KdTreeView& kd, const
                                                      Visitor& visit) {
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real lo, Real hi, Real& t_far) {
     const Real leaf_hi = next_up(hi);
-    for (std::uint32_t i = 0; i < count; ++i)
-      if (visit(first[i].prim, lo, leaf_hi, t_far)) return true;
-    return false;
+    return leaf_primitives(first, count, [&](std::uint32_t prim) { return visit(prim, lo, leaf_hi, t_far); });
   };
   traverse_leaves(kd, ray, t_min, t_max, leaf);
 }
@@ -127,9 +126,9 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const KdTreeView& kd, const
 // PrimitiveSet's sphere array.
 STRAHL_HOST_DEVICE inline void kdtree_nearest(const KdTreeView& kd, const kernel::Sphere* spheres, const Ray& ray,
                                               Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    leaf_nearest(first, count, spheres, ray, shear, t_min, t_far, prim, hit);
+    leaf_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
     return false;
   };
   traverse_leaves(kd, ray, t_min, t_max, leaf);
@@ -138,10 +137,10 @@ STRAHL_HOST_DEVICE inline void kdtree_nearest(const KdTreeView& kd, const kernel
 // Any hit in (t_min, t_max)? Stops at the first one.
 STRAHL_HOST_DEVICE inline bool kdtree_occluded(const KdTreeView& kd, const kernel::Sphere* spheres, const Ray& ray,
                                                Real t_min, Real t_max) {
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   bool found = false;
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    return found = leaf_any(first, count, spheres, ray, shear, t_min, t_far);
+    return found = leaf_any(first, count, spheres, br, t_min, t_far);
   };
   traverse_leaves(kd, ray, t_min, t_max, leaf);
   return found;

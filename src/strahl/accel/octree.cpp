@@ -14,11 +14,15 @@ namespace strahl {
 
 namespace {
 
-constexpr std::size_t kLeafSize = 8;  // a node with at most this many primitives is not split
+// A node with at most this many primitives is not split. Leaves are tested a block of four
+// triangles at a time (spatial.h), which makes bigger leaves cheap: on the bunny and the dragon
+// (1 thread) 24 traces 10–30% faster than 8 or 16 (and 32, 48) with a third of the references
+// and half the depth.
+constexpr std::size_t kLeafSize = 24;
 // When a split does not pay. By the surface area heuristic a ray through a cube passes
 // through two of its eight octants on average (their surface areas over the cube's), so after
-// the split it meets about a quarter of the octants' references, plus the cost of visiting
-// octants (kTraversalCost, relative to one primitive test). A split is a bad refine when it
+// the split it meets about a quarter of the octants' blocks, plus the cost of visiting
+// octants (kTraversalCost, relative to one block test). A split is a bad refine when it
 // saves less than kMinGain of the node's own cost, or when its octants list more than
 // kMaxGrowth times the node's references: primitives large against the cube, which splitting
 // copies more than it separates (unchecked, the cubes along the edge of a pile of coinciding
@@ -29,6 +33,10 @@ constexpr Real kTraversalCost = 1;
 constexpr Real kMinGain = 0.1;
 constexpr Real kMaxGrowth = 2;
 constexpr int kMaxBadRefines = 2;
+// Blocks of four triangles needed for n primitives.
+constexpr Real blocks(std::size_t n) {
+  return Real((n + std::size_t(kernel::kTriangleBlockWidth) - 1) / std::size_t(kernel::kTriangleBlockWidth));
+}
 constexpr std::size_t kMaxIndex = (std::size_t(1) << 31) - 1;
 
 struct Builder {
@@ -62,6 +70,7 @@ struct Builder {
     const Real child_half = half * Real(0.5);
     std::array<std::vector<std::uint32_t>, 8> children;
     std::size_t total = 0, occupied = 0, separated = 0;
+    Real total_blocks = 0;
     for (std::uint32_t k = 0; k < 8; ++k) {
       // The octant's box, its inner faces exactly on the centre planes.
       Bounds box;
@@ -74,10 +83,11 @@ struct Builder {
       for (std::uint32_t p : prims)
         if (overlaps(bounds[p], box) && !clipped_bounds(set, p, box, pad).empty()) children[k].push_back(p);
       total += children[k].size();
+      total_blocks += blocks(children[k].size());
       occupied += !children[k].empty();
       separated += !children[k].empty() && children[k].size() < prims.size();
     }
-    if (kTraversalCost + Real(total) / 4 > (1 - kMinGain) * Real(prims.size()) ||
+    if (kTraversalCost + total_blocks / 4 > (1 - kMinGain) * blocks(prims.size()) ||
         Real(total) > kMaxGrowth * Real(prims.size()))
       ++bad_refines;
     // Several octants each holding every primitive (a pile of coinciding ones, a layer of
@@ -126,17 +136,17 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     builder.nodes[0] = root;
     oct.nodes = std::move(builder.nodes);
     oct.nodes.shrink_to_fit();
-    // The leaves' entries, copied in node order (siblings' leaves lie together).
-    oct.leaves.reserve(builder.stats.primitive_references);
+    // The leaves' blocks, filled in node order (siblings' leaves lie together).
     for (OctreeNode& node : oct.nodes) {
       if (!node.is_leaf()) continue;
       const std::uint32_t count = node.count();
       const std::uint32_t first = std::uint32_t(oct.leaves.size());
-      if (count == 1) oct.leaves.push_back(leaf_entry(prims, node.index));
-      else
-        for (std::uint32_t i = 0; i < count; ++i) oct.leaves.push_back(leaf_entry(prims, builder.refs[node.index + i]));
+      const std::uint32_t n_blocks =
+          append_leaf(prims, count == 1 ? &node.index : builder.refs.data() + node.index, count, oct.leaves);
       node.index = count > 0 ? first : 0;
+      node.bits = 1u | n_blocks << 1;
     }
+    oct.leaves.shrink_to_fit();
     stats.leaves = builder.stats.leaves;
     stats.max_depth = builder.stats.max_depth;
     stats.primitive_references = builder.stats.primitive_references;

@@ -6,7 +6,7 @@
 // parametric approach of Revelles et al. (2000): the three centre planes cut the ray's interval
 // in the node into at most four pieces, each inside one child — and hands each leaf's own
 // parameter interval to the visitor (see spatial.h). Leaves hold copies of their triangles' vertices
-// (SpatialLeaf, spatial.h), tested directly by octree_nearest and octree_occluded.
+// in blocks of four (SpatialLeaf, spatial.h), tested four at once by octree_nearest and octree_occluded.
 
 #include <cstdint>
 #include <vector>
@@ -20,10 +20,10 @@ inline constexpr int kOctreeMaxDepth = 16;
 
 struct OctreeNode {
   // Inner: the index of the first of its eight children, child k holding the octant with
-  // x above the centre when bit 0 of k is set, y for bit 1, z for bit 2. Leaf: its first entry in
+  // x above the centre when bit 0 of k is set, y for bit 1, z for bit 2. Leaf: its first block in
   // the leaf array.
   std::uint32_t index = 0;
-  // Bit 0: set for a leaf. Leaf, bits 1–31: its number of primitives. Inner, bits 1–8: which
+  // Bit 0: set for a leaf. Leaf, bits 1–31: its number of blocks (while building: primitives). Inner, bits 1–8: which
   // children are not empty leaves (bit 1 + k for child k), so that empty ones are skipped
   // without reading them.
   std::uint32_t bits = 0;
@@ -36,7 +36,7 @@ static_assert(sizeof(OctreeNode) == 8);
 
 struct OctreeView {
   const OctreeNode* nodes = nullptr;
-  const SpatialLeaf* leaves = nullptr;  // the leaves' entries, each leaf's together
+  const SpatialLeaf* leaves = nullptr;  // the leaves' blocks, each leaf's together
   Vec3 center;    // of the root cube
   Real half = 0;  // half its side
 };
@@ -52,7 +52,7 @@ struct Octree {
 struct AccelBuildStats;
 Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
 
-// Calls leaf(first, count, leaf_t_lo, leaf_t_hi, t_max) for the entries of every non-empty leaf the
+// Calls leaf(first, count, leaf_t_lo, leaf_t_hi, t_max) for the blocks of every non-empty leaf the
 // ray passes through within (t_min, t_max), nearer leaves first; leaf_t_hi is the plane's t itself
 // (the visitor traversal below hands on next_up of it, spatial.h). leaf may lower t_max and returns
 // true to stop at once; the traversal stops after a leaf once t_max lies within it.
@@ -165,9 +165,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const OctreeView& oct, cons
                                                      Visitor& visit) {
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real lo, Real hi, Real& t_far) {
     const Real leaf_hi = next_up(hi);
-    for (std::uint32_t i = 0; i < count; ++i)
-      if (visit(first[i].prim, lo, leaf_hi, t_far)) return true;
-    return false;
+    return leaf_primitives(first, count, [&](std::uint32_t prim) { return visit(prim, lo, leaf_hi, t_far); });
   };
   traverse_leaves(oct, ray, t_min, t_max, leaf);
 }
@@ -176,9 +174,9 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const OctreeView& oct, cons
 // PrimitiveSet's sphere array.
 STRAHL_HOST_DEVICE inline void octree_nearest(const OctreeView& oct, const kernel::Sphere* spheres, const Ray& ray,
                                               Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    leaf_nearest(first, count, spheres, ray, shear, t_min, t_far, prim, hit);
+    leaf_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
     return false;
   };
   traverse_leaves(oct, ray, t_min, t_max, leaf);
@@ -187,10 +185,10 @@ STRAHL_HOST_DEVICE inline void octree_nearest(const OctreeView& oct, const kerne
 // Any hit in (t_min, t_max)? Stops at the first one.
 STRAHL_HOST_DEVICE inline bool octree_occluded(const OctreeView& oct, const kernel::Sphere* spheres, const Ray& ray,
                                                Real t_min, Real t_max) {
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   bool found = false;
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    return found = leaf_any(first, count, spheres, ray, shear, t_min, t_far);
+    return found = leaf_any(first, count, spheres, br, t_min, t_far);
   };
   traverse_leaves(oct, ray, t_min, t_max, leaf);
   return found;

@@ -52,18 +52,24 @@ bool inside(const Bounds& a, const Bounds& b) {
 
 }  // namespace
 
-SpatialLeaf leaf_entry(const PrimitiveSet& prims, std::uint32_t prim) {
-  SpatialLeaf e;
-  e.prim = prim;
-  if (prims.is_sphere(prim)) {
-    e.is_sphere = 1;
-  } else {
-    const kernel::Triangle& t = prims.triangles[prim - prims.sphere_count];
-    e.v0 = t.v0;
-    e.v1 = t.v1;
-    e.v2 = t.v2;
+std::uint32_t append_leaf(const PrimitiveSet& prims, const std::uint32_t* list, std::uint32_t count,
+                          std::vector<SpatialLeaf>& out) {
+  const std::uint32_t blocks = (count + kernel::kTriangleBlockWidth - 1) / kernel::kTriangleBlockWidth;
+  const std::size_t first = out.size();
+  out.resize(first + blocks);
+  for (std::uint32_t b = 0; b < blocks; ++b) kernel::clear(out[first + b]);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    SpatialLeaf& block = out[first + i / kernel::kTriangleBlockWidth];
+    const int lane = int(i % kernel::kTriangleBlockWidth);
+    const std::uint32_t prim = list[i];
+    if (prims.is_sphere(prim)) {
+      kernel::set_other(block, lane, prim);
+    } else {
+      const kernel::Triangle& t = prims.triangles[prim - prims.sphere_count];
+      kernel::set_triangle(block, lane, t.v0, t.v1, t.v2, prim);
+    }
   }
-  return e;
+  return blocks;
 }
 
 Real bounds_padding(const Bounds& scene) {

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "strahl/accel/primitive.h"
+#include "strahl/accel/triangle_block.h"
 
 namespace strahl {
 
@@ -55,54 +56,72 @@ STRAHL_HOST_DEVICE inline bool clip_to_box(const Bounds& b, const Vec3& origin, 
   return true;
 }
 
-// One primitive in a leaf: a triangle's vertices copied, contiguous with the leaf's others (no
-// indirection through primitive indices and no 88-byte scene triangles in the hot loop), or a
-// sphere (tested from the scene's own array: spheres are few where speed matters). A primitive
-// listed in several leaves is copied into each; the copies are the scene's vertex values, so the
-// tests compute exactly what intersect_primitive() computes.
-struct SpatialLeaf {
-  Vec3 v0, v1, v2;
-  std::uint32_t prim = 0;       // its id in the PrimitiveSet
-  std::uint32_t is_sphere = 0;  // 1: a sphere, v0..v2 unused
-};
-static_assert(sizeof(SpatialLeaf) == 80);
+// A leaf is a run of triangle blocks (accel/triangle_block.h): its triangles' vertices copied, four
+// side by side, contiguous with the leaf's others (no indirection through primitive indices and no
+// 88-byte scene triangles in the hot loop) and tested four at once, bit for bit as
+// intersect_primitive() tests them. Its spheres sit in lanes of their own (the blocks' `other`
+// bits) and are tested from the scene's own array: spheres are few where speed matters. A
+// primitive listed in several leaves is copied into each.
+using SpatialLeaf = kernel::TriangleBlock;
 
-// The nearest hit among a leaf's `count` entries in (t_min, t_far): lowers t_far and sets prim and
-// hit when one is found (the first among equal t, as the visitor loop over the entries finds).
+// The nearest hit among a leaf's `count` blocks in (t_min, t_far): lowers t_far and sets prim and
+// hit when one is found.
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void leaf_nearest(const SpatialLeaf* first, std::uint32_t count,
-                                                         const kernel::Sphere* spheres, const Ray& ray,
-                                                         const kernel::RayShear& shear, Real t_min, Real& t_far,
+                                                         const kernel::Sphere* spheres,
+                                                         const kernel::TriangleBlockRay& br, Real t_min, Real& t_far,
                                                          std::uint32_t& prim, kernel::TriangleHit& hit) {
   for (std::uint32_t i = 0; i < count; ++i) {
-    const SpatialLeaf& p = first[i];
+    const SpatialLeaf& b = first[i];
     kernel::TriangleHit h;
-    if (p.is_sphere) h.t = kernel::intersect(spheres[p.prim], ray, t_min, t_far);
-    else h = kernel::intersect(p.v0, p.v1, p.v2, ray, shear, t_min, t_far);
-    if (h.t < t_far) {
+    int lane = kernel::intersect_nearest(b, br, t_min, t_far, h);
+    if (b.other != 0) {
+      for (int k = 0; k < kernel::kTriangleBlockWidth; ++k) {
+        if (((b.other >> k) & 1u) == 0) continue;
+        const Real t = kernel::intersect(spheres[b.prim[k]], br.ray, t_min, t_far);
+        if (t < kInfinity && (lane < 0 || t < h.t)) {
+          lane = k;
+          h = {t, 0, 0};
+        }
+      }
+    }
+    if (lane >= 0) {
       t_far = h.t;
-      prim = p.prim;
+      prim = b.prim[lane];
       hit = h;
     }
   }
 }
 
-// Is any of a leaf's entries hit in (t_min, t_far)?
+// Is any of a leaf's primitives hit in (t_min, t_far)?
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool leaf_any(const SpatialLeaf* first, std::uint32_t count,
-                                                     const kernel::Sphere* spheres, const Ray& ray,
-                                                     const kernel::RayShear& shear, Real t_min, Real t_far) {
+                                                     const kernel::Sphere* spheres,
+                                                     const kernel::TriangleBlockRay& br, Real t_min, Real t_far) {
   for (std::uint32_t i = 0; i < count; ++i) {
-    const SpatialLeaf& p = first[i];
-    const Real t = p.is_sphere ? kernel::intersect(spheres[p.prim], ray, t_min, t_far)
-                               : kernel::intersect(p.v0, p.v1, p.v2, ray, shear, t_min, t_far).t;
-    if (t < kInfinity) return true;
+    const SpatialLeaf& b = first[i];
+    if (kernel::intersect_any(b, br, t_min, t_far)) return true;
+    if (b.other != 0)
+      for (int k = 0; k < kernel::kTriangleBlockWidth; ++k)
+        if (((b.other >> k) & 1u) && kernel::intersect(spheres[b.prim[k]], br.ray, t_min, t_far) < kInfinity)
+          return true;
   }
+  return false;
+}
+
+// Calls visit(prim) for each primitive of a leaf's blocks, in order; stops when it returns true.
+template <class Visit>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool leaf_primitives(const SpatialLeaf* first, std::uint32_t count,
+                                                            Visit&& visit) {
+  for (std::uint32_t i = 0; i < count; ++i)
+    for (int k = 0; k < kernel::kTriangleBlockWidth; ++k)
+      if (first[i].prim[k] != kernel::kTriangleBlockEmpty && visit(first[i].prim[k])) return true;
   return false;
 }
 
 // ---- for building (host code) ----
 
-// The leaf entry of one primitive.
-SpatialLeaf leaf_entry(const PrimitiveSet& prims, std::uint32_t prim);
+// Appends the blocks of a leaf listing prims[0..count), filled in that order; returns how many.
+std::uint32_t append_leaf(const PrimitiveSet& prims, const std::uint32_t* list, std::uint32_t count,
+                          std::vector<SpatialLeaf>& out);
 
 // Primitives' bounds are grown by this fraction of the scene's largest coordinate magnitude:
 // far above the rounding of hit points (~1e-16 relative), far below any feature worth splitting.
