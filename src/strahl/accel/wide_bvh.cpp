@@ -1,6 +1,6 @@
 #include "strahl/accel/wide_bvh.h"
 
-#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -19,7 +19,7 @@ Real surface_area(const Bounds& b) {
 }
 
 // The children of a wide node: a binary node's two children, then repeatedly the inner one with
-// the largest surface area replaced by its own two children, until there are four.
+// the largest surface area replaced by its own two children, until there are kWideBvhWidth.
 int gather_children(const Bvh& bin, std::uint32_t at, std::uint32_t out[kWideBvhWidth]) {
   int n = 2;
   out[0] = bin.nodes[at].offset;
@@ -133,8 +133,7 @@ struct Collapser {
       else fill(children[k], sub_node[k], sub_leaf[k]);
     };
     if (sizes[at].leaves > 1024) {  // blocks, about 4096 primitives
-      tbb::parallel_invoke([&] { fill_child(0); }, [&] { fill_child(1); },
-                           [&] { if (n > 2) fill_child(2); }, [&] { if (n > 3) fill_child(3); });
+      tbb::parallel_for(0, n, fill_child);
     } else {
       for (int k = 0; k < n; ++k) fill_child(k);
     }
