@@ -205,6 +205,7 @@ TEST(TriangleBlock, EmptyAndOtherLanesNeverHit) {
   kernel::set_triangle(b, 1, {-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, 42);
   kernel::set_other(b, 2, 5);
   EXPECT_EQ(b.other, 4u);
+  EXPECT_EQ(b.triangles, 2u);
   EXPECT_EQ(b.prim[0], kernel::kTriangleBlockEmpty);
   const Vec3 dirs[] = {{0, 0, 1}, {0, 0, -1}, {0.6, 0, 0.8}, {0, 1, 0}};
   for (const Vec3& d : dirs) {

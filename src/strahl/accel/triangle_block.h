@@ -41,7 +41,8 @@ struct alignas(64) TriangleBlock {
   Real v[3][3][kTriangleBlockWidth];          // [vertex 0..2][axis x, y, z][lane]
   std::uint32_t prim[kTriangleBlockWidth];    // the lane's primitive id, kTriangleBlockEmpty when empty
   std::uint32_t other = 0;                    // bit per lane: not a triangle (vertices NaN), the caller's
-  std::uint32_t pad[3] = {0, 0, 0};
+  std::uint32_t triangles = 0;                // bit per lane holding a triangle (0: the test is skipped)
+  std::uint32_t pad[2] = {0, 0};
 };
 static_assert(sizeof(TriangleBlock) == 320);
 
@@ -52,6 +53,7 @@ inline void clear(TriangleBlock& b) {
       for (Real& x : axis) x = std::numeric_limits<Real>::quiet_NaN();
   for (std::uint32_t& p : b.prim) p = kTriangleBlockEmpty;
   b.other = 0;
+  b.triangles = 0;
 }
 
 inline void set_triangle(TriangleBlock& b, int lane, const Vec3& v0, const Vec3& v1, const Vec3& v2,
@@ -64,6 +66,7 @@ inline void set_triangle(TriangleBlock& b, int lane, const Vec3& v0, const Vec3&
   }
   b.prim[lane] = prim;
   b.other &= ~(1u << lane);
+  b.triangles |= 1u << lane;
 }
 
 // A lane the triangle test skips (NaN vertices) but that stands for `prim` (a sphere, say).
@@ -72,6 +75,7 @@ inline void set_other(TriangleBlock& b, int lane, std::uint32_t prim) {
     for (auto& axis : vertex) axis[lane] = std::numeric_limits<Real>::quiet_NaN();
   b.prim[lane] = prim;
   b.other |= 1u << lane;
+  b.triangles &= ~(1u << lane);
 }
 
 STRAHL_HOST_DEVICE inline Vec3 vertex(const TriangleBlock& b, int k, int lane) {
@@ -153,6 +157,7 @@ inline Lanes test(const TriangleBlock& b, const TriangleBlockRay& r, Real t_min,
 // among equal t) and sets `hit`, or returns −1 and leaves `hit` alone.
 STRAHL_HOST_DEVICE inline int intersect_nearest(const TriangleBlock& b, const TriangleBlockRay& r, Real t_min,
                                                 Real t_max, TriangleHit& hit) {
+  if (b.triangles == 0) return -1;  // spheres only (the lecture's scene)
 #if defined(STRAHL_TRIANGLE_BLOCK_AVX)
   const triangle_block_detail::Lanes l = triangle_block_detail::test(b, r, t_min, t_max);
   if (l.mask == 0) return -1;
@@ -183,6 +188,7 @@ STRAHL_HOST_DEVICE inline int intersect_nearest(const TriangleBlock& b, const Tr
 // Is any of the block's triangles hit in (t_min, t_max)?
 STRAHL_HOST_DEVICE inline bool intersect_any(const TriangleBlock& b, const TriangleBlockRay& r, Real t_min,
                                              Real t_max) {
+  if (b.triangles == 0) return false;
 #if defined(STRAHL_TRIANGLE_BLOCK_AVX)
   return triangle_block_detail::test(b, r, t_min, t_max).mask != 0;
 #else

@@ -283,7 +283,7 @@ namespace wide_bvh_detail {
 // The spheres of a block (rare: the `other` lanes), merged into the block's triangle result as a
 // scalar loop over the lanes in order with `t < t_far` would: the nearest, the lowest lane among
 // equal t. `lane`, `hit` hold the triangles' result (lane −1: none) and are updated.
-STRAHL_HOST_DEVICE STRAHL_NOINLINE inline void block_spheres(const kernel::TriangleBlock& b, const kernel::Sphere* spheres,
+STRAHL_HOST_DEVICE inline void block_spheres(const kernel::TriangleBlock& b, const kernel::Sphere* spheres,
                                                             const Ray& ray, Real t_min, Real t_far, int& lane,
                                                             kernel::TriangleHit& hit) {
   for (int k = 0; k < kernel::kTriangleBlockWidth; ++k) {
