@@ -85,7 +85,12 @@ template <class Visitor>
 STRAHL_HOST_DEVICE inline void traverse(const AccelView& a, const Ray& ray, Real t_min, Real t_max, Visitor& visit) {
   switch (a.kind) {
     case AccelKind::Naive: traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit); break;
-    case AccelKind::Bvh: traverse(a.bvh, ray, t_min, t_max, visit); break;
+    case AccelKind::Bvh:
+      // A tree that is one leaf holds every primitive (tiny scenes: the lecture's five spheres):
+      // the naive loop over them is the same search without the blocks' bookkeeping.
+      if (a.bvh.root_leaf_count > 0) traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit);
+      else traverse(a.bvh, ray, t_min, t_max, visit);
+      break;
     case AccelKind::KdTree: traverse(a.kdtree, ray, t_min, t_max, visit); break;
     case AccelKind::Octree: traverse(a.octree, ray, t_min, t_max, visit); break;
 #if defined(STRAHL_HAVE_EMBREE)
@@ -109,7 +114,7 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
   if (a.kind == AccelKind::Embree) return embree_nearest_hit(a, ray, t_min, t_max);
 #endif
   NearestHit result;
-  if (a.kind == AccelKind::Bvh) {  // leaf copies of the triangles: no visitor, no indirection
+  if (a.kind == AccelKind::Bvh && a.bvh.root_leaf_count == 0) {  // leaf copies: no visitor, no indirection
     wide_bvh_nearest(a.bvh, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
@@ -140,7 +145,7 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
 #if defined(STRAHL_HAVE_EMBREE) && !defined(__CUDACC__)
   if (a.kind == AccelKind::Embree) return embree_occluded(a, ray, t_min, t_max);
 #endif
-  if (a.kind == AccelKind::Bvh) return wide_bvh_occluded(a.bvh, a.prims.spheres, ray, t_min, t_max);
+  if (a.kind == AccelKind::Bvh && a.bvh.root_leaf_count == 0) return wide_bvh_occluded(a.bvh, a.prims.spheres, ray, t_min, t_max);
   if (a.kind == AccelKind::KdTree) return kdtree_occluded(a.kdtree, a.prims.spheres, ray, t_min, t_max);
   if (a.kind == AccelKind::Octree) return octree_occluded(a.octree, a.prims.spheres, ray, t_min, t_max);
   bool found = false;
