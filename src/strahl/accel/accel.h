@@ -119,11 +119,11 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
     return result;
   }
   if (a.kind == AccelKind::KdTree) {  // the same, with each leaf's interval unused
-    kdtree_nearest(a.kdtree, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
+    spatial_nearest(a.kdtree, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
   if (a.kind == AccelKind::Octree) {
-    octree_nearest(a.octree, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
+    spatial_nearest(a.octree, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
   const kernel::RayShear shear = kernel::ray_shear(ray.direction);
@@ -146,8 +146,8 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
   if (a.kind == AccelKind::Embree) return embree_occluded(a, ray, t_min, t_max);
 #endif
   if (a.kind == AccelKind::Bvh && a.bvh.root_leaf_count == 0) return wide_bvh_occluded(a.bvh, a.prims.spheres, ray, t_min, t_max);
-  if (a.kind == AccelKind::KdTree) return kdtree_occluded(a.kdtree, a.prims.spheres, ray, t_min, t_max);
-  if (a.kind == AccelKind::Octree) return octree_occluded(a.octree, a.prims.spheres, ray, t_min, t_max);
+  if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims.spheres, ray, t_min, t_max);
+  if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims.spheres, ray, t_min, t_max);
   bool found = false;
   const kernel::RayShear shear = kernel::ray_shear(ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {

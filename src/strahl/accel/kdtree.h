@@ -111,39 +111,12 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const KdTreeView& kd
 
 // Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for the primitives of every leaf the ray
 // passes through within (t_min, t_max), nearer leaves first, and stops after a leaf once t_max
-// (which the visitor may lower) lies within it; see traversal.h for the visitor contract.
+// (which the visitor may lower) lies within it; see traversal.h for the visitor contract. The
+// nearest-hit and any-hit queries are spatial_nearest / spatial_occluded (spatial.h).
 template <class Visitor>
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const KdTreeView& kd, const Ray& ray, Real t_min, Real& t_max,
                                                      Visitor& visit) {
-  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real lo, Real hi, Real& t_far) {
-    const Real leaf_hi = next_up(hi);
-    return leaf_primitives(first, count, [&](std::uint32_t prim) { return visit(prim, lo, leaf_hi, t_far); });
-  };
-  traverse_leaves(kd, ray, t_min, t_max, leaf);
-}
-
-// The nearest hit in (t_min, t_max): its id and hit, t = kInfinity when none. `spheres` is the
-// PrimitiveSet's sphere array.
-STRAHL_HOST_DEVICE inline void kdtree_nearest(const KdTreeView& kd, const kernel::Sphere* spheres, const Ray& ray,
-                                              Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
-  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
-  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    leaf_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
-    return false;
-  };
-  traverse_leaves(kd, ray, t_min, t_max, leaf);
-}
-
-// Any hit in (t_min, t_max)? Stops at the first one.
-STRAHL_HOST_DEVICE inline bool kdtree_occluded(const KdTreeView& kd, const kernel::Sphere* spheres, const Ray& ray,
-                                               Real t_min, Real t_max) {
-  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
-  bool found = false;
-  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    return found = leaf_any(first, count, spheres, br, t_min, t_far);
-  };
-  traverse_leaves(kd, ray, t_min, t_max, leaf);
-  return found;
+  spatial_traverse(kd, ray, t_min, t_max, visit);
 }
 
 }  // namespace strahl

@@ -117,6 +117,47 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool leaf_primitives(const SpatialLeaf* f
   return false;
 }
 
+// The queries of the kd-tree and the octree, the same for both over their traverse_leaves(view,
+// ray, t_min, t_max, leaf), which calls leaf(first, count, lo, hi, t_far) for each leaf the ray
+// passes through, nearer leaves first, with the leaf's own interval [lo, hi].
+
+// Visitor traversal (traversal.h): each primitive with its leaf's interval [lo, next_up(hi)).
+template <class View, class Visitor>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void spatial_traverse(const View& view, const Ray& ray, Real t_min, Real& t_max,
+                                                             Visitor& visit) {
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real lo, Real hi, Real& t_far) {
+    const Real leaf_hi = next_up(hi);
+    return leaf_primitives(first, count, [&](std::uint32_t prim) { return visit(prim, lo, leaf_hi, t_far); });
+  };
+  traverse_leaves(view, ray, t_min, t_max, leaf);
+}
+
+// The nearest hit in (t_min, t_max): its id and hit, t = kInfinity when none. `spheres` is the
+// PrimitiveSet's sphere array.
+template <class View>
+STRAHL_HOST_DEVICE inline void spatial_nearest(const View& view, const kernel::Sphere* spheres, const Ray& ray,
+                                               Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
+    leaf_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
+    return false;
+  };
+  traverse_leaves(view, ray, t_min, t_max, leaf);
+}
+
+// Any hit in (t_min, t_max)? Stops at the first one.
+template <class View>
+STRAHL_HOST_DEVICE inline bool spatial_occluded(const View& view, const kernel::Sphere* spheres, const Ray& ray,
+                                                Real t_min, Real t_max) {
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
+  bool found = false;
+  auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
+    return found = leaf_any(first, count, spheres, br, t_min, t_far);
+  };
+  traverse_leaves(view, ray, t_min, t_max, leaf);
+  return found;
+}
+
 // ---- for building (host code) ----
 
 // Appends the blocks of a leaf listing prims[0..count), filled in that order; returns how many.
