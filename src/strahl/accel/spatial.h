@@ -64,49 +64,6 @@ STRAHL_HOST_DEVICE inline bool clip_to_box(const Bounds& b, const Vec3& origin, 
 // primitive listed in several leaves is copied into each.
 using SpatialLeaf = kernel::TriangleBlock;
 
-// The nearest hit among a leaf's `count` blocks in (t_min, t_far): lowers t_far and sets prim and
-// hit when one is found.
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void leaf_nearest(const SpatialLeaf* first, std::uint32_t count,
-                                                         const kernel::Sphere* spheres,
-                                                         const kernel::TriangleBlockRay& br, Real t_min, Real& t_far,
-                                                         std::uint32_t& prim, kernel::TriangleHit& hit) {
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const SpatialLeaf& b = first[i];
-    kernel::TriangleHit h;
-    int lane = kernel::intersect_nearest(b, br, t_min, t_far, h);
-    if (b.other != 0) {
-      for (int k = 0; k < kernel::kTriangleBlockWidth; ++k) {
-        if (((b.other >> k) & 1u) == 0) continue;
-        const Real t = kernel::intersect(spheres[b.prim[k]], br.ray, t_min, t_far);
-        if (t < kInfinity && (lane < 0 || t < h.t)) {
-          lane = k;
-          h = {t, 0, 0};
-        }
-      }
-    }
-    if (lane >= 0) {
-      t_far = h.t;
-      prim = b.prim[lane];
-      hit = h;
-    }
-  }
-}
-
-// Is any of a leaf's primitives hit in (t_min, t_far)?
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool leaf_any(const SpatialLeaf* first, std::uint32_t count,
-                                                     const kernel::Sphere* spheres,
-                                                     const kernel::TriangleBlockRay& br, Real t_min, Real t_far) {
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const SpatialLeaf& b = first[i];
-    if (kernel::intersect_any(b, br, t_min, t_far)) return true;
-    if (b.other != 0)
-      for (int k = 0; k < kernel::kTriangleBlockWidth; ++k)
-        if (((b.other >> k) & 1u) && kernel::intersect(spheres[b.prim[k]], br.ray, t_min, t_far) < kInfinity)
-          return true;
-  }
-  return false;
-}
-
 // Calls visit(prim) for each primitive of a leaf's blocks, in order; stops when it returns true.
 template <class Visit>
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool leaf_primitives(const SpatialLeaf* first, std::uint32_t count,
@@ -139,7 +96,7 @@ STRAHL_HOST_DEVICE inline void spatial_nearest(const View& view, const kernel::S
                                                Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
   const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    leaf_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
+    kernel::blocks_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
     return false;
   };
   traverse_leaves(view, ray, t_min, t_max, leaf);
@@ -152,7 +109,7 @@ STRAHL_HOST_DEVICE inline bool spatial_occluded(const View& view, const kernel::
   const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   bool found = false;
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    return found = leaf_any(first, count, spheres, br, t_min, t_far);
+    return found = kernel::blocks_any(first, count, spheres, br, t_min, t_far);
   };
   traverse_leaves(view, ray, t_min, t_max, leaf);
   return found;

@@ -24,6 +24,7 @@
 #include <cstring>
 #include <limits>
 
+#include "strahl/geometry/sphere.h"
 #include "strahl/geometry/triangle.h"
 
 #if !defined(__CUDACC__) && defined(__AVX__)
@@ -197,6 +198,52 @@ STRAHL_HOST_DEVICE inline bool intersect_any(const TriangleBlock& b, const Trian
       return true;
   return false;
 #endif
+}
+
+// ---- runs of blocks (the leaves of every structure) ----
+
+// The nearest hit among `count` consecutive blocks in (t_min, t_far), their spheres (the `other`
+// lanes, tested from the scene's array `spheres`) included: lowers t_far and sets prim and hit
+// when one is found. Within a block the answer is what a scalar loop over the lanes in order with
+// `t < t_far` gives: the nearest, the lowest lane among equal t.
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void blocks_nearest(const TriangleBlock* first, std::uint32_t count,
+                                                           const Sphere* spheres, const TriangleBlockRay& br,
+                                                           Real t_min, Real& t_far, std::uint32_t& prim,
+                                                           TriangleHit& hit) {
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const TriangleBlock& b = first[i];
+    TriangleHit h;
+    int lane = intersect_nearest(b, br, t_min, t_far, h);
+    if (b.other != 0) {
+      for (int k = 0; k < kTriangleBlockWidth; ++k) {
+        if (((b.other >> k) & 1u) == 0) continue;
+        const Real t = intersect(spheres[b.prim[k]], br.ray, t_min, t_far);
+        if (t < kInfinity && (lane < 0 || t < h.t || (t == h.t && k < lane))) {
+          lane = k;
+          h = {t, 0, 0};
+        }
+      }
+    }
+    if (lane >= 0) {
+      t_far = h.t;
+      prim = b.prim[lane];
+      hit = h;
+    }
+  }
+}
+
+// Is any primitive of `count` consecutive blocks (spheres included) hit in (t_min, t_far)?
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool blocks_any(const TriangleBlock* first, std::uint32_t count,
+                                                       const Sphere* spheres, const TriangleBlockRay& br, Real t_min,
+                                                       Real t_far) {
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const TriangleBlock& b = first[i];
+    if (intersect_any(b, br, t_min, t_far)) return true;
+    if (b.other != 0)
+      for (int k = 0; k < kTriangleBlockWidth; ++k)
+        if (((b.other >> k) & 1u) && intersect(spheres[b.prim[k]], br.ray, t_min, t_far) < kInfinity) return true;
+  }
+  return false;
 }
 
 }  // namespace strahl::kernel

@@ -278,43 +278,13 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const WideBvhView& bvh, con
   traverse_leaves(bvh, ray, t_min, t_max, leaf);
 }
 
-namespace wide_bvh_detail {
-
-// The spheres of a block (rare: the `other` lanes), merged into the block's triangle result as a
-// scalar loop over the lanes in order with `t < t_far` would: the nearest, the lowest lane among
-// equal t. `lane`, `hit` hold the triangles' result (lane −1: none) and are updated.
-STRAHL_HOST_DEVICE inline void block_spheres(const kernel::TriangleBlock& b, const kernel::Sphere* spheres,
-                                                            const Ray& ray, Real t_min, Real t_far, int& lane,
-                                                            kernel::TriangleHit& hit) {
-  for (int k = 0; k < kernel::kTriangleBlockWidth; ++k) {
-    if (((b.other >> k) & 1) == 0) continue;
-    const Real t = kernel::intersect(spheres[b.prim[k]], ray, t_min, t_far);
-    if (t < kInfinity && (lane < 0 || t < hit.t || (t == hit.t && k < lane))) {
-      lane = k;
-      hit = {t, 0, 0};
-    }
-  }
-}
-
-}  // namespace wide_bvh_detail
-
 // The nearest hit in (t_min, t_max) among the leaves' primitives: its id and hit, t = kInfinity
 // when none. `spheres` is the PrimitiveSet's sphere array.
 STRAHL_HOST_DEVICE inline void wide_bvh_nearest(const WideBvhView& bvh, const kernel::Sphere* spheres, const Ray& ray,
                                                 Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
   const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const WideBvhLeaf& b = first[i];
-      kernel::TriangleHit h;
-      int lane = kernel::intersect_nearest(b, br, t_min, t_far, h);
-      if (b.other != 0) wide_bvh_detail::block_spheres(b, spheres, ray, t_min, t_far, lane, h);
-      if (lane >= 0) {
-        t_far = h.t;
-        prim = b.prim[lane];
-        hit = h;
-      }
-    }
+    kernel::blocks_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
     return false;
   };
   traverse_leaves(bvh, ray, t_min, t_max, leaf);
@@ -326,15 +296,7 @@ STRAHL_HOST_DEVICE inline bool wide_bvh_occluded(const WideBvhView& bvh, const k
   const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   bool found = false;
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const WideBvhLeaf& b = first[i];
-      if (kernel::intersect_any(b, br, t_min, t_far)) return found = true;
-      if (b.other != 0)
-        for (int k = 0; k < kernel::kTriangleBlockWidth; ++k)
-          if (((b.other >> k) & 1) && kernel::intersect(spheres[b.prim[k]], ray, t_min, t_far) < kInfinity)
-            return found = true;
-    }
-    return false;
+    return found = kernel::blocks_any(first, count, spheres, br, t_min, t_far);
   };
   traverse_leaves(bvh, ray, t_min, t_max, leaf);
   return found;
