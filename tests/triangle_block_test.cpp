@@ -13,27 +13,12 @@
 #include <vector>
 
 #include "strahl/accel/triangle_block.h"
+#include "test_random.h"
 
 namespace strahl {
 namespace {
 
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : rng_(seed) {}
-  Real uniform(Real lo = 0, Real hi = 1) { return lo + (hi - lo) * Real(rng_() >> 11) * 0x1.0p-53; }
-  int below(int n) { return int(rng_() % std::uint64_t(n)); }
-  Vec3 point(Real lo, Real hi) { return {uniform(lo, hi), uniform(lo, hi), uniform(lo, hi)}; }
-  Vec3 direction() {
-    for (;;) {
-      const Vec3 v = point(-1, 1);
-      const Real l2 = length_squared(v);
-      if (l2 > 1e-6 && l2 <= 1) return v / std::sqrt(l2);
-    }
-  }
-
- private:
-  std::mt19937_64 rng_;
-};
+using test::Random;
 
 struct Tri {
   Vec3 v0, v1, v2;

@@ -13,25 +13,12 @@
 #include "strahl/accel/accel.h"
 #include "strahl/geometry/sphere.h"
 #include "strahl/geometry/triangle.h"
+#include "test_random.h"
 
 namespace strahl {
 namespace {
 
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : rng_(seed) {}
-  Real uniform(Real lo = 0, Real hi = 1) { return lo + (hi - lo) * Real(rng_() >> 11) * 0x1.0p-53; }
-  Vec3 direction() {
-    for (;;) {
-      const Vec3 v(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-      const Real l2 = length_squared(v);
-      if (l2 > 1e-6 && l2 <= 1) return v / std::sqrt(l2);
-    }
-  }
-
- private:
-  std::mt19937_64 rng_;
-};
+using test::Random;
 
 // A height field over an n×n grid of quads, each cut into two triangles along a diagonal chosen at
 // random, with irregular heights and (x, z) spacing, placed at `offset` and scaled by `scale` (so
