@@ -463,12 +463,16 @@ TEST(AccelCrossCheck, BuildStatistics) {
       EXPECT_GT(st.bytes, 0u);
     }
     if (k == AccelKind::KdTree) {
-      EXPECT_EQ(st.bytes, a.kdtree.nodes.size() * 8 + a.kdtree.leaves.size() * sizeof(SpatialLeaf));
-      EXPECT_EQ(lanes_in_use(a.kdtree.leaves), st.primitive_references);
+      EXPECT_EQ(st.bytes, a.kdtree.nodes.size() * 8 + a.kdtree.leaves.size() * sizeof(KdLeaf) +
+                              a.kdtree.blocks.size() * sizeof(SpatialLeaf));
+      EXPECT_EQ(a.kdtree.leaves.size(), st.leaves);
+      EXPECT_EQ(lanes_in_use(a.kdtree.blocks), st.primitive_references);
     }
     if (k == AccelKind::Octree) {
-      EXPECT_EQ(st.bytes, a.octree.nodes.size() * 8 + a.octree.leaves.size() * sizeof(SpatialLeaf));
-      EXPECT_EQ(lanes_in_use(a.octree.leaves), st.primitive_references);
+      EXPECT_EQ(st.bytes, a.octree.nodes.size() * sizeof(OctreeNode) + a.octree.leaves.size() * sizeof(OctreeLeaf) +
+                              a.octree.blocks.size() * sizeof(SpatialLeaf));
+      EXPECT_EQ(a.octree.leaves.size(), st.leaves);
+      EXPECT_EQ(lanes_in_use(a.octree.blocks), st.primitive_references);
     }
   }
 }
@@ -483,7 +487,9 @@ TEST(AccelCrossCheck, KdTreeBuildIndependentOfThreads) {
   ASSERT_EQ(serial.nodes.size(), parallel.nodes.size());
   EXPECT_EQ(std::memcmp(serial.nodes.data(), parallel.nodes.data(), serial.nodes.size() * sizeof(KdNode)), 0);
   ASSERT_EQ(serial.leaves.size(), parallel.leaves.size());
-  EXPECT_EQ(std::memcmp(serial.leaves.data(), parallel.leaves.data(), serial.leaves.size() * sizeof(SpatialLeaf)), 0);
+  EXPECT_EQ(std::memcmp(serial.leaves.data(), parallel.leaves.data(), serial.leaves.size() * sizeof(KdLeaf)), 0);
+  ASSERT_EQ(serial.blocks.size(), parallel.blocks.size());
+  EXPECT_EQ(std::memcmp(serial.blocks.data(), parallel.blocks.data(), serial.blocks.size() * sizeof(SpatialLeaf)), 0);
 }
 
 // Whole renders (shadows through transparent spheres, reflection, refraction, meshes): every

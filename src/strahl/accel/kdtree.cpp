@@ -279,6 +279,67 @@ struct Builder {
   }
 };
 
+// Fills in every leaf's box and ropes (KdLeaf), walking down from the root with the box of the
+// node at hand and the ropes of its faces.
+struct Linker {
+  const std::vector<KdNode>& nodes;
+  std::vector<KdLeaf>& leaves;
+
+  // The deepest node below `target` (on the other side of face f of a leaf with box `face`) whose
+  // box still holds the whole face, chosen at each node as the traversal chooses for a ray that
+  // leaves by the face: where the ray leaves by an edge and the traversal would already count a
+  // plane through that edge as crossed, this may lead to a leaf the ray only touches, which the
+  // traversal passes over (kdtree.h); never to one beyond where the ray is.
+  std::uint32_t push_down(std::uint32_t target, int f, const float (&face)[6]) const {
+    if (target == kNoRope) return target;
+    const int a = f / 2;
+    const bool beyond_upper = f % 2 != 0;  // the face is the leaf's upper one: target lies above
+    for (;;) {
+      const KdNode& n = nodes[target];
+      if (n.is_leaf()) return target;
+      const int axis = int(n.axis());
+      const float s = n.split;
+      const std::uint32_t below = target + 1, above = n.above_child();
+      if (axis == a) {
+        // The child next to the face; a plane in the face itself is crossed on leaving by it.
+        target = beyond_upper ? (s <= face[f] ? above : below) : (s >= face[f] ? below : above);
+      } else if (s >= face[2 * axis + 1] && !(s <= face[2 * axis])) {
+        target = below;
+      } else if (s <= face[2 * axis] && !(s >= face[2 * axis + 1])) {
+        target = above;
+      } else {
+        return target;  // the plane cuts the face
+      }
+    }
+  }
+
+  void link(std::uint32_t node, float (&face)[6], std::uint32_t (&rope)[6]) {
+    const KdNode n = nodes[node];
+    if (n.is_leaf()) {
+      KdLeaf& leaf = leaves[n.prims];
+      for (int f = 0; f < 6; ++f) {
+        leaf.face[f] = face[f];
+        leaf.rope[f] = push_down(rope[f], f, face);
+      }
+      return;
+    }
+    const int lower = 2 * int(n.axis()), upper = lower + 1;
+    const std::uint32_t below = node + 1, above = n.above_child();
+    const float saved_face[2] = {face[lower], face[upper]};
+    const std::uint32_t saved_rope[2] = {rope[lower], rope[upper]};
+    face[upper] = n.split;
+    rope[upper] = above;
+    link(below, face, rope);
+    face[upper] = saved_face[1];
+    rope[upper] = saved_rope[1];
+    face[lower] = n.split;
+    rope[lower] = below;
+    link(above, face, rope);
+    face[lower] = saved_face[0];
+    rope[lower] = saved_rope[0];
+  }
+};
+
 }  // namespace
 
 KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
@@ -318,23 +379,33 @@ KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     builder.build(tree, kd.bounds, std::move(events), n, 0, 0);
     kd.nodes = std::move(tree.nodes);
     kd.nodes.shrink_to_fit();
-    // The leaves' blocks, filled in node order (depth first: neighbouring leaves lie together).
+    // The leaves and their blocks, in node order (depth first: neighbouring leaves lie together).
+    kd.leaves.reserve(tree.leaves);
     for (KdNode& node : kd.nodes) {
       if (!node.is_leaf()) continue;
       const std::uint32_t count = node.count();
-      const std::uint32_t first = std::uint32_t(kd.leaves.size());
-      const std::uint32_t n_blocks =
-          append_leaf(prims, count == 1 ? &node.prims : tree.refs.data() + node.prims, count, kd.leaves);
-      node.prims = count > 0 ? first : 0;
-      node.bits = 3u | n_blocks << 2;
+      KdLeaf leaf{};
+      leaf.first = std::uint32_t(kd.blocks.size());
+      leaf.count = append_leaf(prims, count == 1 ? &node.prims : tree.refs.data() + node.prims, count, kd.blocks);
+      node.prims = std::uint32_t(kd.leaves.size());
+      node.bits = 3u | leaf.count << 2;
+      kd.leaves.push_back(leaf);
     }
-    kd.leaves.shrink_to_fit();
+    kd.blocks.shrink_to_fit();
+    float face[6];
+    std::uint32_t rope[6];
+    for (int f = 0; f < 6; ++f) {
+      face[f] = f % 2 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
+      rope[f] = kNoRope;
+    }
+    Linker{kd.nodes, kd.leaves}.link(0, face, rope);
     stats.leaves = tree.leaves;
     stats.max_depth = tree.max_depth;
     stats.primitive_references = tree.references;
   }
   stats.nodes = kd.nodes.size();
-  stats.bytes = kd.nodes.size() * sizeof(KdNode) + kd.leaves.size() * sizeof(SpatialLeaf);
+  stats.bytes =
+      kd.nodes.size() * sizeof(KdNode) + kd.leaves.size() * sizeof(KdLeaf) + kd.blocks.size() * sizeof(SpatialLeaf);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats_out) *stats_out = stats;
   return kd;

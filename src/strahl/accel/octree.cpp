@@ -98,17 +98,87 @@ struct Builder {
     if (first + 8 > kMaxIndex) throw std::length_error("octree: too many nodes");
     nodes.resize(first + 8);
     OctreeNode inner;
+    inner.center[0] = center.x;
+    inner.center[1] = center.y;
+    inner.center[2] = center.z;
     inner.index = std::uint32_t(first);
     for (std::uint32_t k = 0; k < 8; ++k) {
       Vec3 c;
       c.x = center.x + (k & 1u ? child_half : -child_half);
       c.y = center.y + (k & 2u ? child_half : -child_half);
       c.z = center.z + (k & 4u ? child_half : -child_half);
-      const OctreeNode child = build(c, child_half, std::move(children[k]), depth + 1, bad_refines);
-      nodes[first + k] = child;
-      if (!(child.is_leaf() && child.count() == 0)) inner.bits |= 2u << k;
+      nodes[first + k] = build(c, child_half, std::move(children[k]), depth + 1, bad_refines);
     }
     return inner;
+  }
+};
+
+// Fills in every leaf's box and ropes (OctreeLeaf, spatial.h), walking down from the root with the
+// box of the node at hand and the ropes of its faces.
+struct Linker {
+  const std::vector<OctreeNode>& nodes;
+  std::vector<OctreeLeaf>& leaves;
+
+  // The deepest node below `target` (on the other side of face f of a leaf with box `face`) whose
+  // cube still holds the whole face, each octant chosen as the traversal chooses it for a ray
+  // leaving by the face, or (where that ray leaves by an edge and the traversal counts a centre
+  // plane through it as crossed already) one the ray only touches (spatial.h).
+  std::uint32_t push_down(std::uint32_t target, int f, const Real (&face)[6]) const {
+    if (target == kNoRope) return target;
+    const int a = f / 2;
+    const bool beyond_upper = f % 2 != 0;  // the face is the leaf's upper one: target lies above
+    for (;;) {
+      const OctreeNode& n = nodes[target];
+      if (n.is_leaf()) return target;
+      std::uint32_t octant = 0;
+      for (int b = 0; b < 3; ++b) {
+        const Real c = n.center[b];
+        bool above;
+        if (b == a) {
+          // The octant next to the face; a centre plane in the face itself is crossed on leaving by it.
+          above = beyond_upper ? c <= face[f] : !(c >= face[f]);
+        } else if (c >= face[2 * b + 1] && !(c <= face[2 * b])) {
+          above = false;
+        } else if (c <= face[2 * b] && !(c >= face[2 * b + 1])) {
+          above = true;
+        } else {
+          return target;  // the plane cuts the face
+        }
+        octant |= std::uint32_t(above) << b;
+      }
+      target = n.index + octant;
+    }
+  }
+
+  void link(std::uint32_t node, Real (&face)[6], std::uint32_t (&rope)[6]) {
+    const OctreeNode& n = nodes[node];
+    if (n.is_leaf()) {
+      OctreeLeaf& leaf = leaves[n.index];
+      for (int f = 0; f < 6; ++f) {
+        leaf.face[f] = face[f];
+        leaf.rope[f] = push_down(rope[f], f, face);
+      }
+      return;
+    }
+    for (std::uint32_t k = 0; k < 8; ++k) {
+      Real child_face[6];
+      std::uint32_t child_rope[6];
+      for (int a = 0; a < 3; ++a) {
+        const std::uint32_t sibling = n.index + (k ^ (1u << a));
+        if ((k >> a) & 1u) {
+          child_face[2 * a] = n.center[a];
+          child_rope[2 * a] = sibling;
+          child_face[2 * a + 1] = face[2 * a + 1];
+          child_rope[2 * a + 1] = rope[2 * a + 1];
+        } else {
+          child_face[2 * a] = face[2 * a];
+          child_rope[2 * a] = rope[2 * a];
+          child_face[2 * a + 1] = n.center[a];
+          child_rope[2 * a + 1] = sibling;
+        }
+      }
+      link(n.index + k, child_face, child_rope);
+    }
   }
 };
 
@@ -136,23 +206,34 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     builder.nodes[0] = root;
     oct.nodes = std::move(builder.nodes);
     oct.nodes.shrink_to_fit();
-    // The leaves' blocks, filled in node order (siblings' leaves lie together).
+    // The leaves and their blocks, in node order (siblings' leaves lie together).
+    oct.leaves.reserve(builder.stats.leaves);
     for (OctreeNode& node : oct.nodes) {
       if (!node.is_leaf()) continue;
       const std::uint32_t count = node.count();
-      const std::uint32_t first = std::uint32_t(oct.leaves.size());
-      const std::uint32_t n_blocks =
-          append_leaf(prims, count == 1 ? &node.index : builder.refs.data() + node.index, count, oct.leaves);
-      node.index = count > 0 ? first : 0;
-      node.bits = 1u | n_blocks << 1;
+      OctreeLeaf leaf{};
+      leaf.first = std::uint32_t(oct.blocks.size());
+      leaf.count =
+          append_leaf(prims, count == 1 ? &node.index : builder.refs.data() + node.index, count, oct.blocks);
+      node.index = std::uint32_t(oct.leaves.size());
+      node.bits = 1u | leaf.count << 1;
+      oct.leaves.push_back(leaf);
     }
-    oct.leaves.shrink_to_fit();
+    oct.blocks.shrink_to_fit();
+    Real face[6];
+    std::uint32_t rope[6];
+    for (int f = 0; f < 6; ++f) {
+      face[f] = f % 2 ? kInfinity : -kInfinity;
+      rope[f] = kNoRope;
+    }
+    Linker{oct.nodes, oct.leaves}.link(0, face, rope);
     stats.leaves = builder.stats.leaves;
     stats.max_depth = builder.stats.max_depth;
     stats.primitive_references = builder.stats.primitive_references;
   }
   stats.nodes = oct.nodes.size();
-  stats.bytes = oct.nodes.size() * sizeof(OctreeNode) + oct.leaves.size() * sizeof(SpatialLeaf);
+  stats.bytes = oct.nodes.size() * sizeof(OctreeNode) + oct.leaves.size() * sizeof(OctreeLeaf) +
+                oct.blocks.size() * sizeof(SpatialLeaf);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats_out) *stats_out = stats;
   return oct;

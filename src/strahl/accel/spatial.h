@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "strahl/accel/primitive.h"
+#include "strahl/accel/traversal.h"
 #include "strahl/accel/triangle_block.h"
 
 namespace strahl {
@@ -63,6 +64,87 @@ STRAHL_HOST_DEVICE inline bool clip_to_box(const Bounds& b, const Vec3& origin, 
 // bits) and are tested from the scene's own array: spheres are few where speed matters. A
 // primitive listed in several leaves is copied into each.
 using SpatialLeaf = kernel::TriangleBlock;
+
+// ---- Walking from leaf to leaf along ropes ----
+// Both structures are walked the same way (Havran 1998; Popov et al. 2007): every leaf knows its
+// box and, for each face, the deepest node beyond it whose box holds the whole face (its rope). A
+// ray descends once from the root to the leaf it starts in; after each leaf it follows the rope
+// of the face it leaves by and descends from there, instead of popping a stack and descending
+// again from a far sibling high up the tree.
+//
+// Which child holds the ray just after lo is decided at every node by the plane's t against lo (a
+// plane met at or before lo is crossed; a ray lying in it, NaN, has not crossed it), as a stack
+// traversal decides it. A leaf ends where the ray meets the nearest of its faces ahead: the very t
+// the next leaf starts with (rule 1 above), and the t a stack traversal would give (the same
+// planes, the same arithmetic). Where the ray leaves by an edge or a corner (two faces at one t)
+// the rope of one of them may lead into a leaf the ray only touches there: that leaf ends where it
+// starts and is passed over (the ray leaves it at once by the other face), as a stack traversal
+// never enters it. Ropes are pushed down at build time only where the choice is the one every
+// ray leaving by the face makes, or such a touched leaf: never a leaf beyond where the ray is.
+
+inline constexpr std::uint32_t kNoRope = 0xffffffffu;  // a face on the structure's bounds
+
+// A leaf of a roped structure. Face 2a is the box's lower face on axis a, 2a + 1 the upper one: a
+// face inside the structure is an ancestor's splitting plane, stored as the traversal reads it,
+// one on the structure's bounds is ±∞ with rope kNoRope.
+template <class Plane>
+struct RopedLeaf {
+  Plane face[6];
+  std::uint32_t rope[6];
+  std::uint32_t first;  // its first block in the block array
+  std::uint32_t count;  // its number of blocks
+};
+
+// The ray as the descent reads it: origin relative to the structure's base, reciprocal direction,
+// and the sign of each direction component (−0 included): which side of a plane it starts on.
+struct WalkRay {
+  Real origin[3];
+  Real inv_dir[3];
+  bool negative[3];
+};
+
+// Calls leaf(first, count, leaf_t_lo, leaf_t_hi, t_max) for the blocks of every non-empty leaf the
+// ray passes through within (t_min, t_max), nearer leaves first; leaf_t_hi is the plane's t itself
+// (the visitor traversal hands on next_up of it). leaf may lower t_max and returns true to stop at
+// once; the walk stops after a leaf once t_max lies within it. descend(node, ray, lo) returns the
+// leaf below `node` that holds the ray just after lo; `bounds` are the root's, `base` the point
+// plane positions are relative to.
+template <class Plane, class Descend, class Leaf>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void rope_walk(const Bounds& bounds, const Vec3& base,
+                                                     const RopedLeaf<Plane>* leaves, const SpatialLeaf* blocks,
+                                                     const Ray& ray, Real t_min, Real& t_max, Descend&& descend,
+                                                     Leaf& leaf) {
+  const Vec3 inv = reciprocal(ray.direction);
+  Real lo, end;
+  if (!clip_to_box(bounds, ray.origin, inv, t_min, t_max, lo, end)) return;
+  const WalkRay r = {{ray.origin.x - base.x, ray.origin.y - base.y, ray.origin.z - base.z},
+                     {inv.x, inv.y, inv.z},
+                     {std::signbit(ray.direction.x), std::signbit(ray.direction.y), std::signbit(ray.direction.z)}};
+  // The faces a ray leaves a box by: the upper one on an axis it goes up along.
+  const int exit_face[3] = {r.negative[0] ? 0 : 1, r.negative[1] ? 2 : 3, r.negative[2] ? 4 : 5};
+  std::uint32_t node = 0;
+  bool first = true;
+  for (;;) {
+    const RopedLeaf<Plane>& l = leaves[descend(node, r, lo)];
+    Real hi = end;
+    std::uint32_t next = kNoRope;
+    for (int a = 0; a < 3; ++a) {
+      const int f = exit_face[a];
+      if (l.rope[f] == kNoRope) continue;
+      const Real t = (Real(l.face[f]) - r.origin[a]) * r.inv_dir[a];
+      if (t < hi) {  // NaN (the ray lies in the face) is never nearer
+        hi = t;
+        next = l.rope[f];
+      }
+    }
+    if (l.count > 0 && (lo < hi || first) && leaf(blocks + l.first, l.count, lo, hi, t_max)) return;
+    // Every leaf nearer than hi has been searched: a hit before it is the nearest.
+    if (t_max <= hi || next == kNoRope) return;
+    first = false;
+    lo = hi;
+    node = next;
+  }
+}
 
 // Calls visit(prim) for each primitive of a leaf's blocks, in order; stops when it returns true.
 template <class Visit>

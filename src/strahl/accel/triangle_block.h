@@ -138,6 +138,10 @@ inline Lanes test(const TriangleBlock& b, const TriangleBlockRay& r, Real t_min,
       _mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ),
                    _mm256_or_pd(_mm256_cmp_pd(v, zero, _CMP_GT_OQ), _mm256_cmp_pd(w, zero, _CMP_GT_OQ)));
   const __m256d det = _mm256_add_pd(_mm256_add_pd(u, v), w);
+  // Lanes that may hit: inside, det ≠ 0 and not NaN (a NaN det, an empty lane's, would give a NaN t,
+  // rejected below anyway). Most blocks a ray meets have none: they need no division.
+  const __m256d inside = _mm256_andnot_pd(_mm256_and_pd(negative, positive), _mm256_cmp_pd(det, zero, _CMP_NEQ_OQ));
+  if (_mm256_movemask_pd(inside) == 0) return {zero, zero, zero, zero, 0};
   const __m256d inv_det = _mm256_div_pd(_mm256_set1_pd(1.0), det);
   // sheared_distance(): az = sz·a[kz], ..., t = (u·az + v·bz + w·cz)·inv_det.
   const __m256d az = _mm256_mul_pd(sz, a_z), bz = _mm256_mul_pd(sz, b_z), cz = _mm256_mul_pd(sz, c_z);
@@ -146,8 +150,7 @@ inline Lanes test(const TriangleBlock& b, const TriangleBlockRay& r, Real t_min,
   // Hit: inside, det ≠ 0 (ordered: NaN det gives NaN t, rejected below), t_min < t < t_max.
   const __m256d in_range = _mm256_and_pd(_mm256_cmp_pd(t, _mm256_set1_pd(t_min), _CMP_GT_OQ),
                                          _mm256_cmp_pd(t, _mm256_set1_pd(t_max), _CMP_LT_OQ));
-  const __m256d hit = _mm256_andnot_pd(_mm256_or_pd(_mm256_and_pd(negative, positive), _mm256_cmp_pd(det, zero, _CMP_EQ_OQ)),
-                                       in_range);
+  const __m256d hit = _mm256_and_pd(inside, in_range);
   return {t, v, w, inv_det, _mm256_movemask_pd(hit)};
 }
 
