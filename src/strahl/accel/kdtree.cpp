@@ -21,15 +21,16 @@ namespace {
 
 // SAH costs: a traversal step and one test of a block of four triangles (leaves are tested a block
 // at a time, spatial.h, so a leaf of 1–4 primitives costs one test and the SAH counts leaves in
-// blocks: leaves fill their blocks). Measured on the bunny and the dragon (1 thread, blocks of
-// four): 0.45–0.6 are within noise of each other, 0.8 is ~3% and 1.0 ~7% slower with bigger trees;
-// counting primitives one by one instead (pre-blocks costs, 0.6 per triangle) builds a tree twice
-// as deep with 2.6× the references that traces ~30% slower. No bonus for empty children (pbrt,
+// blocks: leaves fill their blocks). Measured with the rope traversal on the bunny and the dragon
+// (1 thread, interleaved runs, incoherent rays): 0.2 and 0.3 trace within a few per cent of each
+// other, 0.45 5–15% slower, 0.8 and 1.2 20–40% slower with trees twice as big; 0.1 slower again.
+// Counting primitives one by one instead (pre-blocks costs, 0.6 per triangle) built a tree twice
+// as deep with 2.6× the references that traced ~30% slower. No bonus for empty children (pbrt,
 // Wald & Havran use one): a bonus applied to any empty side favours shaving thin empty slices
 // off a node over real splits (with pbrt's 0.5 the bunny rendered 2.7× slower here; 0.2 cost
 // 5%), and the areas already reward cutting off empty space.
 constexpr Real kTraversalCost = 1.0;
-constexpr Real kIntersectCost = 0.45;
+constexpr Real kIntersectCost = 0.2;
 constexpr Real blocks(std::uint32_t n) {
   return Real((n + std::uint32_t(kernel::kTriangleBlockWidth) - 1) / std::uint32_t(kernel::kTriangleBlockWidth));
 }
