@@ -13,8 +13,10 @@
 #include <cstdio>
 #include <cstring>
 #include <iterator>
+#include <map>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -490,6 +492,218 @@ TEST(AccelCrossCheck, KdTreeBuildIndependentOfThreads) {
   EXPECT_EQ(std::memcmp(serial.leaves.data(), parallel.leaves.data(), serial.leaves.size() * sizeof(KdLeaf)), 0);
   ASSERT_EQ(serial.blocks.size(), parallel.blocks.size());
   EXPECT_EQ(std::memcmp(serial.blocks.data(), parallel.blocks.data(), serial.blocks.size() * sizeof(SpatialLeaf)), 0);
+}
+
+// ---- Ropes (spatial.h): the kd-tree and the octree walk from leaf to leaf ----
+
+// A node's box as the leaves store theirs: faces on the structure's bounds are ±∞.
+struct Box {
+  Real face[6];
+};
+
+Box unbounded() {
+  Box b;
+  for (int f = 0; f < 6; ++f) b.face[f] = f % 2 ? kInfinity : -kInfinity;
+  return b;
+}
+
+std::vector<Box> node_boxes(const KdTree& kd) {
+  std::vector<Box> boxes(kd.nodes.size());
+  std::vector<std::pair<std::uint32_t, Box>> todo = {{0u, unbounded()}};
+  while (!todo.empty()) {
+    const auto [node, box] = todo.back();
+    todo.pop_back();
+    boxes[node] = box;
+    const KdNode& n = kd.nodes[node];
+    if (n.is_leaf()) continue;
+    Box below = box, above = box;
+    below.face[2 * n.axis() + 1] = above.face[2 * n.axis()] = Real(n.split);
+    todo.push_back({node + 1, below});
+    todo.push_back({n.above_child(), above});
+  }
+  return boxes;
+}
+
+std::vector<Box> node_boxes(const Octree& oct) {
+  std::vector<Box> boxes(oct.nodes.size());
+  std::vector<std::pair<std::uint32_t, Box>> todo = {{0u, unbounded()}};
+  while (!todo.empty()) {
+    const auto [node, box] = todo.back();
+    todo.pop_back();
+    boxes[node] = box;
+    const OctreeNode& n = oct.nodes[node];
+    if (n.is_leaf()) continue;
+    for (std::uint32_t k = 0; k < 8; ++k) {
+      Box child = box;
+      for (int a = 0; a < 3; ++a) child.face[2 * a + ((k >> a) & 1u ? 0 : 1)] = n.center[a];
+      todo.push_back({n.index + k, child});
+    }
+  }
+  return boxes;
+}
+
+std::uint32_t leaf_index(const KdNode& n) { return n.prims; }
+std::uint32_t leaf_index(const OctreeNode& n) { return n.index; }
+
+// Every leaf's stored box is its box in the tree; every rope leads to a node on the other side of
+// its face whose box holds the whole face, and a face without one lies on the bounds.
+template <class Tree>
+void expect_ropes_consistent(const Tree& tree) {
+  const std::vector<Box> boxes = node_boxes(tree);
+  std::size_t leaves = 0, ropes = 0, pushed_down = 0;
+  for (std::size_t node = 0; node < tree.nodes.size(); ++node) {
+    const auto& n = tree.nodes[node];
+    if (!n.is_leaf()) continue;
+    ++leaves;
+    const auto& leaf = tree.leaves[leaf_index(n)];
+    const Box& box = boxes[node];
+    for (int f = 0; f < 6; ++f) {
+      ASSERT_EQ(Real(leaf.face[f]), box.face[f]) << "leaf node " << node << " face " << f;
+      if (leaf.rope[f] == kNoRope) {
+        EXPECT_TRUE(std::isinf(box.face[f])) << "leaf node " << node << " face " << f;
+        continue;
+      }
+      ++ropes;
+      ASSERT_LT(leaf.rope[f], tree.nodes.size());
+      const Box& beyond = boxes[leaf.rope[f]];
+      const int a = f / 2;
+      EXPECT_EQ(beyond.face[f ^ 1], box.face[f]) << "leaf node " << node << " face " << f;  // abuts it
+      for (int b = 0; b < 3; ++b)
+        if (b != a) {
+          EXPECT_LE(beyond.face[2 * b], box.face[2 * b]) << "leaf node " << node << " face " << f;
+          EXPECT_GE(beyond.face[2 * b + 1], box.face[2 * b + 1]) << "leaf node " << node << " face " << f;
+        }
+      pushed_down += !(beyond.face[2 * ((a + 1) % 3)] == -kInfinity && beyond.face[2 * ((a + 2) % 3)] == -kInfinity);
+    }
+  }
+  EXPECT_GT(leaves, 100u);
+  EXPECT_GT(ropes, 3 * leaves);
+  EXPECT_GT(pushed_down, 0u);
+}
+
+TEST(AccelCrossCheck, RopesLeadAcrossTheirFaces) {
+  const Prims s = awkward_scene(1, nullptr);
+  {
+    SCOPED_TRACE("kdtree");
+    expect_ropes_consistent(build_kdtree(s.set()));
+  }
+  {
+    SCOPED_TRACE("octree");
+    expect_ropes_consistent(build_octree(s.set()));
+  }
+}
+
+// Rays that leave a leaf exactly through an edge or a corner of its box: the t of two or three of
+// its faces ahead, computed as the walk computes them (origin relative to `base`, times the
+// reciprocal direction), are equal. There the rope of one face may lead into a leaf the ray only
+// touches, which the walk must pass over without searching it (a crossing on the edge would be
+// counted twice) and without skipping the leaf beyond.
+template <class Plane>
+std::vector<Query> edge_rays(const std::vector<RopedLeaf<Plane>>& leaves, const Vec3& base, int count,
+                             std::uint64_t seed) {
+  Random rng(seed);
+  std::vector<Query> rays;
+  for (int attempt = 0; attempt < 50 * count && int(rays.size()) < count; ++attempt) {
+    const RopedLeaf<Plane>& leaf = leaves[std::size_t(rng.below(int(leaves.size())))];
+    const int ties = rng.coin() ? 3 : 2, first = rng.below(3);
+    Real d[3], p[3];  // direction (unnormalised) and the point on the edge, relative to base
+    bool ok = true;
+    for (int i = 0; i < 3; ++i) {
+      const int a = (first + i) % 3;
+      const Real lo = Real(leaf.face[2 * a]), hi = Real(leaf.face[2 * a + 1]);
+      if (i < ties) {  // leaves by this face
+        const bool up = rng.coin();
+        d[a] = up ? 1 : -1;
+        p[a] = up ? hi : lo;
+        ok = ok && std::isfinite(p[a]);
+      } else {  // passes inside the box on this axis
+        d[a] = rng.uniform(-0.5, 0.5);
+        p[a] = std::isfinite(lo) && std::isfinite(hi) ? (lo + hi) / 2 : std::isfinite(lo) ? lo + 1e-3 : hi - 1e-3;
+        ok = ok && std::isfinite(p[a]);
+      }
+    }
+    if (!ok) continue;
+    const Vec3 dir = normalize(Vec3(d[0], d[1], d[2]));
+    const Real back = std::ldexp(Real(1), -1 - rng.below(8));  // how far before the edge it starts
+    Vec3 origin;
+    for (int a = 0; a < 3; ++a) {
+      const Real rel = p[a] - dir[a] * back;
+      if (a == 0) origin.x = base.x + rel;
+      if (a == 1) origin.y = base.y + rel;
+      if (a == 2) origin.z = base.z + rel;
+    }
+    const Vec3 inv = reciprocal(dir);
+    Real t_first = 0;
+    bool tie = true;
+    for (int i = 0; i < ties; ++i) {
+      const int a = (first + i) % 3;
+      const Real t = (p[a] - (origin[a] - base[a])) * inv[a];
+      if (i == 0) t_first = t;
+      tie = tie && t == t_first && t > 0;
+    }
+    if (!tie) continue;
+    Query q;
+    q.ray = {origin, dir};
+    if (rng.coin()) q.t_max = t_first * rng.uniform(0.5, 4);
+    rays.push_back(q);
+  }
+  return rays;
+}
+
+// The leaves a walk searches, with their intervals: each of positive length (after the first),
+// nearer first, none overlapping the next, each holding the ray's point halfway through it.
+template <class Tree>
+void expect_walk_well_formed(const Tree& tree, const Vec3& base, const std::vector<Query>& queries) {
+  std::map<const SpatialLeaf*, std::size_t> leaf_of;
+  for (std::size_t i = 0; i < tree.leaves.size(); ++i)
+    if (tree.leaves[i].count > 0) leaf_of[tree.blocks.data() + tree.leaves[i].first] = i;
+  int bad = 0, searched = 0;
+  for (const Query& q : queries) {
+    std::vector<std::tuple<const SpatialLeaf*, Real, Real>> seen;
+    auto leaf = [&](const SpatialLeaf* first, std::uint32_t, Real lo, Real hi, Real&) {
+      seen.emplace_back(first, lo, hi);
+      return false;
+    };
+    Real t_max = q.t_max;
+    traverse_leaves(tree.view(), q.ray, q.t_min, t_max, leaf);
+    searched += int(seen.size());
+    for (std::size_t i = 0; i < seen.size(); ++i) {
+      const auto& [first, lo, hi] = seen[i];
+      bool ok = (i == 0 || lo < hi) && (i + 1 == seen.size() || hi <= std::get<1>(seen[i + 1]));
+      const auto& box = tree.leaves[leaf_of.at(first)].face;
+      const Vec3 mid = q.ray.at((lo + hi) / 2) - base;
+      for (int a = 0; a < 3; ++a) {
+        const Real slack = 1e-9 * (1 + std::fabs(mid[a]));
+        ok = ok && mid[a] >= Real(box[2 * a]) - slack && mid[a] <= Real(box[2 * a + 1]) + slack;
+      }
+      if (!ok && bad++ < 5)
+        ADD_FAILURE() << "leaf " << i << " of " << seen.size() << ": [" << lo << ", " << hi << "] " << describe(q);
+    }
+  }
+  EXPECT_EQ(bad, 0);
+  EXPECT_GT(searched, int(queries.size()));
+}
+
+TEST(AccelCrossCheck, RaysLeavingLeavesThroughEdgesAndCornersMatchNaive) {
+  const Prims s = awkward_scene(1, nullptr);
+  const KdTree kd = build_kdtree(s.set());
+  const Octree oct = build_octree(s.set());
+  std::vector<Query> queries = edge_rays(kd.leaves, kd.base, 6000, 7);
+  ASSERT_EQ(queries.size(), 6000u);
+  const std::vector<Query> octree_queries = edge_rays(oct.leaves, Vec3(0), 6000, 8);
+  ASSERT_EQ(octree_queries.size(), 6000u);
+  {
+    SCOPED_TRACE("kdtree walk");
+    expect_walk_well_formed(kd, kd.base, queries);
+  }
+  {
+    SCOPED_TRACE("octree walk");
+    expect_walk_well_formed(oct, Vec3(0), octree_queries);
+  }
+  queries.insert(queries.end(), octree_queries.begin(), octree_queries.end());
+  const CrossCheck c = cross_check(s, queries);
+  expect_spatial_structures_agree(c);
+  EXPECT_GT(c.hits, int(queries.size()) / 10);
 }
 
 // Whole renders (shadows through transparent spheres, reflection, refraction, meshes): every
