@@ -62,21 +62,18 @@ std::vector<std::pair<int, Real>> split_planes(const Prims& prims) {
   const KdTree kd = build_kdtree(prims.set());
   for (const KdNode& n : kd.nodes)
     if (!n.is_leaf()) planes.emplace_back(int(n.axis()), kd.base[int(n.axis())] + Real(n.split));
-  // The octree's centre planes down to depth 3, computed as its build and traversal compute them.
+  // The octree's centre planes down to depth 3, as its build and traversal place them.
   const Octree oct = build_octree(prims.set());
-  for (int a = 0; a < 3; ++a) {
-    std::vector<Real> centers = {oct.center[a]};
-    Real half = oct.half;
-    for (int depth = 0; depth < 3; ++depth) {
-      std::vector<Real> next;
-      for (const Real c : centers) {
-        planes.emplace_back(a, c);
-        next.push_back(c - half * Real(0.5));
-        next.push_back(c + half * Real(0.5));
-      }
-      centers = std::move(next);
-      half *= Real(0.5);
+  std::vector<std::uint32_t> level = {0};
+  for (int depth = 0; depth < 3; ++depth) {
+    std::vector<std::uint32_t> next;
+    for (const std::uint32_t node : level) {
+      const OctreeNode& n = oct.nodes[node];
+      if (n.is_leaf()) continue;
+      for (int a = 0; a < 3; ++a) planes.emplace_back(a, oct.cube.lo[a] + Real(oct.centers[n.group()].offset[a]));
+      for (std::uint32_t k = 0; k < 8; ++k) next.push_back(n.index + k);
     }
+    level = std::move(next);
   }
   return planes;
 }
@@ -471,8 +468,8 @@ TEST(AccelCrossCheck, BuildStatistics) {
       EXPECT_EQ(lanes_in_use(a.kdtree.blocks), st.primitive_references);
     }
     if (k == AccelKind::Octree) {
-      EXPECT_EQ(st.bytes, a.octree.nodes.size() * sizeof(OctreeNode) + a.octree.leaves.size() * sizeof(OctreeLeaf) +
-                              a.octree.blocks.size() * sizeof(SpatialLeaf));
+      EXPECT_EQ(st.bytes, a.octree.nodes.size() * 8 + a.octree.centers.size() * sizeof(OctreeCenter) +
+                              a.octree.leaves.size() * sizeof(OctreeLeaf) + a.octree.blocks.size() * sizeof(SpatialLeaf));
       EXPECT_EQ(a.octree.leaves.size(), st.leaves);
       EXPECT_EQ(lanes_in_use(a.octree.blocks), st.primitive_references);
     }
@@ -535,7 +532,7 @@ std::vector<Box> node_boxes(const Octree& oct) {
     if (n.is_leaf()) continue;
     for (std::uint32_t k = 0; k < 8; ++k) {
       Box child = box;
-      for (int a = 0; a < 3; ++a) child.face[2 * a + ((k >> a) & 1u ? 0 : 1)] = n.center[a];
+      for (int a = 0; a < 3; ++a) child.face[2 * a + ((k >> a) & 1u ? 0 : 1)] = Real(oct.centers[n.group()].offset[a]);
       todo.push_back({n.index + k, child});
     }
   }
@@ -690,7 +687,7 @@ TEST(AccelCrossCheck, RaysLeavingLeavesThroughEdgesAndCornersMatchNaive) {
   const Octree oct = build_octree(s.set());
   std::vector<Query> queries = edge_rays(kd.leaves, kd.base, 6000, 7);
   ASSERT_EQ(queries.size(), 6000u);
-  const std::vector<Query> octree_queries = edge_rays(oct.leaves, Vec3(0), 6000, 8);
+  const std::vector<Query> octree_queries = edge_rays(oct.leaves, oct.cube.lo, 6000, 8);
   ASSERT_EQ(octree_queries.size(), 6000u);
   {
     SCOPED_TRACE("kdtree walk");
@@ -698,7 +695,7 @@ TEST(AccelCrossCheck, RaysLeavingLeavesThroughEdgesAndCornersMatchNaive) {
   }
   {
     SCOPED_TRACE("octree walk");
-    expect_walk_well_formed(oct, Vec3(0), octree_queries);
+    expect_walk_well_formed(oct, oct.cube.lo, octree_queries);
   }
   queries.insert(queries.end(), octree_queries.begin(), octree_queries.end());
   const CrossCheck c = cross_check(s, queries);

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "strahl/accel/build_stats.h"
@@ -43,7 +45,9 @@ struct Builder {
   const PrimitiveSet& set;
   const std::vector<Bounds>& bounds;  // padded
   Real pad;
+  Vec3 base;
   std::vector<OctreeNode> nodes;
+  std::vector<OctreeCenter> centers;
   std::vector<std::uint32_t> refs;
   AccelBuildStats stats;
 
@@ -63,25 +67,26 @@ struct Builder {
     return n;
   }
 
-  // The node of the cube centred at `center` with half side `half`; its children are appended.
-  // Child centres are computed as the traversal computes them (center ± half/2).
-  OctreeNode build(const Vec3& center, Real half, std::vector<std::uint32_t> prims, int depth, int bad_refines) {
+  // The node of the cube `box` (its faces the planes the traversal meets: base + a float offset)
+  // with centre `center` (offsets from base) and half side `half`; its children are appended.
+  OctreeNode build(const Bounds& box, const OctreeCenter& center, Real half, std::vector<std::uint32_t> prims,
+                   int depth, int bad_refines) {
     if (prims.size() <= kLeafSize || depth + 1 >= kOctreeMaxDepth) return leaf(prims, depth);
     const Real child_half = half * Real(0.5);
+    const Vec3 plane(base.x + Real(center.offset[0]), base.y + Real(center.offset[1]), base.z + Real(center.offset[2]));
+    std::array<Bounds, 8> boxes;
     std::array<std::vector<std::uint32_t>, 8> children;
     std::size_t total = 0, occupied = 0, separated = 0;
     Real total_blocks = 0;
     for (std::uint32_t k = 0; k < 8; ++k) {
       // The octant's box, its inner faces exactly on the centre planes.
-      Bounds box;
-      box.lo = {k & 1u ? center.x : center.x - half, k & 2u ? center.y : center.y - half,
-                k & 4u ? center.z : center.z - half};
-      box.hi = {k & 1u ? center.x + half : center.x, k & 2u ? center.y + half : center.y,
-                k & 4u ? center.z + half : center.z};
+      Bounds& octant = boxes[k];
+      octant.lo = {k & 1u ? plane.x : box.lo.x, k & 2u ? plane.y : box.lo.y, k & 4u ? plane.z : box.lo.z};
+      octant.hi = {k & 1u ? box.hi.x : plane.x, k & 2u ? box.hi.y : plane.y, k & 4u ? box.hi.z : plane.z};
       // Listed where any part of it comes within the padding (spatial.h): a triangle crossing
       // the corner of an octant's box without touching the octant is not.
       for (std::uint32_t p : prims)
-        if (overlaps(bounds[p], box) && !clipped_bounds(set, p, box, pad).empty()) children[k].push_back(p);
+        if (overlaps(bounds[p], octant) && !clipped_bounds(set, p, octant, pad).empty()) children[k].push_back(p);
       total += children[k].size();
       total_blocks += blocks(children[k].size());
       occupied += !children[k].empty();
@@ -98,16 +103,13 @@ struct Builder {
     if (first + 8 > kMaxIndex) throw std::length_error("octree: too many nodes");
     nodes.resize(first + 8);
     OctreeNode inner;
-    inner.center[0] = center.x;
-    inner.center[1] = center.y;
-    inner.center[2] = center.z;
     inner.index = std::uint32_t(first);
+    centers.push_back(center);  // at inner.group(): groups are appended in order
     for (std::uint32_t k = 0; k < 8; ++k) {
-      Vec3 c;
-      c.x = center.x + (k & 1u ? child_half : -child_half);
-      c.y = center.y + (k & 2u ? child_half : -child_half);
-      c.z = center.z + (k & 4u ? child_half : -child_half);
-      nodes[first + k] = build(c, child_half, std::move(children[k]), depth + 1, bad_refines);
+      OctreeCenter c;
+      for (int a = 0; a < 3; ++a)
+        c.offset[a] = float(Real(center.offset[a]) + ((k >> a) & 1u ? child_half : -child_half));
+      nodes[first + k] = build(boxes[k], c, child_half, std::move(children[k]), depth + 1, bad_refines);
     }
     return inner;
   }
@@ -117,22 +119,24 @@ struct Builder {
 // box of the node at hand and the ropes of its faces.
 struct Linker {
   const std::vector<OctreeNode>& nodes;
+  const std::vector<OctreeCenter>& centers;
   std::vector<OctreeLeaf>& leaves;
 
   // The deepest node below `target` (on the other side of face f of a leaf with box `face`) whose
   // cube still holds the whole face, each octant chosen as the traversal chooses it for a ray
   // leaving by the face, or (where that ray leaves by an edge and the traversal counts a centre
   // plane through it as crossed already) one the ray only touches (spatial.h).
-  std::uint32_t push_down(std::uint32_t target, int f, const Real (&face)[6]) const {
+  std::uint32_t push_down(std::uint32_t target, int f, const float (&face)[6]) const {
     if (target == kNoRope) return target;
     const int a = f / 2;
     const bool beyond_upper = f % 2 != 0;  // the face is the leaf's upper one: target lies above
     for (;;) {
       const OctreeNode& n = nodes[target];
       if (n.is_leaf()) return target;
+      const OctreeCenter& center = centers[n.group()];
       std::uint32_t octant = 0;
       for (int b = 0; b < 3; ++b) {
-        const Real c = n.center[b];
+        const float c = center.offset[b];
         bool above;
         if (b == a) {
           // The octant next to the face; a centre plane in the face itself is crossed on leaving by it.
@@ -150,7 +154,7 @@ struct Linker {
     }
   }
 
-  void link(std::uint32_t node, Real (&face)[6], std::uint32_t (&rope)[6]) {
+  void link(std::uint32_t node, const float (&face)[6], const std::uint32_t (&rope)[6]) {
     const OctreeNode& n = nodes[node];
     if (n.is_leaf()) {
       OctreeLeaf& leaf = leaves[n.index];
@@ -160,22 +164,17 @@ struct Linker {
       }
       return;
     }
+    const OctreeCenter& center = centers[n.group()];
     for (std::uint32_t k = 0; k < 8; ++k) {
-      Real child_face[6];
+      float child_face[6];
       std::uint32_t child_rope[6];
       for (int a = 0; a < 3; ++a) {
         const std::uint32_t sibling = n.index + (k ^ (1u << a));
-        if ((k >> a) & 1u) {
-          child_face[2 * a] = n.center[a];
-          child_rope[2 * a] = sibling;
-          child_face[2 * a + 1] = face[2 * a + 1];
-          child_rope[2 * a + 1] = rope[2 * a + 1];
-        } else {
-          child_face[2 * a] = face[2 * a];
-          child_rope[2 * a] = rope[2 * a];
-          child_face[2 * a + 1] = n.center[a];
-          child_rope[2 * a + 1] = sibling;
-        }
+        const bool above = (k >> a) & 1u;
+        child_face[2 * a] = above ? center.offset[a] : face[2 * a];
+        child_rope[2 * a] = above ? sibling : rope[2 * a];
+        child_face[2 * a + 1] = above ? face[2 * a + 1] : center.offset[a];
+        child_rope[2 * a + 1] = above ? rope[2 * a + 1] : sibling;
       }
       link(n.index + k, child_face, child_rope);
     }
@@ -196,16 +195,25 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     const Real pad = padded_bounds.pad;
     const Bounds box = padded_bounds.scene;
     oct.center = (box.lo + box.hi) * Real(0.5);
-    oct.half = max_component(box.hi - box.lo) * Real(0.5) + pad;
+    // Half the side, a float (rounded up): the root's centre planes, base + float(half), then lie
+    // at the centre itself wherever center − half is exact (a scene symmetric about 0: at 0).
+    float half = float(max_component(box.hi - box.lo) * Real(0.5) + pad);
+    if (Real(half) < max_component(box.hi - box.lo) * Real(0.5) + pad)
+      half = std::nextafter(half, std::numeric_limits<float>::infinity());
+    oct.half = Real(half);
+    oct.cube = {oct.center - Vec3(oct.half), oct.center + Vec3(oct.half)};
 
     std::vector<std::uint32_t> all(n);
     for (std::uint32_t i = 0; i < n; ++i) all[i] = i;
-    Builder builder{prims, bounds, pad, {}, {}, {}};
+    Builder builder{prims, bounds, pad, oct.cube.lo, {}, {}, {}, {}};
     builder.nodes.resize(1);
-    const OctreeNode root = builder.build(oct.center, oct.half, std::move(all), 0, 0);
+    const OctreeCenter root_center = {{half, half, half}};
+    const OctreeNode root = builder.build(oct.cube, root_center, oct.half, std::move(all), 0, 0);
     builder.nodes[0] = root;
     oct.nodes = std::move(builder.nodes);
     oct.nodes.shrink_to_fit();
+    oct.centers = std::move(builder.centers);
+    oct.centers.shrink_to_fit();
     // The leaves and their blocks, in node order (siblings' leaves lie together).
     oct.leaves.reserve(builder.stats.leaves);
     for (OctreeNode& node : oct.nodes) {
@@ -220,20 +228,20 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
       oct.leaves.push_back(leaf);
     }
     oct.blocks.shrink_to_fit();
-    Real face[6];
+    float face[6];
     std::uint32_t rope[6];
     for (int f = 0; f < 6; ++f) {
-      face[f] = f % 2 ? kInfinity : -kInfinity;
+      face[f] = f % 2 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
       rope[f] = kNoRope;
     }
-    Linker{oct.nodes, oct.leaves}.link(0, face, rope);
+    Linker{oct.nodes, oct.centers, oct.leaves}.link(0, face, rope);
     stats.leaves = builder.stats.leaves;
     stats.max_depth = builder.stats.max_depth;
     stats.primitive_references = builder.stats.primitive_references;
   }
   stats.nodes = oct.nodes.size();
-  stats.bytes = oct.nodes.size() * sizeof(OctreeNode) + oct.leaves.size() * sizeof(OctreeLeaf) +
-                oct.blocks.size() * sizeof(SpatialLeaf);
+  stats.bytes = oct.nodes.size() * sizeof(OctreeNode) + oct.centers.size() * sizeof(OctreeCenter) +
+                oct.leaves.size() * sizeof(OctreeLeaf) + oct.blocks.size() * sizeof(SpatialLeaf);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats_out) *stats_out = stats;
   return oct;

@@ -19,9 +19,6 @@ namespace strahl {
 inline constexpr int kOctreeMaxDepth = 16;
 
 struct OctreeNode {
-  // Inner: the centre of its cube, where the three planes dividing it meet (computed as the build
-  // computes it: the parent's centre ± half the child's side). Leaf: unused.
-  Real center[3] = {0, 0, 0};
   // Inner: the index of the first of its eight children, child k holding the octant with x above
   // the centre when bit 0 of k is set, y for bit 1, z for bit 2. Leaf: its index in the leaf array.
   std::uint32_t index = 0;
@@ -30,28 +27,40 @@ struct OctreeNode {
 
   STRAHL_HOST_DEVICE bool is_leaf() const { return (bits & 1u) != 0; }
   STRAHL_HOST_DEVICE std::uint32_t count() const { return bits >> 1; }
+  // Inner: its centre's entry in the centre array (children come in groups of eight after the root).
+  STRAHL_HOST_DEVICE std::uint32_t group() const { return (index - 1) >> 3; }
 };
-static_assert(sizeof(OctreeNode) == 32);
+static_assert(sizeof(OctreeNode) == 8);
 
-// A leaf: its blocks, its box (faces at its ancestors' centre planes) and its ropes (spatial.h).
-using OctreeLeaf = RopedLeaf<Real>;
+// The centre of an inner node's cube, where its three dividing planes meet: float offsets from
+// OctreeView::base, as the kd-tree stores its splits (the build sorts primitives by these very
+// planes, base + offset).
+struct OctreeCenter {
+  float offset[3];
+};
+
+// A leaf: its blocks, its box (faces at its ancestors' centre planes, the same float offsets) and
+// its ropes (spatial.h).
+using OctreeLeaf = RopedLeaf<float>;
 
 struct OctreeView {
   const OctreeNode* nodes = nullptr;
+  const OctreeCenter* centers = nullptr;  // per inner node, by group()
   const OctreeLeaf* leaves = nullptr;
   const SpatialLeaf* blocks = nullptr;  // the leaves' blocks, each leaf's together
   Bounds cube;                          // the root's
+  Vec3 base;                            // plane positions are stored relative to this point (cube.lo)
 };
 
 struct Octree {
   std::vector<OctreeNode> nodes;
+  std::vector<OctreeCenter> centers;
   std::vector<OctreeLeaf> leaves;
   std::vector<SpatialLeaf> blocks;
   Vec3 center;    // of the root cube
   Real half = 0;  // half its side
-  OctreeView view() const {
-    return {nodes.data(), leaves.data(), blocks.data(), {center - Vec3(half), center + Vec3(half)}};
-  }
+  Bounds cube;    // [center − half, center + half]
+  OctreeView view() const { return {nodes.data(), centers.data(), leaves.data(), blocks.data(), cube, cube.lo}; }
 };
 
 struct AccelBuildStats;
@@ -71,16 +80,17 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const OctreeView& oc
                                 std::uint32_t(r.negative[2]) << 2;
     OctreeNode n = oct.nodes[node];
     while (!n.is_leaf()) {
+      const OctreeCenter& c = oct.centers[n.group()];
       std::uint32_t octant = start;
       for (int a = 0; a < 3; ++a) {
-        const Real t_plane = (n.center[a] - r.origin[a]) * r.inv_dir[a];
+        const Real t_plane = (Real(c.offset[a]) - r.origin[a]) * r.inv_dir[a];
         if (!(t_plane > lo)) octant ^= 1u << a;
       }
       n = oct.nodes[n.index + octant];
     }
     return n.index;
   };
-  rope_walk(oct.cube, Vec3(0), oct.leaves, oct.blocks, ray, t_min, t_max, descend, leaf);
+  rope_walk(oct.cube, oct.base, oct.leaves, oct.blocks, ray, t_min, t_max, descend, leaf);
 }
 
 // Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for the primitives of every leaf the ray
