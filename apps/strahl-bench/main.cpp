@@ -28,6 +28,7 @@ struct Options {
   int width = 1920, height = 1080;
   bool quick = false;
   bool no_scaling = false;
+  int runs = 0;                          // 0: up to 5, stopping once 0.3 s are spent
   std::size_t procedural_triangles = 0;  // 0: 270,000 (--quick: 12,000)
   std::vector<std::string> accels;       // empty: all built in
   std::vector<std::string> meshes;
@@ -55,6 +56,10 @@ std::optional<Options> parse(int argc, char** argv, int& exit_code) {
       ->allow_extra_args(false);  // one comma-separated list: mesh paths may follow it
   app.add_flag("--quick", o.quick, "Small sizes, one run per figure: finishes in seconds (CI smoke test)");
   app.add_flag("--no-scaling", o.no_scaling, "Skip the scaling table");
+  app.add_option("--runs", o.runs,
+                 "Trace every figure exactly N times and keep the fastest (default: up to 5 runs, stopping once "
+                 "0.3 s are spent; on a noisy machine more runs give steadier ratios)")
+      ->check(CLI::Range(1, 1000));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -83,7 +88,7 @@ int run(const Options& o) {
   } else {
     for (const std::string& name : o.accels) plan.kinds.push_back(*accel_from_name(name));
   }
-  plan.repeat = o.quick ? Repeat{0, 1} : Repeat{0.3, 5};
+  plan.repeat = o.runs > 0 ? Repeat{kInfinity, o.runs} : o.quick ? Repeat{0, 1} : Repeat{0.3, 5};
   plan.naive_budget = o.quick ? 2e6 : 5e7;
 
   // Meshes first, so that a bad file is reported at once.
