@@ -202,6 +202,7 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
       half = std::nextafter(half, std::numeric_limits<float>::infinity());
     oct.half = Real(half);
     oct.cube = {oct.center - Vec3(oct.half), oct.center + Vec3(oct.half)};
+    oct.bounds = box;
 
     std::vector<std::uint32_t> all(n);
     for (std::uint32_t i = 0; i < n; ++i) all[i] = i;

@@ -48,8 +48,8 @@ struct OctreeView {
   const OctreeCenter* centers = nullptr;  // per inner node, by group()
   const OctreeLeaf* leaves = nullptr;
   const SpatialLeaf* blocks = nullptr;  // the leaves' blocks, each leaf's together
-  Bounds cube;                          // the root's
-  Vec3 base;                            // plane positions are stored relative to this point (cube.lo)
+  Bounds bounds;                        // of every primitive (padded): rays are clipped to these
+  Vec3 base;                            // plane positions are stored relative to this point (the cube's corner)
 };
 
 struct Octree {
@@ -60,7 +60,8 @@ struct Octree {
   Vec3 center;    // of the root cube
   Real half = 0;  // half its side
   Bounds cube;    // [center − half, center + half]
-  OctreeView view() const { return {nodes.data(), centers.data(), leaves.data(), blocks.data(), cube, cube.lo}; }
+  Bounds bounds;  // of the primitives (padded), within the cube
+  OctreeView view() const { return {nodes.data(), centers.data(), leaves.data(), blocks.data(), bounds, cube.lo}; }
 };
 
 struct AccelBuildStats;
@@ -90,7 +91,9 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const OctreeView& oc
     }
     return n.index;
   };
-  rope_walk(oct.cube, oct.base, oct.leaves, oct.blocks, ray, t_min, t_max, descend, leaf);
+  // Clipped to the primitives' bounds rather than the cube: a long or flat scene leaves much of its
+  // cube empty, and a ray need not walk the empty leaves there.
+  rope_walk(oct.bounds, oct.base, oct.leaves, oct.blocks, ray, t_min, t_max, descend, leaf);
 }
 
 // Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for the primitives of every leaf the ray
