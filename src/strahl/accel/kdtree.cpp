@@ -372,7 +372,7 @@ KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
       tbb::parallel_sort(e.begin(), e.end());
     });
 
-    // pbrt's depth limit, 8 + 1.3 log2 n, within what the traversal stack holds.
+    // pbrt's depth limit, 8 + 1.3 log2 n, at most kKdMaxDepth.
     const int max_depth = std::min(kKdMaxDepth, int(std::lround(8 + 1.3 * std::log2(double(n)))));
     Builder builder{prims, pad, kd.base, max_depth, {}};
     Subtree tree;

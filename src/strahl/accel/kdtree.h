@@ -17,7 +17,7 @@
 
 namespace strahl {
 
-inline constexpr int kKdMaxDepth = 48;
+inline constexpr int kKdMaxDepth = 48;  // the build's recursion (and the ropes' linking) go no deeper
 
 struct KdNode {
   // Inner: the split position as an offset from KdTreeView::base (a float keeps nodes at 8 bytes;
