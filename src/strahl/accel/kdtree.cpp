@@ -286,31 +286,16 @@ struct Linker {
   const std::vector<KdNode>& nodes;
   std::vector<KdLeaf>& leaves;
 
-  // The deepest node below `target` (on the other side of face f of a leaf with box `face`) whose
-  // box still holds the whole face, chosen at each node as the traversal chooses for a ray that
-  // leaves by the face: where the ray leaves by an edge and the traversal would already count a
-  // plane through that edge as crossed, this may lead to a leaf the ray only touches, which the
-  // traversal passes over (kdtree.h); never to one beyond where the ray is.
+  // The deepest node below `target` (beyond face f of a leaf with box `face`) whose box still
+  // holds the whole face (rope_side, spatial.h).
   std::uint32_t push_down(std::uint32_t target, int f, const float (&face)[6]) const {
     if (target == kNoRope) return target;
-    const int a = f / 2;
-    const bool beyond_upper = f % 2 != 0;  // the face is the leaf's upper one: target lies above
     for (;;) {
       const KdNode& n = nodes[target];
       if (n.is_leaf()) return target;
-      const int axis = int(n.axis());
-      const float s = n.split;
-      const std::uint32_t below = target + 1, above = n.above_child();
-      if (axis == a) {
-        // The child next to the face; a plane in the face itself is crossed on leaving by it.
-        target = beyond_upper ? (s <= face[f] ? above : below) : (s >= face[f] ? below : above);
-      } else if (s >= face[2 * axis + 1] && !(s <= face[2 * axis])) {
-        target = below;
-      } else if (s <= face[2 * axis] && !(s >= face[2 * axis + 1])) {
-        target = above;
-      } else {
-        return target;  // the plane cuts the face
-      }
+      const int side = rope_side(int(n.axis()), n.split, f, face);
+      if (side < 0) return target;
+      target = side ? n.above_child() : target + 1;
     }
   }
 
@@ -395,10 +380,7 @@ KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     kd.blocks.shrink_to_fit();
     float face[6];
     std::uint32_t rope[6];
-    for (int f = 0; f < 6; ++f) {
-      face[f] = f % 2 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
-      rope[f] = kNoRope;
-    }
+    unbounded_faces(face, rope);
     Linker{kd.nodes, kd.leaves}.link(0, face, rope);
     stats.leaves = tree.leaves;
     stats.max_depth = tree.max_depth;

@@ -122,33 +122,18 @@ struct Linker {
   const std::vector<OctreeCenter>& centers;
   std::vector<OctreeLeaf>& leaves;
 
-  // The deepest node below `target` (on the other side of face f of a leaf with box `face`) whose
-  // cube still holds the whole face, each octant chosen as the traversal chooses it for a ray
-  // leaving by the face, or (where that ray leaves by an edge and the traversal counts a centre
-  // plane through it as crossed already) one the ray only touches (spatial.h).
+  // The deepest node below `target` (beyond face f of a leaf with box `face`) whose cube still
+  // holds the whole face, octant by octant (rope_side, spatial.h).
   std::uint32_t push_down(std::uint32_t target, int f, const float (&face)[6]) const {
     if (target == kNoRope) return target;
-    const int a = f / 2;
-    const bool beyond_upper = f % 2 != 0;  // the face is the leaf's upper one: target lies above
     for (;;) {
       const OctreeNode& n = nodes[target];
       if (n.is_leaf()) return target;
-      const OctreeCenter& center = centers[n.group()];
       std::uint32_t octant = 0;
       for (int b = 0; b < 3; ++b) {
-        const float c = center.offset[b];
-        bool above;
-        if (b == a) {
-          // The octant next to the face; a centre plane in the face itself is crossed on leaving by it.
-          above = beyond_upper ? c <= face[f] : !(c >= face[f]);
-        } else if (c >= face[2 * b + 1] && !(c <= face[2 * b])) {
-          above = false;
-        } else if (c <= face[2 * b] && !(c >= face[2 * b + 1])) {
-          above = true;
-        } else {
-          return target;  // the plane cuts the face
-        }
-        octant |= std::uint32_t(above) << b;
+        const int side = rope_side(b, centers[n.group()].offset[b], f, face);
+        if (side < 0) return target;
+        octant |= std::uint32_t(side) << b;
       }
       target = n.index + octant;
     }
@@ -231,10 +216,7 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     oct.blocks.shrink_to_fit();
     float face[6];
     std::uint32_t rope[6];
-    for (int f = 0; f < 6; ++f) {
-      face[f] = f % 2 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
-      rope[f] = kNoRope;
-    }
+    unbounded_faces(face, rope);
     Linker{oct.nodes, oct.centers, oct.leaves}.link(0, face, rope);
     stats.leaves = builder.stats.leaves;
     stats.max_depth = builder.stats.max_depth;

@@ -3,6 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <limits>
+
 namespace strahl {
 
 namespace {
@@ -70,6 +72,24 @@ std::uint32_t append_leaf(const PrimitiveSet& prims, const std::uint32_t* list, 
     }
   }
   return blocks;
+}
+
+int rope_side(int axis, float plane, int f, const float (&face)[6]) {
+  if (axis == f / 2) {
+    const bool beyond_upper = f % 2 != 0;  // the face is the leaf's upper one: the far side lies above
+    return beyond_upper ? plane <= face[f] : !(plane >= face[f]);
+  }
+  const float lo = face[2 * axis], hi = face[2 * axis + 1];
+  if (plane >= hi && !(plane <= lo)) return 0;
+  if (plane <= lo && !(plane >= hi)) return 1;
+  return -1;
+}
+
+void unbounded_faces(float (&face)[6], std::uint32_t (&rope)[6]) {
+  for (int f = 0; f < 6; ++f) {
+    face[f] = f % 2 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
+    rope[f] = kNoRope;
+  }
 }
 
 Real bounds_padding(const Bounds& scene) {

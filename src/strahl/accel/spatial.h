@@ -199,6 +199,18 @@ STRAHL_HOST_DEVICE inline bool spatial_occluded(const View& view, const kernel::
 
 // ---- for building (host code) ----
 
+// Ropes while building (both structures): which side of a plane at offset `plane` on `axis`
+// holds the whole face f of a leaf whose box is `face` (RopedLeaf's faces), as the walk decides
+// it for a ray leaving by that face: 0 below, 1 above, −1 when the plane cuts the face. On the
+// face's own axis it is the side next to the face, a plane in the face itself counting as crossed
+// on leaving by it. Elsewhere, where the face touches the plane, a ray leaving through that edge
+// may count the plane crossed already: it then enters a leaf it only touches, which the walk
+// passes over — never one beyond where the ray is.
+int rope_side(int axis, float plane, int f, const float (&face)[6]);
+
+// The faces and ropes of the root: ±∞, none.
+void unbounded_faces(float (&face)[6], std::uint32_t (&rope)[6]);
+
 // Appends the blocks of a leaf listing prims[0..count), filled in that order; returns how many.
 std::uint32_t append_leaf(const PrimitiveSet& prims, const std::uint32_t* list, std::uint32_t count,
                           std::vector<SpatialLeaf>& out);
