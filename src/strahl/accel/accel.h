@@ -51,6 +51,10 @@ struct AccelView {
 #if defined(STRAHL_HAVE_EMBREE)
   void* embree = nullptr;  // RTCScene (opaque here; see embree_accel.h)
 #endif
+  // The tree built is one leaf holding every primitive (tiny scenes: the lecture's five spheres):
+  // the queries run the naive loop over them, the same search without the traversal's and the
+  // blocks' bookkeeping.
+  bool one_leaf = false;
 };
 
 // Owns whichever structure was built. It holds primitive indices, not pointers, so the scene that
@@ -75,6 +79,9 @@ struct Accel {
 #if defined(STRAHL_HAVE_EMBREE)
     v.embree = embree.scene();
 #endif
+    v.one_leaf = (kind == AccelKind::Bvh && bvh.root_leaf_count > 0) ||
+                 (kind == AccelKind::KdTree && !kdtree.nodes.empty() && kdtree.nodes[0].is_leaf()) ||
+                 (kind == AccelKind::Octree && !octree.nodes.empty() && octree.nodes[0].is_leaf());
     return v;
   }
 };
@@ -83,14 +90,10 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims);
 
 template <class Visitor>
 STRAHL_HOST_DEVICE inline void traverse(const AccelView& a, const Ray& ray, Real t_min, Real t_max, Visitor& visit) {
+  if (a.one_leaf) return traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit);
   switch (a.kind) {
     case AccelKind::Naive: traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit); break;
-    case AccelKind::Bvh:
-      // A tree that is one leaf holds every primitive (tiny scenes: the lecture's five spheres):
-      // the naive loop over them is the same search without the blocks' bookkeeping.
-      if (a.bvh.root_leaf_count > 0) traverse(NaiveView{a.prims.size()}, ray, t_min, t_max, visit);
-      else traverse(a.bvh, ray, t_min, t_max, visit);
-      break;
+    case AccelKind::Bvh: traverse(a.bvh, ray, t_min, t_max, visit); break;
     case AccelKind::KdTree: traverse(a.kdtree, ray, t_min, t_max, visit); break;
     case AccelKind::Octree: traverse(a.octree, ray, t_min, t_max, visit); break;
 #if defined(STRAHL_HAVE_EMBREE)
@@ -114,15 +117,15 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
   if (a.kind == AccelKind::Embree) return embree_nearest_hit(a, ray, t_min, t_max);
 #endif
   NearestHit result;
-  if (a.kind == AccelKind::Bvh && a.bvh.root_leaf_count == 0) {  // leaf copies: no visitor, no indirection
+  if (a.kind == AccelKind::Bvh && !a.one_leaf) {  // leaf copies: no visitor, no indirection
     wide_bvh_nearest(a.bvh, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
-  if (a.kind == AccelKind::KdTree) {  // the same, with each leaf's interval unused
+  if (a.kind == AccelKind::KdTree && !a.one_leaf) {  // the same, with each leaf's interval unused
     spatial_nearest(a.kdtree, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
-  if (a.kind == AccelKind::Octree) {
+  if (a.kind == AccelKind::Octree && !a.one_leaf) {
     spatial_nearest(a.octree, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
@@ -145,9 +148,11 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
 #if defined(STRAHL_HAVE_EMBREE) && !defined(__CUDACC__)
   if (a.kind == AccelKind::Embree) return embree_occluded(a, ray, t_min, t_max);
 #endif
-  if (a.kind == AccelKind::Bvh && a.bvh.root_leaf_count == 0) return wide_bvh_occluded(a.bvh, a.prims.spheres, ray, t_min, t_max);
-  if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims.spheres, ray, t_min, t_max);
-  if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims.spheres, ray, t_min, t_max);
+  if (!a.one_leaf) {
+    if (a.kind == AccelKind::Bvh) return wide_bvh_occluded(a.bvh, a.prims.spheres, ray, t_min, t_max);
+    if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims.spheres, ray, t_min, t_max);
+    if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims.spheres, ray, t_min, t_max);
+  }
   bool found = false;
   const kernel::RayShear shear = kernel::ray_shear(ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
