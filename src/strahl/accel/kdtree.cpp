@@ -374,7 +374,7 @@ KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
       leaf.first = std::uint32_t(kd.blocks.size());
       leaf.count = append_leaf(prims, count == 1 ? &node.prims : tree.refs.data() + node.prims, count, kd.blocks);
       node.prims = std::uint32_t(kd.leaves.size());
-      node.bits = 3u | leaf.count << 2;
+      node.bits = 3u;  // the count lives in the leaf
       kd.leaves.push_back(leaf);
     }
     kd.blocks.shrink_to_fit();

@@ -28,14 +28,14 @@ struct KdNode {
     std::uint32_t prims;
   };
   // Bits 0–1: split axis (0, 1, 2) or 3 for a leaf. Bits 2–31: inner, the index of the child
-  // above the plane (the one below follows the node); leaf, its number of blocks (while
-  // building: primitives).
+  // above the plane (the one below follows the node); leaf, its number of primitives while
+  // building, 0 after (the leaf's blocks and their count are in its KdLeaf).
   std::uint32_t bits;
 
   STRAHL_HOST_DEVICE bool is_leaf() const { return (bits & 3u) == 3u; }
   STRAHL_HOST_DEVICE std::uint32_t axis() const { return bits & 3u; }
   STRAHL_HOST_DEVICE std::uint32_t above_child() const { return bits >> 2; }
-  STRAHL_HOST_DEVICE std::uint32_t count() const { return bits >> 2; }  // (while building: primitives)
+  STRAHL_HOST_DEVICE std::uint32_t count() const { return bits >> 2; }  // while building
 };
 static_assert(sizeof(KdNode) == 8);
 

@@ -210,7 +210,7 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
       leaf.count =
           append_leaf(prims, count == 1 ? &node.index : builder.refs.data() + node.index, count, oct.blocks);
       node.index = std::uint32_t(oct.leaves.size());
-      node.bits = 1u | leaf.count << 1;
+      node.bits = 1u;  // the count lives in the leaf
       oct.leaves.push_back(leaf);
     }
     oct.blocks.shrink_to_fit();

@@ -24,7 +24,8 @@ struct OctreeNode {
   // Inner: the index of the first of its eight children, child k holding the octant with x above
   // the centre when bit 0 of k is set, y for bit 1, z for bit 2. Leaf: its index in the leaf array.
   std::uint32_t index = 0;
-  // Bit 0: set for a leaf. Leaf, bits 1–31: its number of blocks (while building: primitives).
+  // Bit 0: set for a leaf. Leaf, bits 1–31: its number of primitives while building, 0 after (the
+  // leaf's blocks and their count are in its OctreeLeaf).
   std::uint32_t bits = 0;
 
   STRAHL_HOST_DEVICE bool is_leaf() const { return (bits & 1u) != 0; }
