@@ -9,6 +9,7 @@
 
 #include "strahl/image/image_io.h"
 #include "strahl/scene/scene_file.h"
+#include "strahl/version.h"
 #include "test_helpers.h"
 
 namespace strahl {
@@ -76,6 +77,17 @@ TEST_F(Cli, DefaultOutputNameFollowsTheScene) {
 }
 
 TEST_F(Cli, HelpExitsZero) { EXPECT_EQ(run("--help"), 0) << log(); }
+
+// One version, from project(VERSION): the macros, the library's strahl::version() and --version.
+TEST_F(Cli, VersionIsTheProjectsEverywhere) {
+  const std::string from_macros = std::to_string(STRAHL_VERSION_MAJOR) + "." + std::to_string(STRAHL_VERSION_MINOR) +
+                                  "." + std::to_string(STRAHL_VERSION_PATCH);
+  EXPECT_EQ(from_macros, STRAHL_VERSION_STRING);
+  EXPECT_EQ(STRAHL_VERSION, STRAHL_VERSION_MAJOR * 10000 + STRAHL_VERSION_MINOR * 100 + STRAHL_VERSION_PATCH);
+  EXPECT_STREQ(version(), STRAHL_VERSION_STRING);
+  ASSERT_EQ(run("--version"), 0) << log();
+  EXPECT_EQ(log(), "strahl " STRAHL_VERSION_STRING "\n");
+}
 
 TEST_F(Cli, UsageErrorsExitOne) {
   EXPECT_EQ(run("scene.yaml --bogus -o out.png"), 1) << log();

@@ -4,6 +4,7 @@
 
 #include "strahl/accel/accel.h"
 #include "strahl/sampling/pixel_sampler.h"
+#include "strahl/version.h"
 
 namespace strahl::cli {
 
@@ -63,6 +64,7 @@ ParseResult parse_options(int argc, char** argv) {
   app.add_option("--tile-size", o.tile_size, "Tile side in pixels (default 32)")->check(CLI::Range(1, 4096));
   app.add_flag("--linear", o.linear, "Store linear values in 8-bit images instead of sRGB (as POV-Ray's File_Gamma=1.0)");
   app.add_flag("-q,--quiet", o.quiet, "No progress and no summary");
+  app.set_version_flag("--version", std::string("strahl ") + version(), "Print the version and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,5 +1,7 @@
 // The lecture's scene, written exactly as on its first slide, rendered to lecture-api.png.
 //   build/bin/lecture [output.png]
+// Built twice: inside strahl's build (examples/CMakeLists.txt), and as the out-of-tree project
+// beside it, against an installed strahl (CMakeLists.txt here; docs/library.md).
 
 #include <cstdio>
 #include <memory>

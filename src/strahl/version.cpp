@@ -1,0 +1,7 @@
+#include "strahl/version.h"
+
+namespace strahl {
+
+const char* version() { return STRAHL_VERSION_STRING; }
+
+}  // namespace strahl
