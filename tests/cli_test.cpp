@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <limits>
 #include <string>
 
 #include "strahl/image/image_io.h"
@@ -213,6 +214,70 @@ TEST_F(Diff, ComparesImagesAndReportsExitCodes) {
   EXPECT_EQ(diff("a.pfm"), 1) << log();
   EXPECT_EQ(diff("a.pfm c.pfm"), 2) << log();
   EXPECT_EQ(diff("a.pfm absent.pfm"), 2) << log();
+}
+
+// The difference image never replaces an input, under any of its names; the input is untouched.
+TEST_F(Diff, RefusesToWriteOverAnInput) {
+  Image a(4, 2), b(4, 2);
+  b.at(1, 1) = Rgb{0.5f, 0, 0};
+  write_image(a, dir_ / "a.png");
+  write_image(b, dir_ / "b.png");
+  fs::create_hard_link(dir_ / "a.png", dir_ / "hard.png");
+  fs::create_symlink("b.png", dir_ / "link.png");
+  const std::string a_bytes = test::read_text(dir_ / "a.png"), b_bytes = test::read_text(dir_ / "b.png");
+  fs::last_write_time(dir_ / "a.png", fs::file_time_type(std::chrono::hours(24 * 365 * 20)));
+  const auto mtime = fs::last_write_time(dir_ / "a.png");
+  for (const char* args : {"a.png b.png a.png", "a.png b.png b.png", "a.png b.png ./a.png", "a.png b.png hard.png",
+                           "a.png b.png link.png", "hard.png b.png a.png"}) {
+    SCOPED_TRACE(args);
+    EXPECT_EQ(diff(args), 2) << log();
+    EXPECT_NE(log().find("the difference image would overwrite the input image"), std::string::npos) << log();
+    EXPECT_EQ(log().find("rmse"), std::string::npos) << "compared before refusing: " << log();
+  }
+  EXPECT_EQ(test::read_text(dir_ / "a.png"), a_bytes);
+  EXPECT_EQ(test::read_text(dir_ / "b.png"), b_bytes);
+  EXPECT_TRUE(fs::last_write_time(dir_ / "a.png") == mtime);
+  EXPECT_TRUE(fs::is_symlink(dir_ / "link.png"));
+  // Another name is fine, and a path that cannot be written is refused before the comparison.
+  EXPECT_EQ(diff("a.png b.png d.png"), 0) << log();
+  EXPECT_EQ(diff("a.png b.png no-such-dir/d.png"), 2) << log();
+  EXPECT_EQ(log().find("rmse"), std::string::npos) << log();
+}
+
+// NaN and infinite values count as different: rmse, psnr and max are nan, never a passing
+// number, and the exit code is 3. Clamping would have made +inf equal to 1.
+TEST_F(Diff, NonFiniteValuesNeverPass) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  Image grey(4, 2), all_nan(4, 2), white(4, 2), all_inf(4, 2), one_nan(4, 2);
+  for (std::size_t i = 0; i < 8; ++i) {
+    grey.at(int(i % 4), int(i / 4)) = Rgb{0.5f, 0.5f, 0.5f};
+    all_nan.at(int(i % 4), int(i / 4)) = Rgb{nan, nan, nan};
+    white.at(int(i % 4), int(i / 4)) = Rgb{1, 1, 1};
+    all_inf.at(int(i % 4), int(i / 4)) = Rgb{inf, inf, inf};
+  }
+  one_nan.at(2, 1).g = nan;
+  write_image(grey, dir_ / "grey.pfm");
+  write_image(all_nan, dir_ / "nan.pfm");
+  write_image(white, dir_ / "white.pfm");
+  write_image(all_inf, dir_ / "inf.pfm");
+  write_image(one_nan, dir_ / "one-nan.pfm");
+  const auto expect_nan = [&](const std::string& args, const std::string& pixels, const std::string& warning) {
+    SCOPED_TRACE(args);
+    EXPECT_EQ(diff(args + " d.pfm"), 3) << log();
+    EXPECT_NE(log().find("rmse nan  psnr nan dB  max nan  pixels differing by more than 1/255: " + pixels), std::string::npos)
+        << log();
+    EXPECT_NE(log().find(warning), std::string::npos) << log();
+  };
+  expect_nan("nan.pfm grey.pfm", "8 of 8", "nan.pfm: 24 values are NaN or infinite");
+  expect_nan("grey.pfm nan.pfm", "8 of 8", "nan.pfm: 24 values are NaN or infinite");
+  expect_nan("inf.pfm white.pfm", "8 of 8", "inf.pfm: 24 values are NaN or infinite");
+  expect_nan("inf.pfm inf.pfm", "8 of 8", "inf.pfm: 24 values are NaN or infinite");
+  expect_nan("one-nan.pfm one-nan.pfm", "1 of 8", "one-nan.pfm: 1 values are NaN or infinite");
+  // The difference image shows a non-finite channel at the full amplified difference, 10.
+  const Image d = read_image(dir_ / "d.pfm");
+  EXPECT_EQ(d.at(2, 1), (Rgb{0, 10, 0}));
+  EXPECT_EQ(diff("white.pfm white.pfm"), 0) << log();
+  EXPECT_NE(log().find("psnr inf dB"), std::string::npos) << log();
 }
 
 // Sampling flags (docs/cli.md, "Sampling and output").

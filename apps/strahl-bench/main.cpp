@@ -3,7 +3,6 @@
 // BVH's scaling from 1 thousand to 4 million triangles. See docs/benchmark.md.
 // Exit codes: 0 ok, 1 usage, 2 a mesh could not be read.
 
-#include <fmt/core.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
@@ -13,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "console.h"
 #include "measure.h"
 #include "report.h"
 #include "scenes.h"
@@ -116,16 +116,23 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  strahl::console::protect_streams();
   int exit_code = 0;
   const std::optional<Options> options = parse(argc, argv, exit_code);
   if (!options) return exit_code;
   try {
-    return run(*options);
+    const int code = run(*options);
+    // The tables on stdout are the benchmark's product: losing them (a full disk, a broken pipe) fails.
+    if (code == 0 && strahl::console::lost(strahl::console::Stream::out)) {
+      strahl::console::err("strahl-bench: error: the report could not be written to stdout\n");
+      return 2;
+    }
+    return code;
   } catch (const strahl::Error& e) {
-    fmt::print(stderr, "strahl-bench: error: {}\n", e.what());
+    strahl::console::err("strahl-bench: error: {}\n", e.what());
     return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "strahl-bench: error: {}\n", e.what());
+    strahl::console::err("strahl-bench: error: {}\n", e.what());
     return 2;
   }
 }

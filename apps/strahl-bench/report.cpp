@@ -7,7 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "console.h"
 
 namespace strahl::bench {
 
@@ -51,7 +52,7 @@ class Table {
       for (std::size_t c = 0; c < row.size(); ++c)
         line += c == 0 ? fmt::format(" {:<{}}", row[c], width[c]) : fmt::format("  {:>{}}", row[c], width[c]);
       while (!line.empty() && line.back() == ' ') line.pop_back();
-      fmt::print("{}\n", line);
+      strahl::console::out("{}\n", line);
     }
   }
 
@@ -81,15 +82,14 @@ void print_header(const Plan& plan, int width, int height) {
 #else
   const std::string embree = "built without Embree";
 #endif
-  fmt::print("strahl-bench: {}x{} primary rays, {} thread(s), structures: {} ({})\n", width, height, threads, kinds,
+  strahl::console::out("strahl-bench: {}x{} primary rays, {} thread(s), structures: {} ({})\n", width, height, threads, kinds,
              embree);
-  fmt::print("Traversal time only (rays made beforehand; the same arrays for every structure); the fastest of up to {} "
+  strahl::console::out("Traversal time only (rays made beforehand; the same arrays for every structure); the fastest of up to {} "
              "runs.\n",
              plan.repeat.max_runs);
-  fmt::print("Mrays/s = rays traced / seconds. Memory: the structure (strahl's own triangles, {} bytes each, are "
+  strahl::console::out("Mrays/s = rays traced / seconds. Memory: the structure (strahl's own triangles, {} bytes each, are "
              "extra; Embree's figure includes its float copy of the geometry).\n\n",
              sizeof(kernel::Triangle));
-  std::fflush(stdout);
 }
 
 void warm_up(const Plan& plan) {
@@ -121,12 +121,11 @@ SceneResult measure_scene(const BenchScene& scene, const Plan& plan) {
     });
     return r;
   }();
-  fmt::print("== {}: {} spheres, {} triangles ({} of triangle data); {} primary rays, {} hit → {} incoherent and {} "
+  strahl::console::out("== {}: {} spheres, {} triangles ({} of triangle data); {} primary rays, {} hit → {} incoherent and {} "
              "shadow rays\n",
              scene.name, grouped(result.spheres), grouped(result.triangles),
              bytes_text(result.triangles * sizeof(kernel::Triangle)), grouped(rays.primary.size()),
              grouped(rays.incoherent.size()), grouped(rays.incoherent.size()), grouped(rays.shadow.size()));
-  std::fflush(stdout);
 
   Table table({"accel", "threads", "build ms", "memory", "B/prim", "primary Mrays/s", "incoherent Mrays/s",
                "shadow Mrays/s"});
@@ -191,10 +190,9 @@ SceneResult measure_scene(const BenchScene& scene, const Plan& plan) {
   }
   sums.print();
   if (reference)
-    fmt::print("  (n differ: rays where the structure and the BVH disagree on hit or miss, or hit different primitives at\n"
+    strahl::console::out("  (n differ: rays where the structure and the BVH disagree on hit or miss, or hit different primitives at\n"
                "  different distances; float Embree differs on a few rays that graze an edge or the surface they leave)\n");
-  fmt::print("\n");
-  std::fflush(stdout);
+  strahl::console::out("\n");
   return result;
 }
 
@@ -202,7 +200,7 @@ void print_ratios(const std::vector<SceneResult>& results, const Plan& plan) {
   if (!has(plan, AccelKind::Bvh)) return;
 #if defined(STRAHL_HAVE_EMBREE)
   if (!has(plan, AccelKind::Embree)) return;
-  fmt::print("== strahl bvh / Embree, figure by figure (Mrays/s: below 1 = strahl slower; build time and memory: above 1 "
+  strahl::console::out("== strahl bvh / Embree, figure by figure (Mrays/s: below 1 = strahl slower; build time and memory: above 1 "
              "= strahl slower / larger)\n");
   Table table({"scene", "threads", "build time", "memory", "primary", "incoherent", "shadow"});
   const auto ratio = [](double a, double b) { return b > 0 ? fmt::format("{:.2f}", a / b) : std::string("-"); };
@@ -221,8 +219,7 @@ void print_ratios(const std::vector<SceneResult>& results, const Plan& plan) {
     }
   }
   table.print();
-  fmt::print("\n");
-  std::fflush(stdout);
+  strahl::console::out("\n");
 #else
   (void)results;
 #endif
@@ -254,7 +251,7 @@ void run_scaling(const std::vector<std::size_t>& sizes, int width, int height, c
     if (k != AccelKind::Naive) kinds.push_back(k);
   if (kinds.empty()) return;
   const int all = plan.threads.back();
-  fmt::print("== scaling: the procedural mesh (bumpy sphere), {}x{} primary rays; build with {} thread(s), ns per ray "
+  strahl::console::out("== scaling: the procedural mesh (bumpy sphere), {}x{} primary rays; build with {} thread(s), ns per ray "
              "on 1 thread\n",
              width, height, all);
   std::vector<std::string> header = {"triangles", "log2 n"};
@@ -292,19 +289,18 @@ void run_scaling(const std::vector<std::size_t>& sizes, int width, int height, c
     }
     table.add(std::move(row));
     if (sizes.size() > 3) {  // progress for the long default run; the table follows at the end
-      fmt::print(stderr, "  scaling: {} triangles done\n", grouped(prims.size()));
+      strahl::console::err("  scaling: {} triangles done\n", grouped(prims.size()));
     }
   }
   table.print();
   for (std::size_t ki = 0; ki < kinds.size(); ++ki) {
     for (int b = 0; b < 2; ++b) {
       const auto [a, slope] = fit_line(log_n, ns[2 * ki + std::size_t(b)]);
-      fmt::print("  fit {} {}: {:.1f} {} {:.1f}·log2(n) ns per ray\n", accel_name(kinds[ki]), kBatchNames[b], a,
+      strahl::console::out("  fit {} {}: {:.1f} {} {:.1f}·log2(n) ns per ray\n", accel_name(kinds[ki]), kBatchNames[b], a,
                  slope < 0 ? '-' : '+', std::fabs(slope));
     }
   }
-  fmt::print("\n");
-  std::fflush(stdout);
+  strahl::console::out("\n");
 }
 
 }  // namespace strahl::bench

@@ -2,13 +2,13 @@
 // Exit codes: 0 ok, 1 usage, 2 scene or I/O error, 130 interrupted (SIGINT/SIGTERM; the image
 // rendered so far is written).
 
-#include <fmt/core.h>
 #include <tbb/info.h>
 
 #include <chrono>
 #include <csignal>
 #include <filesystem>
 
+#include "console.h"
 #include "interrupt.h"
 #include "options.h"
 #include "progress.h"
@@ -77,7 +77,7 @@ int run(const strahl::cli::Options& o) {
   timings.build = seconds_since(t);
 
   if (cancel->load()) {  // interrupted while loading: nothing rendered, nothing written
-    fmt::print(stderr, "strahl: interrupted before rendering; nothing written\n");
+    strahl::console::err("strahl: interrupted before rendering; nothing written\n");
     return 130;
   }
   cli::Progress progress(!o.quiet);
@@ -101,14 +101,14 @@ int run(const strahl::cli::Options& o) {
   if (!o.aov.empty()) write_aovs(render_scene, o, output);
   timings.write = seconds_since(t);
   if (cancel->load()) {
-    fmt::print(stderr, "strahl: interrupted ({}); wrote the image rendered so far to {}\n",
+    strahl::console::err("strahl: interrupted ({}); wrote the image rendered so far to {}\n",
                cli::interrupt_signal() == SIGTERM ? "SIGTERM" : "SIGINT", output);
     return 130;
   }
 
   if (!o.quiet) {
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
-    fmt::print("{}", cli::summary(output, image.width(), image.height(), threads, timings,
+    strahl::console::out("{}", cli::summary(output, image.width(), image.height(), threads, timings,
                                   stats, render_scene));
   }
   return 0;
@@ -117,15 +117,16 @@ int run(const strahl::cli::Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  strahl::console::protect_streams();  // docs/cli.md, "Streams and signals"
   const strahl::cli::ParseResult parsed = strahl::cli::parse_options(argc, argv);
   if (!parsed.options) return parsed.exit_code;
   try {
     return run(*parsed.options);
   } catch (const strahl::Error& e) {
-    fmt::print(stderr, "strahl: error: {}\n", e.what());
+    strahl::console::err("strahl: error: {}\n", e.what());
     return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "strahl: error: {}\n", e.what());
+    strahl::console::err("strahl: error: {}\n", e.what());
     return 2;
   }
 }

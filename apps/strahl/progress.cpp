@@ -1,9 +1,8 @@
 #include "progress.h"
 
-#include <fmt/core.h>
 #include <unistd.h>
 
-#include <cstdio>
+#include "console.h"
 
 namespace strahl::cli {
 
@@ -26,13 +25,12 @@ void Progress::update(long done, long total) {
     const int filled = int(fraction * kWidth);
     std::string bar(std::size_t(filled), '=');
     bar.resize(kWidth, ' ');
-    fmt::print(stderr, "\r[{}] {:5.1f}%  {:.1f} s elapsed, ETA {:.1f} s ", bar, 100 * fraction, elapsed, eta);
-    std::fflush(stderr);
+    strahl::console::err("\r[{}] {:5.1f}%  {:.1f} s elapsed, ETA {:.1f} s ", bar, 100 * fraction, elapsed, eta);
   } else {
     const int decile = int(fraction * 10);
     if (decile <= last_decile_) return;
     last_decile_ = decile;
-    fmt::print(stderr, "rendering: {:3d}%  {:.1f} s elapsed, ETA {:.1f} s\n", decile * 10, elapsed, eta);
+    strahl::console::err("rendering: {:3d}%  {:.1f} s elapsed, ETA {:.1f} s\n", decile * 10, elapsed, eta);
   }
 }
 
@@ -42,9 +40,9 @@ void Progress::finish() {
   // Updates skipped while another thread held the lock may include the last one: end at 100%.
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (terminal_) {
-    fmt::print(stderr, "\r[{}] 100.0%  {:.1f} s elapsed, ETA 0.0 s \n", std::string(40, '='), elapsed);
+    strahl::console::err("\r[{}] 100.0%  {:.1f} s elapsed, ETA 0.0 s \n", std::string(40, '='), elapsed);
   } else if (last_decile_ < 10) {
-    fmt::print(stderr, "rendering: 100%  {:.1f} s elapsed, ETA 0.0 s\n", elapsed);
+    strahl::console::err("rendering: 100%  {:.1f} s elapsed, ETA 0.0 s\n", elapsed);
   }
 }
 
