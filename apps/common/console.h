@@ -32,21 +32,20 @@ void protect_streams() noexcept;
 
 // fmt-formatted messages. One that cannot even be formatted (out of memory) leaves a note.
 template <typename... T>
-void out(fmt::format_string<T...> format, T&&... args) noexcept {
+void print(Stream stream, fmt::format_string<T...> format, T&&... args) noexcept {
   try {
-    write(Stream::out, fmt::format(format, std::forward<T>(args)...));
+    write(stream, fmt::format(format, std::forward<T>(args)...));
   } catch (...) {
-    write(Stream::out, "\n[a message could not be formatted]\n");
+    write(stream, "\n[a message could not be formatted]\n");
   }
 }
-
+template <typename... T>
+void out(fmt::format_string<T...> format, T&&... args) noexcept {
+  print(Stream::out, format, std::forward<T>(args)...);
+}
 template <typename... T>
 void err(fmt::format_string<T...> format, T&&... args) noexcept {
-  try {
-    write(Stream::err, fmt::format(format, std::forward<T>(args)...));
-  } catch (...) {
-    write(Stream::err, "\n[a message could not be formatted]\n");
-  }
+  print(Stream::err, format, std::forward<T>(args)...);
 }
 
 }  // namespace strahl::console
