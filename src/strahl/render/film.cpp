@@ -18,40 +18,33 @@ std::int64_t to_fixed(double v) {
 
 }  // namespace
 
-Film::Film(int width, int height, const Filter& filter, bool pixel_stats)
+FilmLayout::FilmLayout(int width, int height, const Filter& filter, bool pixel_stats)
     : width_(width),
       height_(height),
       filter_(filter),
       local_(filter_is_pixel_local(filter)),
-      margin_(int(std::ceil(filter.radius)) + 1),
-      stats_(pixel_stats ? std::size_t(width) * std::size_t(height) : 0) {
-  const std::size_t n = std::size_t(width) * std::size_t(height) * 4;
-  if (local_)
-    local_sums_.assign(n, 0.0);
-  else
-    fixed_.assign(n, 0);
-}
+      stats_(pixel_stats),
+      margin_(int(std::ceil(filter.radius)) + 1) {}
 
-Film::Tile Film::begin_tile(int x0, int row0, int x1, int row1) const {
-  Tile t;
-  t.x0 = x0;
-  t.row0 = row0;
-  t.x1 = x1;
-  t.row1 = row1;
-  if (!local_) {
-    t.bx0 = std::max(0, x0 - margin_);
-    t.brow0 = std::max(0, row0 - margin_);
-    t.bw = std::min(width_, x1 + margin_) - t.bx0;
-    t.bh = std::min(height_, row1 + margin_) - t.brow0;
-    t.sums.assign(std::size_t(t.bw) * std::size_t(t.bh) * 4, 0);
+void FilmLayout::prepare(TileWork& t) const {
+  const std::size_t n = t.rect.pixels();
+  t.taken.assign(n, 0);
+  if (stats_) t.stats.assign(n, PixelStats{});
+  if (local_) {
+    t.local.assign(n * 4, 0.0);
+    return;
   }
-  return t;
+  t.bx0 = std::max(0, t.rect.x0 - margin_);
+  t.brow0 = std::max(0, t.rect.row0 - margin_);
+  t.bw = std::min(width_, t.rect.x1 + margin_) - t.bx0;
+  t.bh = std::min(height_, t.rect.row1 + margin_) - t.brow0;
+  t.fixed.assign(std::size_t(t.bw) * std::size_t(t.bh) * 4, 0);
 }
 
-void Film::add_sample(Tile& tile, int x, int row, const CameraSample& cs, const Vec3& L) {
-  const std::size_t own = index(x, row);
-  if (!stats_.empty()) {
-    PixelStats& st = stats_[own];
+void FilmLayout::add_sample(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const {
+  const std::size_t own = tile.rect.index(x, row);
+  if (stats_) {
+    PixelStats& st = tile.stats[own];
     const double lum = luminance(L);
     st.sum += lum;
     st.sum_sq += lum * lum;
@@ -59,10 +52,11 @@ void Film::add_sample(Tile& tile, int x, int row, const CameraSample& cs, const 
   }
 
   if (local_) {
-    // Only this tile's thread writes the pixel; atomic stores let resolve() read meanwhile.
-    double* p = &local_sums_[own * 4];
-    const double add[4] = {L.x, L.y, L.z, 1.0};
-    for (int c = 0; c < 4; ++c) std::atomic_ref<double>(p[c]).store(p[c] + add[c], std::memory_order_relaxed);
+    double* p = &tile.local[own * 4];
+    p[0] += L.x;
+    p[1] += L.y;
+    p[2] += L.z;
+    p[3] += 1.0;
     return;
   }
 
@@ -83,7 +77,7 @@ void Film::add_sample(Tile& tile, int x, int row, const CameraSample& cs, const 
       const Real w = wx[px - px0] * wy[py - py0];
       if (w == 0) continue;
       std::int64_t* p =
-          &tile.sums[(std::size_t(prow - tile.brow0) * std::size_t(tile.bw) + std::size_t(px - tile.bx0)) * 4];
+          &tile.fixed[(std::size_t(prow - tile.brow0) * std::size_t(tile.bw) + std::size_t(px - tile.bx0)) * 4];
       // The weight quantised first and the values weighted by the quantised weight: a flat
       // image then resolves to its value up to the rounding of each product.
       const std::int64_t qw = to_fixed(w);
@@ -96,26 +90,68 @@ void Film::add_sample(Tile& tile, int x, int row, const CameraSample& cs, const 
   }
 }
 
-void Film::end_tile(Tile& tile) {
-  if (local_) return;
-  for (int r = 0; r < tile.bh; ++r)
-    for (int c = 0; c < tile.bw; ++c) {
-      const std::int64_t* src = &tile.sums[(std::size_t(r) * std::size_t(tile.bw) + std::size_t(c)) * 4];
+Film::Film(int width, int height, const Filter& filter, bool pixel_stats)
+    : Film(FilmLayout(width, height, filter, pixel_stats)) {}
+
+Film::Film(const FilmLayout& layout) : layout_(layout) {
+  const std::size_t pixels = std::size_t(width()) * std::size_t(height());
+  if (layout_.keeps_stats()) stats_.assign(pixels, PixelStats{});
+  if (layout_.pixel_local())
+    local_sums_.assign(pixels * 4, 0.0);
+  else
+    fixed_.assign(pixels * 4, 0);
+}
+
+void Film::begin_tile(TileWork& t) const {
+  layout_.prepare(t);
+  const TileRect& r = t.rect;
+  for (int row = r.row0; row < r.row1; ++row)
+    for (int x = r.x0; x < r.x1; ++x) {
+      const std::size_t own = r.index(x, row), p = index(x, row);
+      if (!stats_.empty()) t.stats[own] = stats_[p];
+      if (pixel_local())
+        for (int c = 0; c < 4; ++c) t.local[own * 4 + std::size_t(c)] = local_sums_[p * 4 + std::size_t(c)];
+    }
+}
+
+void Film::merge(const TileWork& t) {
+  const TileRect& r = t.rect;
+  for (int row = r.row0; row < r.row1; ++row)
+    for (int x = r.x0; x < r.x1; ++x) {
+      const std::size_t own = r.index(x, row), p = index(x, row);
+      if (!stats_.empty()) stats_[p] = t.stats[own];
+      // Only this tile writes the pixel; atomic stores let resolve() read meanwhile.
+      if (pixel_local())
+        for (int c = 0; c < 4; ++c)
+          std::atomic_ref<double>(local_sums_[p * 4 + std::size_t(c)])
+              .store(t.local[own * 4 + std::size_t(c)], std::memory_order_relaxed);
+    }
+  if (pixel_local()) return;
+  for (int r2 = 0; r2 < t.bh; ++r2)
+    for (int c = 0; c < t.bw; ++c) {
+      const std::int64_t* src = &t.fixed[(std::size_t(r2) * std::size_t(t.bw) + std::size_t(c)) * 4];
       if (src[3] == 0 && src[0] == 0 && src[1] == 0 && src[2] == 0) continue;
-      std::int64_t* dst = &fixed_[index(tile.bx0 + c, tile.brow0 + r) * 4];
+      std::int64_t* dst = &fixed_[index(t.bx0 + c, t.brow0 + r2) * 4];
       for (int k = 0; k < 4; ++k) std::atomic_ref<std::int64_t>(dst[k]).fetch_add(src[k], std::memory_order_relaxed);
     }
-  std::fill(tile.sums.begin(), tile.sums.end(), 0);
+}
+
+std::array<double, 4> Film::sums(int x, int row) const {
+  std::array<double, 4> s{};
+  const std::size_t i = index(x, row) * 4;
+  for (std::size_t k = 0; k < 4; ++k)
+    s[k] = pixel_local() ? local_sums_[i + k] : double(fixed_[i + k]) / kFixedScale;
+  return s;
 }
 
 Image Film::resolve() const {
-  Image image(width_, height_);
-  for (int row = 0; row < height_; ++row)
-    for (int x = 0; x < width_; ++x) {
+  Image image(width(), height());
+  for (int row = 0; row < height(); ++row)
+    for (int x = 0; x < width(); ++x) {
       const std::size_t i = index(x, row) * 4;
       Vec3 sum;
       double w;
-      if (local_) {
+      if (pixel_local()) {
         const auto load = [&](int k) {
           return std::atomic_ref<double>(const_cast<double&>(local_sums_[i + std::size_t(k)])).load(std::memory_order_relaxed);
         };

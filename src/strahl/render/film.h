@@ -1,70 +1,89 @@
 #pragma once
 // The film: camera samples → pixels through a reconstruction filter (sampling/filter.h), as
 // weighted sums Σ f·L and Σ f per pixel, resolved to an image on demand (progressive renders,
-// checkpoints). Film::add_sample is the one way a sample reaches the image.
+// checkpoints, the viewer). FilmLayout::add_sample is the one way a sample reaches the image:
+// into a tile's buffers (render/tile.h), which Film::merge then adds to the film.
 //
 // Determinism: a pixel-local filter (box, radius 0.5) adds each sample to its own pixel only, in
-// the pixel's sample order, in double precision: the image equals render_pixel() exactly. Wider
-// filters spread a sample over neighbouring pixels that other threads also write; their sums are
-// kept in 64-bit fixed point (2^-28 units), whose additions are exact and commute, so a pixel's
-// value does not depend on the order in which threads and tiles deliver the samples. Memory is
-// 32 bytes a pixel, plus 24 for the per-pixel statistics where kept, whatever the sample count.
+// the pixel's sample order, in double precision, continuing the sums the tile carried in: the image
+// equals render_pixel() exactly, however passes and tiles split the samples. Wider filters spread a
+// sample over neighbouring pixels that other tiles also write; their sums are kept in 64-bit fixed
+// point (2^-28 units), whose additions are exact and commute, so a pixel's value does not depend
+// on the order in which threads, tiles and ranks deliver the samples. Memory is 32 bytes a pixel,
+// plus 24 for the per-pixel statistics where kept, whatever the sample count.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "strahl/camera/camera_sample.h"
 #include "strahl/image/image.h"
 #include "strahl/math/vec3.h"
+#include "strahl/render/tile.h"
 #include "strahl/sampling/filter.h"
 
 namespace strahl {
 
-// Luminance statistics of a pixel's own samples (for adaptive sampling), in sample order.
-struct PixelStats {
-  double sum = 0, sum_sq = 0;
-  std::uint32_t n = 0;
-};
-
 inline double luminance(const Vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
-class Film {
+// What a sample needs to know of the film to land in a tile: its size and filter. Small and
+// copyable, so a back end away from the film (an MPI worker) makes its own.
+class FilmLayout {
  public:
-  // The part of the film one tile writes: pixels [x0, x1) × rows [row0, row1); for wide filters a
-  // private fixed-point buffer over the tile and its filter margin, added to the film at the end.
-  struct Tile {
-    int x0 = 0, row0 = 0, x1 = 0, row1 = 0;
-    int bx0 = 0, brow0 = 0, bw = 0, bh = 0;
-    std::vector<std::int64_t> sums;  // bw · bh · 4 (r, g, b, weight)
-  };
-
   // `pixel_stats`: keep the per-pixel luminance statistics (adaptive sampling needs them).
-  Film(int width, int height, const Filter& filter, bool pixel_stats = true);
+  FilmLayout(int width, int height, const Filter& filter, bool pixel_stats = true);
 
   int width() const { return width_; }
   int height() const { return height_; }
   const Filter& filter() const { return filter_; }
   bool pixel_local() const { return local_; }
+  bool keeps_stats() const { return stats_; }
+  int margin() const { return margin_; }  // pixels a sample can reach beyond its own
 
-  Tile begin_tile(int x0, int row0, int x1, int row1) const;
+  // Sizes the tile's buffers for its rect (zero sums, zero statistics); Film::begin_tile also
+  // carries the film's sums in.
+  void prepare(TileWork& tile) const;
   // A sample of pixel (x, row) (inside the tile) at film position cs.film_x/film_y (raster units,
   // y up from the bottom row, as the pixel sampler made it) with radiance `L`.
-  void add_sample(Tile& tile, int x, int row, const CameraSample& cs, const Vec3& L);
-  void end_tile(Tile& tile);
+  void add_sample(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const;
 
-  // Σ f·L / Σ f per pixel (0 where the weights sum to 0, e.g. no sample yet). Safe while tiles are being added
-  // (checkpoints): each value is read atomically, a pixel may be between two samples.
+ private:
+  int width_, height_;
+  Filter filter_;
+  bool local_, stats_;
+  int margin_;
+};
+
+class Film {
+ public:
+  Film(int width, int height, const Filter& filter, bool pixel_stats = true);
+  explicit Film(const FilmLayout& layout);
+
+  const FilmLayout& layout() const { return layout_; }
+  int width() const { return layout_.width(); }
+  int height() const { return layout_.height(); }
+  const Filter& filter() const { return layout_.filter(); }
+  bool pixel_local() const { return layout_.pixel_local(); }
+
+  // Sizes the tile's buffers and carries in the film's sums and statistics of its pixels.
+  void begin_tile(TileWork& tile) const;
+  // Takes a rendered tile back: its pixels' sums and statistics replace the film's, its wide-filter
+  // contributions are added. Tiles of one pass cover disjoint pixels and may be merged from any
+  // threads at once.
+  void merge(const TileWork& tile);
+
+  // Σ f·L / Σ f per pixel (0 where the weights sum to 0, e.g. no sample yet). Safe while tiles are
+  // being merged (checkpoints, the viewer): each value is read atomically.
   Image resolve() const;
 
   const PixelStats& stats(int x, int row) const { return stats_.at(index(x, row)); }
+  // The pixel's Σ f·L (r, g, b) and Σ f, unrounded (tests compare these bit for bit).
+  std::array<double, 4> sums(int x, int row) const;
 
  private:
-  std::size_t index(int x, int row) const { return std::size_t(row) * std::size_t(width_) + std::size_t(x); }
+  std::size_t index(int x, int row) const { return std::size_t(row) * std::size_t(width()) + std::size_t(x); }
 
-  int width_, height_;
-  Filter filter_;
-  bool local_;
-  int margin_;                       // pixels a sample can reach beyond its own
+  FilmLayout layout_;
   std::vector<double> local_sums_;   // pixel-local filters: r, g, b, weight per pixel
   std::vector<std::int64_t> fixed_;  // wide filters: fixed-point r, g, b, weight per pixel
   std::vector<PixelStats> stats_;

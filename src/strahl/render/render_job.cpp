@@ -1,0 +1,220 @@
+#include "strahl/render/render_job.h"
+
+#include <algorithm>
+#include <condition_variable>
+#include <thread>
+
+#include "strahl/render/adaptive.h"
+
+namespace strahl {
+
+namespace {
+
+template <class Clock>
+typename Clock::duration seconds(double s) {
+  return std::chrono::duration_cast<typename Clock::duration>(std::chrono::duration<double>(s));
+}
+
+// Sets the job's stop at the time limit, from a thread of its own, so that the per-sample check
+// stays two atomic loads instead of a clock read.
+class Watchdog {
+ public:
+  template <class TimePoint, class OnTimeout>
+  Watchdog(TimePoint deadline, OnTimeout on_timeout)
+      : thread_([this, deadline, on_timeout] {
+          std::unique_lock lock(mutex_);
+          if (!wake_.wait_until(lock, deadline, [this] { return finished_; })) on_timeout();
+        }) {}
+  Watchdog(const Watchdog&) = delete;
+  Watchdog& operator=(const Watchdog&) = delete;
+  ~Watchdog() {
+    {
+      std::lock_guard lock(mutex_);
+      finished_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool finished_ = false;
+  std::thread thread_;  // last: starts once the members above exist
+};
+
+}  // namespace
+
+RenderJob::RenderJob(const SceneView& view, const SamplingSettings& sampling, JobOptions options)
+    : view_(view),
+      sampling_(sampling),
+      sampler_(make_pixel_sampler(sampling)),
+      options_(std::move(options)),
+      film_(view.camera.nx, view.camera.ny, sampling.filter, sampling.sampler == SamplerKind::Adaptive),
+      stop_(options_.cancel) {
+  width_ = view.camera.nx;
+  height_ = view.camera.ny;
+  tile_ = std::max(1, options_.tile_size);
+  tiles_x_ = (width_ + tile_ - 1) / tile_;
+  tiles_y_ = (height_ + tile_ - 1) / tile_;
+  max_spp_ = std::uint32_t(effective_spp(sampling.sampler, sampling.spp));
+  adaptive_ = sampling.sampler == SamplerKind::Adaptive;
+  progressive_ = adaptive_ || options_.time_limit > 0 || options_.checkpoint_interval > 0 || options_.progressive;
+  const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
+  counts_.assign(pixels, 0);
+  // First pass: all samples, or 1 (progressive), or the adaptive minimum.
+  const std::uint32_t first =
+      adaptive_ ? std::min(max_spp_, std::uint32_t(std::max(1, sampling.adaptive_min))) : progressive_ ? 1 : max_spp_;
+  pending_.assign(pixels, first);
+  add_.assign(pixels, 0);
+  take_pass();
+  planned_.store(std::uint64_t(max_spp_) * pixels);
+}
+
+RenderJob::~RenderJob() = default;
+
+void RenderJob::cancel() {
+  cancelled_.store(true, std::memory_order_relaxed);
+  stop_.request();
+}
+
+void RenderJob::run(TileBackend& backend) {
+  start_ = Clock::now();
+  next_checkpoint_ = start_ + seconds<Clock>(std::max(0.0, options_.checkpoint_interval));
+  const bool timed = options_.time_limit > 0;
+  const auto deadline = start_ + seconds<Clock>(timed ? options_.time_limit : 0.0);
+  const auto time_out = [this] {
+    out_of_time_.store(true, std::memory_order_relaxed);
+    stop_.request();
+  };
+  std::optional<Watchdog> watchdog;
+  if (timed) watchdog.emplace(deadline, time_out);
+
+  bool more = !counts_.empty() && add_[0] > 0;
+  while (more) {
+    next_.store(0);
+    backend.render_pass(*this);
+    passes_.fetch_add(1, std::memory_order_relaxed);
+    if (timed && Clock::now() >= deadline) time_out();
+    if (stop_.requested()) {
+      if (!out_of_time_.load()) cancelled_.store(true, std::memory_order_relaxed);
+      break;
+    }
+    more = plan_next_pass();
+  }
+  watchdog.reset();
+  seconds_ = std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+bool RenderJob::take_pass() {
+  std::uint64_t n = 0;
+  const std::uint32_t cap = options_.max_pass_samples;
+  for (std::size_t p = 0; p < pending_.size(); ++p) {
+    add_[p] = cap > 0 ? std::min(pending_[p], cap) : pending_[p];
+    pending_[p] -= add_[p];
+    n += add_[p];
+  }
+  return n > 0;
+}
+
+bool RenderJob::plan_next_pass() {
+  ++pass_;
+  if (take_pass()) return true;  // the rest of a pass split by max_pass_samples
+  const std::size_t pixels = counts_.size();
+  if (adaptive_) {
+    plan_adaptive_pass(film_, counts_, max_spp_, sampling_.adaptive_threshold, pending_);
+    // Samples the render may still take in all: an upper bound that shrinks pass by pass.
+    std::uint64_t bound = done_.load();
+    for (std::size_t p = 0; p < pixels; ++p)
+      if (pending_[p] > 0) bound += max_spp_ - counts_[p];
+    planned_.store(bound);
+  } else {
+    // Double every pixel's count (all pixels have the same).
+    const std::uint32_t c = counts_[0];
+    std::fill(pending_.begin(), pending_.end(), std::min(c, max_spp_ - c));
+  }
+  return take_pass();
+}
+
+TileWork RenderJob::tile(int index) const {
+  TileWork w;
+  w.pass = pass_;
+  w.index = index;
+  w.rect.x0 = (index % tiles_x_) * tile_;
+  w.rect.row0 = (index / tiles_x_) * tile_;
+  w.rect.x1 = std::min(width_, w.rect.x0 + tile_);
+  w.rect.row1 = std::min(height_, w.rect.row0 + tile_);
+  const std::size_t n = w.rect.pixels();
+  w.first.resize(n);
+  w.count.resize(n);
+  for (int row = w.rect.row0; row < w.rect.row1; ++row)
+    for (int x = w.rect.x0; x < w.rect.x1; ++x) {
+      const std::size_t p = std::size_t(row) * std::size_t(width_) + std::size_t(x), i = w.rect.index(x, row);
+      w.first[i] = counts_[p];
+      w.count[i] = add_[p];
+    }
+  film_.begin_tile(w);
+  return w;
+}
+
+std::optional<TileWork> RenderJob::next_tile() {
+  while (!stop_.requested()) {
+    const int i = next_.fetch_add(1, std::memory_order_relaxed);
+    if (i >= tile_count()) break;
+    // Tiles with nothing to do in this pass (adaptive sampling) are not handed out.
+    const int x0 = (i % tiles_x_) * tile_, row0 = (i / tiles_x_) * tile_;
+    const int x1 = std::min(width_, x0 + tile_), row1 = std::min(height_, row0 + tile_);
+    bool any = false;
+    for (int row = row0; row < row1 && !any; ++row)
+      for (int x = x0; x < x1 && !any; ++x) any = add_[std::size_t(row) * std::size_t(width_) + std::size_t(x)] > 0;
+    if (any) return tile(i);
+  }
+  return std::nullopt;
+}
+
+void RenderJob::deliver(TileWork&& work) {
+  film_.merge(work);
+  const TileRect& r = work.rect;
+  for (int row = r.row0; row < r.row1; ++row)
+    for (int x = r.x0; x < r.x1; ++x)
+      counts_[std::size_t(row) * std::size_t(width_) + std::size_t(x)] += work.taken[r.index(x, row)];
+  const std::uint64_t n = work.samples_taken();
+  {
+    std::lock_guard lock(deliver_mutex_);
+    counters_ += work.counters;
+  }
+  report(done_.fetch_add(n) + n);
+  if (options_.checkpoint && options_.checkpoint_interval > 0) {
+    std::unique_lock lock(checkpoint_mutex_, std::try_to_lock);
+    if (lock.owns_lock() && Clock::now() >= next_checkpoint_) {
+      options_.checkpoint(film_.resolve());
+      next_checkpoint_ = Clock::now() + seconds<Clock>(options_.checkpoint_interval);
+    }
+  }
+}
+
+void RenderJob::report(std::uint64_t now_done) {
+  if (!options_.progress) return;
+  const std::uint64_t planned = std::max<std::uint64_t>(planned_.load(), 1);
+  if (options_.time_limit > 0) {
+    const double f_samples = double(now_done) / double(planned);
+    const double f_time = std::chrono::duration<double>(Clock::now() - start_).count() / options_.time_limit;
+    options_.progress(long(std::min(1.0, std::max(f_samples, f_time)) * 1e6), 1000000);
+  } else {
+    options_.progress(long(now_done), long(planned));
+  }
+}
+
+RenderStats RenderJob::stats() const {
+  RenderStats s;
+  s.rays = counters_;
+  s.seconds = seconds_;
+  s.cancelled = cancelled_.load();
+  s.time_limited = out_of_time_.load();
+  s.samples = done_.load();
+  s.passes = passes_.load();
+  s.pixel_samples = counts_;
+  return s;
+}
+
+}  // namespace strahl
