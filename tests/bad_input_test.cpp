@@ -81,6 +81,7 @@ class BadInput : public ::testing::Test {
     test::write_text(existing_, "an existing image: any run that fails must leave these bytes alone\n");
     fs::last_write_time(existing_, fs::file_time_type(std::chrono::hours(24 * 365 * 20)));
     fs::create_directory(dir_ / "folder.png");
+    fs::create_directory(dir_ / "existing.depth.exr");  // in the way of --aov depth
     mtime_ = fs::last_write_time(existing_);
     before_ = listing(dir_.path());
   }
@@ -170,6 +171,11 @@ TEST_F(BadInput, NonRegularFilesAreRefused) {
   expect_refused("fifo output", d.path(), "ok.yaml", 2, "out.png: cannot write the image: it exists and is not a regular file",
                  {"-o", (d / "out.png").string()});
   EXPECT_TRUE(fs::is_fifo(d / "out.png"));
+  // ... and one where an AOV should go, checked before the scene is loaded.
+  ASSERT_EQ(::mkfifo((d / "aov.normal.exr").c_str(), 0600), 0);
+  expect_refused("fifo AOV", d.path(), "ok.yaml", 2, "aov.normal.exr: cannot write the image: it exists and is not a regular file",
+                 {"-o", (d / "aov.png").string(), "--aov", "depth,normal"});
+  EXPECT_TRUE(fs::is_fifo(d / "aov.normal.exr"));
 }
 
 TEST_F(BadInput, UnreadableMeshIsRefused) {

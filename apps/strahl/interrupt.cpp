@@ -23,6 +23,12 @@ const std::atomic<bool>* install_interrupt_handlers() {
   sa.sa_flags = SA_RESETHAND | SA_RESTART;  // a second signal takes the default action: the process ends
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  // Past a file-size limit (ulimit -f) a write fails with EFBIG, reported like any failed write,
+  // instead of SIGXFSZ ending the process with a temporary file left behind.
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  sigaction(SIGXFSZ, &ignore, nullptr);
   return &g_interrupted;
 }
 

@@ -11,6 +11,7 @@
 #include "console.h"
 #include "interrupt.h"
 #include "options.h"
+#include "outputs.h"
 #include "progress.h"
 #include "strahl/image/image_io.h"
 #include "strahl/render/aov.h"
@@ -42,13 +43,10 @@ void apply_sampling_options(const strahl::cli::Options& o, strahl::SamplingSetti
 // <output stem>.<name>.exr beside the image, for each AOV asked for.
 void write_aovs(const strahl::RenderScene& scene, const strahl::cli::Options& o, const std::string& output) {
   using namespace strahl;
-  namespace fs = std::filesystem;
   const AovImages aovs = render_aovs(scene, o.threads);
   for (const std::string& name : o.aov) {
     const Image& img = name == "depth" ? aovs.depth : name == "normal" ? aovs.normal : name == "albedo" ? aovs.albedo : aovs.id;
-    fs::path path = fs::path(output);
-    path.replace_extension("." + name + ".exr");
-    write_image(img, path);
+    write_image(img, cli::aov_path(output, name));
   }
 }
 
@@ -58,8 +56,8 @@ int run(const strahl::cli::Options& o) {
   cli::Timings timings;
   const std::string output =
       !o.output.empty() ? o.output : (o.scene.empty() ? "lecture" : fs::path(o.scene).stem().string()) + ".png";
-  // Before any work: a run that could not write its image fails at once.
-  check_output_path(output);
+  // Before any work: a run that could not write its image or an AOV fails at once.
+  cli::check_outputs(o, output);
   const std::atomic<bool>* cancel = cli::install_interrupt_handlers();
 
   auto t = std::chrono::steady_clock::now();
@@ -75,6 +73,7 @@ int run(const strahl::cli::Options& o) {
   t = std::chrono::steady_clock::now();
   const RenderScene render_scene = compile(scene);
   timings.build = seconds_since(t);
+  check_image_size(output, render_scene.camera.nx, render_scene.camera.ny);  // a JPEG of width 65536
 
   if (cancel->load()) {  // interrupted while loading: nothing rendered, nothing written
     strahl::console::err("strahl: interrupted before rendering; nothing written\n");

@@ -4,15 +4,18 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfIO.h>
 #include <ImfOutputFile.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <stdlib.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <atomic>
 #include <cerrno>
 #include <cctype>
@@ -25,12 +28,19 @@
 #include <system_error>
 #include <vector>
 
+#include "strahl/image/output_file.h"
 #include "strahl/util/error.h"
+#include "strahl/util/system_error.h"
 
 namespace strahl {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr long long kMaxJpegSide = 65535;          // 16-bit fields in the frame header
+constexpr long long kMaxImageSide = 1 << 24;       // stb_image's STBI_MAX_DIMENSIONS; the PFM reader's limit
+constexpr long long kMaxPngBytes = 1ll << 30;      // stb's int arithmetic, with room for deflate's growth
+constexpr long long kMaxPpmBytes = 2147483647;     // stb_image's PNM reader: w·h·3 in an int
 
 std::string lower_extension(const fs::path& path) {
   std::string ext = path.extension().string();
@@ -53,33 +63,45 @@ std::vector<unsigned char> to_bytes(const Image& image, bool linear) {
   return bytes;
 }
 
-void write_ppm(const Image& image, const fs::path& path, bool linear) {
-  std::ofstream out(path, std::ios::binary);
-  out << "P6\n" << image.width() << ' ' << image.height() << "\n255\n";
+void write_ppm(const Image& image, OutputFile& out, bool linear) {
+  const std::string header = "P6\n" + std::to_string(image.width()) + " " + std::to_string(image.height()) + "\n255\n";
+  out.write(header.data(), header.size());
   const std::vector<unsigned char> bytes = to_bytes(image, linear);
-  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-  if (!out) throw Error(path.string() + ": cannot write");
+  out.write(bytes.data(), bytes.size());
 }
 
 // Portable float map: little-endian (negative scale), rows from the bottom up.
-void write_pfm(const Image& image, const fs::path& path) {
-  std::ofstream out(path, std::ios::binary);
-  out << "PF\n" << image.width() << ' ' << image.height() << "\n-1.0\n";
+void write_pfm(const Image& image, OutputFile& out) {
+  static_assert(std::endian::native == std::endian::little, "PFM rows are written as the machine stores floats");
+  const std::string header = "PF\n" + std::to_string(image.width()) + " " + std::to_string(image.height()) + "\n-1.0\n";
+  out.write(header.data(), header.size());
   for (int row = image.height() - 1; row >= 0; --row) {
     for (int x = 0; x < image.width(); ++x) {
       const Rgb& p = image.at(x, row);
       const float v[3] = {p.r, p.g, p.b};
-      out.write(reinterpret_cast<const char*>(v), sizeof v);
+      out.write(v, sizeof v);
     }
   }
-  if (!out) throw Error(path.string() + ": cannot write");
 }
 
-void write_exr(const Image& image, const fs::path& path) {
+// OpenEXR writes through this stream, so that its bytes go through OutputFile's checks too.
+class ExrStream : public Imf::OStream {
+ public:
+  explicit ExrStream(OutputFile& out, const std::string& name) : Imf::OStream(name.c_str()), out_(out) {}
+  void write(const char c[], int n) override { out_.write(c, std::size_t(n)); }
+  std::uint64_t tellp() override { return out_.tell(); }
+  void seekp(std::uint64_t pos) override { out_.seek(pos); }
+
+ private:
+  OutputFile& out_;
+};
+
+void write_exr(const Image& image, OutputFile& out, const fs::path& path) {
   try {
     Imf::Header header(image.width(), image.height());
     for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
-    Imf::OutputFile file(path.c_str(), header);
+    ExrStream stream(out, path.string());
+    Imf::OutputFile file(stream, header);
     Imf::FrameBuffer fb;
     char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels().data()));
     const std::size_t xs = sizeof(Rgb), ys = sizeof(Rgb) * std::size_t(image.width());
@@ -93,16 +115,23 @@ void write_exr(const Image& image, const fs::path& path) {
   }
 }
 
-void write_by_extension(const Image& image, const fs::path& path, const std::string& ext, bool linear) {
-  if (ext == ".pfm") return write_pfm(image, path);
-  if (ext == ".exr") return write_exr(image, path);
-  if (ext == ".ppm") return write_ppm(image, path, linear);
+// stb calls this with each piece of the encoded file.
+void to_output_file(void* context, void* data, int size) {
+  static_cast<OutputFile*>(context)->write(data, std::size_t(size));
+}
+
+void write_by_extension(const Image& image, OutputFile& out, const fs::path& path, const std::string& ext, bool linear) {
+  if (ext == ".pfm") return write_pfm(image, out);
+  if (ext == ".exr") return write_exr(image, out, path);
+  if (ext == ".ppm") return write_ppm(image, out, linear);
   const std::vector<unsigned char> bytes = to_bytes(image, linear);
   int ok = 0;
   stbi_write_png_compression_level = 4;  // stb's default (8) costs twice the time for ~5% smaller files
-  if (ext == ".png") ok = stbi_write_png(path.c_str(), image.width(), image.height(), 3, bytes.data(), image.width() * 3);
-  if (ext == ".jpg" || ext == ".jpeg") ok = stbi_write_jpg(path.c_str(), image.width(), image.height(), 3, bytes.data(), 95);
-  if (!ok) throw Error(path.string() + ": cannot write");
+  if (ext == ".png")
+    ok = stbi_write_png_to_func(to_output_file, &out, image.width(), image.height(), 3, bytes.data(), image.width() * 3);
+  if (ext == ".jpg" || ext == ".jpeg")
+    ok = stbi_write_jpg_to_func(to_output_file, &out, image.width(), image.height(), 3, bytes.data(), 95);
+  if (!ok) throw Error(path.string() + ": cannot write the image: the encoder failed (out of memory?)");
 }
 
 Image read_pfm(const fs::path& path) {
@@ -112,9 +141,16 @@ Image read_pfm(const fs::path& path) {
   double scale = 0;
   in >> magic >> w >> h >> scale;
   in.get();
-  if (!in || (magic != "PF" && magic != "Pf") || w <= 0 || h <= 0 || w > 1 << 16 || h > 1 << 16)
+  if (!in || (magic != "PF" && magic != "Pf") || w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
     throw Error(path.string() + ": not a valid PFM file");
   const int channels = magic == "PF" ? 3 : 1;
+  // The header's size against the file's, before the memory is taken.
+  const auto data_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const auto data_bytes = std::uint64_t(in.tellg() - data_start);
+  in.seekg(data_start);
+  if (data_bytes < std::uint64_t(w) * std::uint64_t(h) * std::uint64_t(channels) * sizeof(float))
+    throw Error(path.string() + ": truncated PFM file");
   std::vector<float> data(std::size_t(w) * h * channels);
   in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * sizeof(float)));
   if (!in) throw Error(path.string() + ": truncated PFM file");
@@ -170,46 +206,59 @@ bool is_supported_image_extension(const fs::path& path) {
 }
 
 void write_image(const Image& image, const fs::path& path, const WriteOptions& options) {
-  if (!is_supported_image_extension(path))
-    throw Error(path.string() + ": unknown image format '" + path.extension().string() +
-                "' (use .png, .jpg/.jpeg, .ppm, .pfm or .exr)");
-  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw Error(path.string() + ": directory '" + dir.string() + "' does not exist");
-  static std::atomic<int> counter{0};
-  fs::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  try {
-    write_by_extension(image, tmp, lower_extension(path), options.linear);
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw Error(path.string() + ": cannot write: " + ec.message());
-  }
+  check_image_size(path, image.width(), image.height());
+  OutputFile out(path);  // removed again unless committed
+  write_by_extension(image, out, path, lower_extension(path), options.linear);
+  out.commit();
+}
+
+void check_image_size(const fs::path& path, int width, int height) {
+  const std::string ext = lower_extension(path);
+  const auto refuse = [&](const std::string& limit) {
+    throw Error(path.string() + ": " + limit + ", not " + std::to_string(width) + "x" + std::to_string(height));
+  };
+  if (width < 1 || height < 1) refuse("an image needs at least one pixel");
+  const long long w = width, h = height;
+  if ((ext == ".jpg" || ext == ".jpeg") && (w > kMaxJpegSide || h > kMaxJpegSide))
+    refuse("a JPEG image holds at most 65535 pixels per side");
+  if (ext == ".exr") return;
+  if (w > kMaxImageSide || h > kMaxImageSide)
+    refuse("a " + ext.substr(1) + " image can be read back with at most 16777216 pixels per side");
+  if (ext == ".png" && (3 * w + 1) * h > kMaxPngBytes) refuse("a PNG image holds at most 2^30 bytes of rows, (3 x width + 1) x height");
+  if (ext == ".ppm" && 3 * w * h > kMaxPpmBytes) refuse("a PPM image can be read back with at most 2^31 - 1 bytes of pixels");
 }
 
 void check_output_path(const fs::path& path) {
   if (!is_supported_image_extension(path))
     throw Error(path.string() + ": unknown image format '" + path.extension().string() +
                 "' (use .png, .jpg/.jpeg, .ppm, .pfm or .exr)");
-  std::error_code ec;
-  const fs::file_status st = fs::symlink_status(path, ec);
-  if (fs::is_directory(st)) throw Error(path.string() + ": cannot write the image: it is a directory");
-  if (fs::exists(st) && !fs::is_regular_file(st) && !fs::is_symlink(st))
-    throw Error(path.string() + ": cannot write the image: it exists and is not a regular file");
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) throw Error(path.string() + ": cannot write the image: it is a directory");
+    if (!S_ISREG(st.st_mode) && !S_ISLNK(st.st_mode))
+      throw Error(path.string() + ": cannot write the image: it exists and is not a regular file");
+  } else if (errno != ENOENT && errno != ENOTDIR) {  // ENOTDIR: the directory check below says which
+    throw Error(path.string() + ": cannot write the image: " + system_reason(errno));
+  }
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir, ec)) throw Error(path.string() + ": directory '" + dir.string() + "' does not exist");
-  std::string probe = (dir / ".strahl-write-test-XXXXXX").string();
-  const int fd = ::mkstemp(probe.data());
-  if (fd < 0)
-    throw Error(path.string() + ": cannot write in directory '" + dir.string() + "': " +
-                std::error_code(errno, std::generic_category()).message());
-  ::close(fd);
-  fs::remove(probe, ec);
+  if (::stat(dir.c_str(), &st) != 0) {
+    if (errno == ENOENT) throw Error(path.string() + ": directory '" + dir.string() + "' does not exist");
+    throw Error(path.string() + ": cannot reach directory '" + dir.string() + "': " + system_reason(errno));
+  }
+  if (!S_ISDIR(st.st_mode)) throw Error(path.string() + ": '" + dir.string() + "' is not a directory");
+  // A file with the very name the image's temporary file will have: this also finds names too
+  // long for the directory's file system (the temporary name is the longest one written).
+  for (std::uint32_t serial = 0xffffffffu;; --serial) {
+    const fs::path probe = OutputFile::temporary_name(path, serial);
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd >= 0) {
+      ::close(fd);
+      ::unlink(probe.c_str());
+      return;
+    }
+    if (errno != EEXIST || serial < 0xffffff00u)
+      throw Error(path.string() + ": cannot write in directory '" + dir.string() + "': " + system_reason(errno));
+  }
 }
 
 Image read_image(const fs::path& path) {

@@ -2,6 +2,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <system_error>
 
 #include "strahl/util/error.h"
+#include "strahl/util/system_error.h"
 
 namespace strahl {
 
@@ -232,10 +234,10 @@ MeshData load_obj(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error(FileLoc{path.string()}, "is not a regular file (a FIFO, device or socket), not a mesh file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(FileLoc{path.string()}, "cannot open mesh file");
+  if (!in) throw Error(FileLoc{path.string()}, "cannot open mesh file: " + system_reason(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw Error(FileLoc{path.string()}, "cannot read mesh file");
+  if (in.bad()) throw Error(FileLoc{path.string()}, "cannot read mesh file: " + system_reason(errno));
   return parse_obj(text.str(), path.string());
 }
 

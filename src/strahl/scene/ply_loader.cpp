@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <charconv>
 #include <climits>
 #include <cmath>
@@ -26,6 +27,7 @@
 #endif
 
 #include "strahl/util/error.h"
+#include "strahl/util/system_error.h"
 
 namespace strahl {
 namespace {
@@ -169,11 +171,12 @@ struct Bytes {
 Bytes read_file(const fs::path& path) {
   const std::string file = path.string();
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw Error(FileLoc{file}, "cannot open mesh file");
+  if (!fs::is_regular_file(path, ec))
+    throw Error(FileLoc{file}, "cannot open mesh file: " + (ec ? ec.message() : std::string("not a regular file")));
   const std::uintmax_t expected = fs::file_size(path, ec);
-  if (ec) throw Error(FileLoc{file}, "cannot open mesh file");
+  if (ec) throw Error(FileLoc{file}, "cannot open mesh file: " + ec.message());
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-  if (!f) throw Error(FileLoc{file}, "cannot open mesh file");
+  if (!f) throw Error(FileLoc{file}, "cannot open mesh file: " + system_reason(errno));
   Bytes bytes;
   try {
     bytes.data = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(expected) + 1);
@@ -183,7 +186,7 @@ Bytes read_file(const fs::path& path) {
   advise_huge_pages(bytes.data.get(), static_cast<std::size_t>(expected));
   // The file may have shrunk since file_size(); what was read is what counts.
   bytes.size = std::fread(bytes.data.get(), 1, static_cast<std::size_t>(expected), f.get());
-  if (std::ferror(f.get())) throw Error(FileLoc{file}, "cannot read mesh file");
+  if (std::ferror(f.get())) throw Error(FileLoc{file}, "cannot read mesh file: " + system_reason(errno));
   return bytes;
 }
 

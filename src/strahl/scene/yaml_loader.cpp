@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <fstream>
 #include <initializer_list>
 #include <map>
@@ -16,6 +17,7 @@
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/validate.h"
 #include "strahl/shading/area_light.h"
+#include "strahl/util/system_error.h"
 
 namespace strahl {
 namespace fs = std::filesystem;
@@ -459,7 +461,7 @@ Scene load_scene(const fs::path& path) {
   if (!fs::is_regular_file(path, ec))
     throw Error(FileLoc{path.string()}, "is not a regular file (a FIFO, device or socket), not a scene file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(FileLoc{path.string()}, "cannot open scene file");
+  if (!in) throw Error(FileLoc{path.string()}, "cannot open scene file: " + system_reason(errno));
   std::ostringstream text;
   text << in.rdbuf();
   return parse_scene(text.str(), path.string(), path.parent_path());
