@@ -33,6 +33,7 @@ int replay(const std::string& kind, Entry entry) {
 TEST(FuzzRegression, SceneInputs) { EXPECT_GT(replay("scene", &fuzz::scene_input), 5); }
 TEST(FuzzRegression, ObjInputs) { EXPECT_GT(replay("obj", &fuzz::obj_input), 5); }
 TEST(FuzzRegression, PlyInputs) { EXPECT_GT(replay("ply", &fuzz::ply_input), 5); }
+TEST(FuzzRegression, ExpressionInputs) { EXPECT_GT(replay("expression", &fuzz::expression_input), 5); }
 
 // The seeds that are valid meshes and scenes are accepted (so the targets reach compile()).
 TEST(FuzzRegression, ValidSeedsAreAccepted) {
@@ -46,6 +47,7 @@ TEST(FuzzRegression, ValidSeedsAreAccepted) {
   EXPECT_TRUE(accepted(&fuzz::obj_input, corpus / "obj" / "icosahedron.obj"));
   EXPECT_TRUE(accepted(&fuzz::ply_input, corpus / "ply" / "binary_big_endian-quad.ply"));
   EXPECT_TRUE(accepted(&fuzz::ply_input, corpus / "ply" / "ascii-normals.ply"));
+  EXPECT_TRUE(accepted(&fuzz::expression_input, corpus / "expression" / "torus"));
 }
 
 }  // namespace

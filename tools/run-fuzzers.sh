@@ -1,5 +1,5 @@
 #!/bin/sh
-# Runs each libFuzzer target (YAML scenes, OBJ, PLY) for a bounded time over its seed corpus.
+# Runs each libFuzzer target (YAML scenes, OBJ, PLY, implicit-surface expressions) for a bounded time over its seed corpus.
 #   tools/run-fuzzers.sh [BUILD_DIR] [SECONDS]     defaults: build-fuzz 20
 # Build the targets first: cmake --preset fuzz && cmake --build --preset fuzz
 # New interesting inputs go to BUILD_DIR/fuzz-corpus/KIND (the seeds in tests/fuzz/corpus/KIND
@@ -10,10 +10,13 @@ cd "$(dirname "$0")/.."
 build=${1:-build-fuzz}
 seconds=${2:-20}
 mkdir -p "$build/fuzz-artifacts"
-for kind in scene obj ply; do
+for kind in scene obj ply expression; do
   mkdir -p "$build/fuzz-corpus/$kind"
   echo "fuzz: $kind for $seconds s"
-  "$build/fuzz/strahl_fuzz_$kind" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  dict=""
+  if [ -f "tests/fuzz/$kind.dict" ]; then dict="-dict=tests/fuzz/$kind.dict"; fi
+  # shellcheck disable=SC2086  # $dict is empty or one word
+  "$build/fuzz/strahl_fuzz_$kind" $dict -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$build/fuzz-artifacts/$kind-" "$build/fuzz-corpus/$kind" "tests/fuzz/corpus/$kind" \
     "tests/fuzz/regressions/$kind" 2>&1 | grep -E '^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+==|SUMMARY|artifact_prefix|Test unit written)' || true
   if ls "$build/fuzz-artifacts/$kind-"* >/dev/null 2>&1; then

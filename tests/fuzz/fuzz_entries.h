@@ -5,12 +5,17 @@
 // strahl::Error is the expected answer to bad input; anything else (a crash, a sanitizer report,
 // another exception escaping, a huge allocation) is a bug.
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/expression_ast.h"
+#include "strahl/scene/expression_compiler.h"
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/ply_loader.h"
 #include "strahl/scene/scene_file.h"
@@ -62,6 +67,77 @@ inline Outcome obj_input(const std::uint8_t* data, std::size_t size) {
 }
 inline Outcome ply_input(const std::uint8_t* data, std::size_t size) {
   return mesh_outcome(&parse_ply, "fuzz.ply", data, size);
+}
+
+// ---- the expression compiler and evaluator (implicit surfaces) ----
+
+// The parse tree evaluated directly, node by node, with the kernel's operations: what the folded,
+// reordered postfix program must reproduce bit for bit.
+inline bool reads_coordinates(const expression::Tree& t, int i) {
+  const expression::Node& n = t.nodes[std::size_t(i)];
+  if (n.op == kernel::Op::X || n.op == kernel::Op::Y || n.op == kernel::Op::Z) return true;
+  for (int k = 0; k < kernel::op_arity(n.op); ++k)
+    if (reads_coordinates(t, n.child[k])) return true;
+  return false;
+}
+
+inline Real walk(const expression::Tree& t, int i, const Vec3& p) {
+  using kernel::Op;
+  const expression::Node& n = t.nodes[std::size_t(i)];
+  switch (n.op) {
+    case Op::X: return p.x;
+    case Op::Y: return p.y;
+    case Op::Z: return p.z;
+    case Op::Const: return n.value;
+    case Op::Clamp: return kernel::apply_clamp(walk(t, n.child[0], p), walk(t, n.child[1], p), walk(t, n.child[2], p));
+    case Op::Pow: {
+      const Real base = walk(t, n.child[0], p), e = walk(t, n.child[1], p);
+      if (!reads_coordinates(t, n.child[1]) && (e == 2 || e == 3)) return e == 2 ? base * base : base * base * base;
+      return std::pow(base, e);
+    }
+    default: break;
+  }
+  if (kernel::op_arity(n.op) == 1) return kernel::apply_unary(n.op, walk(t, n.child[0], p));
+  return kernel::apply_binary(n.op, walk(t, n.child[0], p), walk(t, n.child[1], p));
+}
+
+// The program's own bounds, checked by simulating its stack (evaluate() trusts them).
+inline void check_program(const kernel::Expression& e) {
+  if (e.length < 1 || e.length > kernel::kMaxExpressionLength) throw std::logic_error("program length out of bounds");
+  if (e.constant_count > kernel::kMaxExpressionConstants) throw std::logic_error("too many constants");
+  int depth = 0, deepest = 0;
+  for (int i = 0; i < e.length; ++i) {
+    const kernel::Instruction in = e.code[i];
+    if (in.op == kernel::Op::Const && in.arg >= e.constant_count) throw std::logic_error("constant index out of range");
+    const int arity = kernel::op_arity(in.op);
+    if (depth < arity) throw std::logic_error("stack underflow");
+    depth += arity == 0 ? 1 : 1 - arity;
+    deepest = depth > deepest ? depth : deepest;
+  }
+  if (depth != 1 || deepest != e.stack_depth || deepest > kernel::kMaxExpressionStack)
+    throw std::logic_error("stack depth differs from the program's claim");
+}
+
+// An expression's text: compiled with two parameters (a, b); when accepted, the program must keep
+// its bounds and agree with the parse tree at a few points, some extreme.
+inline Outcome expression_input(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  const ExpressionParameters parameters = {{"a", 1.5}, {"b", -2}};
+  kernel::Expression e;
+  try {
+    e = compile_expression(text, parameters);
+  } catch (const Error&) {
+    return Outcome::Refused;
+  }
+  check_program(e);
+  const expression::Tree tree = expression::parse(text, parameters);
+  const Vec3 points[] = {Vec3(0), Vec3(1, -2, 0.5), Vec3(-0.0, 1e-300, -1e300), Vec3(3.25, 7, -11)};
+  for (const Vec3& p : points) {
+    const Real got = kernel::evaluate(e, p), want = walk(tree, tree.root, p);
+    if (!(std::isnan(got) && std::isnan(want)) && std::memcmp(&got, &want, sizeof got) != 0)
+      throw std::logic_error("compiled program and parse tree disagree");
+  }
+  return Outcome::Accepted;
 }
 
 }  // namespace strahl::fuzz
