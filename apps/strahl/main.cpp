@@ -13,8 +13,8 @@
 #include "options.h"
 #include "outputs.h"
 #include "progress.h"
+#include "setup.h"
 #include "strahl/image/image_io.h"
-#include "strahl/render/aov.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_file.h"
@@ -26,48 +26,17 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// Command-line sampling settings over the scene's. A time limit without a sample count renders
-// until the limit (up to 65536 samples per pixel).
-void apply_sampling_options(const strahl::cli::Options& o, strahl::SamplingSettings& s) {
-  using namespace strahl;
-  if (o.sampler) s.sampler = *sampler_from_name(*o.sampler);
-  if (o.spp) s.spp = *o.spp;
-  if (o.seed) s.seed = *o.seed;
-  if (o.filter) s.filter.kind = *filter_from_name(*o.filter);
-  if (o.filter_radius) s.filter.radius = *o.filter_radius;
-  if (o.adaptive_min) s.adaptive_min = *o.adaptive_min;
-  if (o.adaptive_threshold) s.adaptive_threshold = *o.adaptive_threshold;
-  if (o.time_limit > 0 && !o.spp && s.spp == 0) s.spp = 65536;
-}
-
-// <output stem>.<name>.exr beside the image, for each AOV asked for.
-void write_aovs(const strahl::RenderScene& scene, const strahl::cli::Options& o, const std::string& output) {
-  using namespace strahl;
-  const AovImages aovs = render_aovs(scene, o.threads);
-  for (const std::string& name : o.aov) {
-    const Image& img = name == "depth" ? aovs.depth : name == "normal" ? aovs.normal : name == "albedo" ? aovs.albedo : aovs.id;
-    write_image(img, cli::aov_path(output, name));
-  }
-}
-
 int run(const strahl::cli::Options& o) {
   using namespace strahl;
   namespace fs = std::filesystem;
   cli::Timings timings;
-  const std::string output =
-      !o.output.empty() ? o.output : (o.scene.empty() ? "lecture" : fs::path(o.scene).stem().string()) + ".png";
+  const std::string output = cli::output_path(o);
   // Before any work: a run that could not write its image or an AOV fails at once.
   cli::check_outputs(o, output);
   const std::atomic<bool>* cancel = cli::install_interrupt_handlers();
 
   auto t = std::chrono::steady_clock::now();
-  Scene scene = o.scene.empty() ? lecture_scene() : load_scene(o.scene);
-  if (o.width) scene.settings.width = *o.width;
-  if (o.height) scene.settings.height = *o.height;
-  if (o.max_depth) scene.settings.max_depth = *o.max_depth;
-  if (o.supersample) scene.settings.supersample = *o.supersample;
-  if (o.accel) scene.settings.accel = *accel_from_name(*o.accel);
-  apply_sampling_options(o, scene.settings.sampling);
+  const Scene scene = cli::configured_scene(o);
   timings.load = seconds_since(t);
 
   t = std::chrono::steady_clock::now();
@@ -97,7 +66,7 @@ int run(const strahl::cli::Options& o) {
 
   t = std::chrono::steady_clock::now();
   write_image(image, output, {o.linear});
-  if (!o.aov.empty()) write_aovs(render_scene, o, output);
+  if (!o.aov.empty()) cli::write_aovs(render_scene, o, output);
   timings.write = seconds_since(t);
   if (cancel->load()) {
     strahl::console::err("strahl: interrupted ({}); wrote the image rendered so far to {}\n",

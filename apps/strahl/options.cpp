@@ -42,11 +42,11 @@ void add_sampling_options(CLI::App& app, Options& o) {
 }
 }  // namespace
 
-ParseResult parse_options(int argc, char** argv) {
+ParseResult parse_options(int argc, char** argv, const char* program, const std::function<void(CLI::App&)>& more) {
   Options o;
   CLI::App app{"strahl — a Whitted-style ray tracer. Renders a scene file (.yaml/.json), or the lecture's scene "
                "when none is given.",
-               "strahl"};
+               program};
   app.add_option("scene", o.scene, "Scene file (.yaml, .yml, .json); omitted: the built-in lecture scene");
   app.add_option("-o,--output", o.output,
                  "Output image; the format follows the extension: .png .jpg/.jpeg .ppm (8-bit sRGB), .pfm .exr (linear "
@@ -64,7 +64,8 @@ ParseResult parse_options(int argc, char** argv) {
   app.add_option("--tile-size", o.tile_size, "Tile side in pixels (default 32)")->check(CLI::Range(1, 4096));
   app.add_flag("--linear", o.linear, "Store linear values in 8-bit images instead of sRGB (as POV-Ray's File_Gamma=1.0)");
   app.add_flag("-q,--quiet", o.quiet, "No progress and no summary");
-  app.set_version_flag("--version", std::string("strahl ") + version(), "Print the version and exit");
+  if (more) more(app);
+  app.set_version_flag("--version", std::string(program) + " " + version(), "Print the version and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,10 +1,15 @@
 #pragma once
 // Command-line options of the `strahl` renderer.
 
+#include <functional>
 #include <optional>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+namespace CLI {
+class App;
+}
 
 namespace strahl::cli {
 
@@ -33,6 +38,8 @@ struct ParseResult {
   std::optional<Options> options;
   int exit_code = 0;
 };
-ParseResult parse_options(int argc, char** argv);
+// `program` names the program in --help and --version; `more` adds its own options (strahl-mpi).
+ParseResult parse_options(int argc, char** argv, const char* program = "strahl",
+                          const std::function<void(CLI::App&)>& more = {});
 
 }  // namespace strahl::cli

@@ -29,9 +29,11 @@ FilmLayout::FilmLayout(int width, int height, const Filter& filter, bool pixel_s
 void FilmLayout::prepare(TileWork& t) const {
   const std::size_t n = t.rect.pixels();
   t.taken.assign(n, 0);
-  if (stats_) t.stats.assign(n, PixelStats{});
+  t.counters = {};
+  // Sums and statistics carried in (a decoded request) are kept; missing ones start at zero.
+  if (stats_ && t.stats.size() != n) t.stats.assign(n, PixelStats{});
   if (local_) {
-    t.local.assign(n * 4, 0.0);
+    if (t.local.size() != n * 4) t.local.assign(n * 4, 0.0);
     return;
   }
   t.bx0 = std::max(0, t.rect.x0 - margin_);

@@ -40,8 +40,9 @@ class FilmLayout {
   bool keeps_stats() const { return stats_; }
   int margin() const { return margin_; }  // pixels a sample can reach beyond its own
 
-  // Sizes the tile's buffers for its rect (zero sums, zero statistics); Film::begin_tile also
-  // carries the film's sums in.
+  // Sizes the tile's buffers for its rect: no samples taken yet, no wide-filter contributions;
+  // sums and statistics it already carries (a request decoded by a worker) are kept, missing ones
+  // are zero. Film::begin_tile then carries the film's own sums in.
   void prepare(TileWork& tile) const;
   // A sample of pixel (x, row) (inside the tile) at film position cs.film_x/film_y (raster units,
   // y up from the bottom row, as the pixel sampler made it) with radiance `L`.

@@ -45,12 +45,16 @@ class Watchdog {
 
 }  // namespace
 
+FilmLayout film_layout_for(const SceneView& view, const SamplingSettings& sampling) {
+  return FilmLayout(view.camera.nx, view.camera.ny, sampling.filter, sampling.sampler == SamplerKind::Adaptive);
+}
+
 RenderJob::RenderJob(const SceneView& view, const SamplingSettings& sampling, JobOptions options)
     : view_(view),
       sampling_(sampling),
       sampler_(make_pixel_sampler(sampling)),
       options_(std::move(options)),
-      film_(view.camera.nx, view.camera.ny, sampling.filter, sampling.sampler == SamplerKind::Adaptive),
+      film_(film_layout_for(view, sampling)),
       stop_(options_.cancel) {
   width_ = view.camera.nx;
   height_ = view.camera.ny;
@@ -157,6 +161,21 @@ TileWork RenderJob::tile(int index) const {
   return w;
 }
 
+// A replayed tile fits the current pass: the same rectangle, every sample it should have, and
+// buffers of the film's layout (a journal is checked against the scene and settings as a whole;
+// this guards the indexing).
+bool RenderJob::replayable(const TileWork& done, int index) const {
+  const TileWork want = tile(index);
+  const std::size_t n = want.rect.pixels();
+  if (done.pass != pass_ || done.rect.x0 != want.rect.x0 || done.rect.row0 != want.rect.row0 ||
+      done.rect.x1 != want.rect.x1 || done.rect.row1 != want.rect.row1 || done.taken != want.count)
+    return false;
+  if (film_.pixel_local() ? done.local.size() != n * 4 : done.fixed.size() != want.fixed.size()) return false;
+  if (!film_.pixel_local() && (done.bx0 != want.bx0 || done.brow0 != want.brow0 || done.bw != want.bw || done.bh != want.bh))
+    return false;
+  return film_.layout().keeps_stats() ? done.stats.size() == n : done.stats.empty();
+}
+
 std::optional<TileWork> RenderJob::next_tile() {
   while (!stop_.requested()) {
     const int i = next_.fetch_add(1, std::memory_order_relaxed);
@@ -167,7 +186,16 @@ std::optional<TileWork> RenderJob::next_tile() {
     bool any = false;
     for (int row = row0; row < row1 && !any; ++row)
       for (int x = x0; x < x1 && !any; ++x) any = add_[std::size_t(row) * std::size_t(width_) + std::size_t(x)] > 0;
-    if (any) return tile(i);
+    if (!any) continue;
+    if (options_.replay) {
+      std::optional<TileWork> done = options_.replay(pass_, i);
+      if (done && replayable(*done, i)) {
+        replayed_.fetch_add(1, std::memory_order_relaxed);
+        deliver(std::move(*done));
+        continue;
+      }
+    }
+    return tile(i);
   }
   return std::nullopt;
 }
@@ -182,6 +210,10 @@ void RenderJob::deliver(TileWork&& work) {
   {
     std::lock_guard lock(deliver_mutex_);
     counters_ += work.counters;
+  }
+  if (options_.on_tile) {
+    std::lock_guard lock(on_tile_mutex_);
+    options_.on_tile(work);
   }
   report(done_.fetch_add(n) + n);
   if (options_.checkpoint && options_.checkpoint_interval > 0) {
@@ -214,6 +246,7 @@ RenderStats RenderJob::stats() const {
   s.samples = done_.load();
   s.passes = passes_.load();
   s.pixel_samples = counts_;
+  s.replayed_tiles = replayed_.load();
   return s;
 }
 

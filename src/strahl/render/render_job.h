@@ -48,6 +48,12 @@ struct JobOptions {
   double checkpoint_interval = 0;
   std::function<void(const Image&)> checkpoint{};
   ProgressCallback progress{};
+  // Called with every tile delivered (complete, or stopped early: see TileWork::taken) from the
+  // delivering thread, one call at a time — the resume journal (render/journal.h) records them.
+  std::function<void(const TileWork&)> on_tile{};
+  // Tiles an earlier run of the same render already delivered (the resume journal): a tile of the
+  // current pass found here is delivered as it is instead of being handed out.
+  std::function<std::optional<TileWork>(int pass, int index)> replay{};
   bool progressive = false;           // passes even without adaptive sampling, time limit or checkpoints
   std::uint32_t max_pass_samples = 0;  // at most this many samples per pixel and pass (0: no bound)
 };
@@ -57,12 +63,17 @@ struct RenderStats {
   double seconds = 0;
   bool cancelled = false;     // stopped by the cancel flag or cancel() before the last sample
   bool time_limited = false;  // stopped by the time limit
-  std::uint64_t samples = 0;  // camera samples taken
+  std::uint64_t samples = 0;  // camera samples taken (replayed tiles' included)
+  std::uint64_t replayed_tiles = 0;  // tiles taken from JobOptions::replay instead of rendered
   int passes = 0;
   std::vector<std::uint32_t> pixel_samples{};  // samples per pixel, row-major from the top
 };
 
 class RenderJob;
+
+// The film layout a job over (view, sampling) uses: what a back end away from the job (an MPI
+// worker) makes for itself.
+FilmLayout film_layout_for(const SceneView& view, const SamplingSettings& sampling);
 
 // A back end: renders the tiles of the job's current pass. render_pass takes tiles with
 // job.next_tile() until it returns none, renders each (the samples it asks for, stopping early
@@ -118,6 +129,7 @@ class RenderJob {
 
   bool plan_next_pass();  // false: nothing left to do
   bool take_pass();       // the next pass from pending_, at most max_pass_samples each; false: none
+  bool replayable(const TileWork& done, int index) const;
   void report(std::uint64_t now_done);
 
   SceneView view_;
@@ -144,6 +156,8 @@ class RenderJob {
   std::mutex deliver_mutex_;  // guards counters_
   RayCounters counters_;
   std::mutex checkpoint_mutex_;  // guards next_checkpoint_; one checkpoint at a time
+  std::mutex on_tile_mutex_;     // one on_tile call at a time
+  std::atomic<std::uint64_t> replayed_{0};
   Clock::time_point start_{}, next_checkpoint_{};
   double seconds_ = 0;
 };

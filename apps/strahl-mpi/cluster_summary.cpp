@@ -1,0 +1,27 @@
+#include "cluster_summary.h"
+
+#include <fmt/format.h>
+
+namespace strahl::cli {
+
+std::string cluster_summary(const mpi::ClusterStats& s) {
+  std::string out = fmt::format("cluster     {} ranks; load imbalance {:.3f} (max/mean busy), parallel efficiency {:.3f}\n",
+                                s.ranks.size(), s.imbalance(), s.efficiency());
+  for (const mpi::RankStats& r : s.ranks) {
+    if (r.lost) {
+      out += fmt::format("  rank {:<4}  LOST; {} tiles arrived from it before\n", r.rank, r.tiles);
+      continue;
+    }
+    out += fmt::format("  rank {:<4}  {} threads, {} tiles, busy {:.3f} s, idle {:.3f} s, communication {:.3f} s\n",
+                       r.rank, r.threads, r.tiles, r.busy, r.idle, r.comm);
+  }
+  const std::vector<int> lost = s.lost_ranks();
+  if (!lost.empty()) {
+    std::string names;
+    for (int r : lost) names += (names.empty() ? "" : ", ") + std::to_string(r);
+    out += fmt::format("warning     lost rank(s) {}; their tiles were rendered by the others\n", names);
+  }
+  return out;
+}
+
+}  // namespace strahl::cli

@@ -1,0 +1,176 @@
+#include "strahl/render/scene_hash.h"
+
+#include <cstring>
+#include <type_traits>
+
+namespace strahl {
+
+namespace {
+
+// FNV-1a over the values, field by field: a struct's padding bytes are indeterminate, so structs
+// are never hashed as raw memory unless they have none.
+struct Hasher {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+
+  void bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+  }
+  template <class T>
+    requires std::is_arithmetic_v<T> || std::is_enum_v<T>
+  void add(T v) {
+    if constexpr (std::is_floating_point_v<T>) {
+      if (v == 0) v = 0;  // −0 and +0 compile from the same scene the same way; keep them equal anyway
+    }
+    bytes(&v, sizeof v);
+  }
+  void add(const Vec3& v) {
+    add(v.x);
+    add(v.y);
+    add(v.z);
+  }
+  template <class T>
+  void add_all(const std::vector<T>& items);
+};
+
+template <class T>
+void Hasher::add_all(const std::vector<T>& items) {
+  add(std::uint64_t(items.size()));
+  for (const T& item : items) hash(*this, item);
+}
+
+// A new field in one of these structs must be hashed too: the sizes below fail to compile until
+// it is (update the function and the size together).
+static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && sizeof(kernel::Triangle) == 88 &&
+                  sizeof(kernel::VertexNormals) == 72 && sizeof(kernel::MovingSphere) == 64 &&
+                  sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 144 && sizeof(Light) == 168 &&
+                  sizeof(Camera) == 176 && sizeof(TraceSettings) == 72 && sizeof(SamplingSettings) == 48,
+              "a kernel struct changed: hash its new fields in scene_hash.cpp and update the size here");
+// A new array in the render-ready scene must be hashed too (with Embree: its scene handle).
+#if defined(STRAHL_HAVE_EMBREE)
+static_assert(sizeof(RenderScene) == 1056, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+#endif
+
+void hash(Hasher& h, const Material& m) {
+  h.add(m.color);
+  h.add(m.ambient);
+  h.add(m.diffuse);
+  h.add(m.specular);
+  h.add(m.shininess);
+  h.add(m.reflectivity);
+  h.add(m.transparency);
+  h.add(m.ior);
+  h.add(m.fresnel);
+  h.add(m.filter);
+  h.add(m.roughness);
+  h.add(m.checker_size);
+  h.add(m.checker_color);
+}
+
+void hash(Hasher& h, const Light& l) {
+  h.add(l.kind);
+  h.add(l.position);
+  h.add(l.direction);
+  h.add(l.radiance);
+  h.add(l.edge_u);
+  h.add(l.edge_v);
+  h.add(l.normal);
+  h.add(l.radius);
+  h.add(l.samples);
+}
+
+void hash(Hasher& h, const Camera& c) {
+  h.add(c.eye);
+  h.add(c.basis.u);
+  h.add(c.basis.v);
+  h.add(c.basis.w);
+  for (Real x : {c.l, c.r, c.b, c.t, c.d, c.lens_radius, c.focus_distance, c.shutter_open, c.shutter_close}) h.add(x);
+  h.add(c.nx);
+  h.add(c.ny);
+}
+
+void hash(Hasher& h, const TraceSettings& s) {
+  h.add(s.max_depth);
+  h.add(s.min_weight);
+  h.add(s.background);
+  h.add(s.ambient_light);
+  h.add(s.medium_ior);
+}
+
+void hash(Hasher& h, const SamplingSettings& s) {
+  h.add(s.sampler);
+  h.add(s.spp);
+  h.add(s.seed);
+  h.add(s.filter.kind);
+  h.add(s.filter.radius);
+  h.add(s.adaptive_min);
+  h.add(s.adaptive_threshold);
+}
+
+void hash(Hasher& h, const kernel::Sphere& x) {
+    h.add(x.center);
+  h.add(x.radius);
+  h.add(x.material);
+}
+
+void hash(Hasher& h, const kernel::Plane& x) {
+    h.add(x.normal);
+  h.add(x.distance);
+  h.add(x.tangent);
+  h.add(x.bitangent);
+  h.add(x.material);
+}
+
+void hash(Hasher& h, const kernel::Triangle& x) {
+    h.add(x.v0);
+  h.add(x.v1);
+  h.add(x.v2);
+  h.add(x.material);
+  h.add(x.normals);
+  h.add(x.object);
+}
+
+void hash(Hasher& h, const kernel::VertexNormals& x) {
+    h.add(x.n0);
+  h.add(x.n1);
+  h.add(x.n2);
+}
+
+void hash(Hasher& h, const kernel::MovingSphere& x) {
+    h.add(x.center0);
+  h.add(x.center1);
+  h.add(x.radius);
+  h.add(x.material);
+}
+
+void hash(Hasher& h, const kernel::MovingTriangle& x) {
+    for (int k = 0; k < 3; ++k) {
+    h.add(x.p0[k]);
+    h.add(x.p1[k]);
+  }
+  h.add(x.material);
+  h.add(x.normals);
+  h.add(x.object);
+}
+
+}  // namespace
+
+std::uint64_t scene_hash(const RenderScene& s) {
+  Hasher h;
+  h.add_all(s.spheres);
+  h.add_all(s.planes);
+  h.add_all(s.triangles);
+  h.add_all(s.vertex_normals);
+  h.add_all(s.moving_spheres);
+  h.add_all(s.moving_triangles);
+  h.add_all(s.materials);
+  h.add_all(s.lights);
+  hash(h, s.camera);
+  hash(h, s.settings);
+  h.add(s.supersample);
+  hash(h, s.sampling);
+  h.add(s.accel.kind);
+  return h.h;
+}
+
+}  // namespace strahl

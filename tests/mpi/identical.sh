@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Cluster images are the same bytes as strahl's: for K = 1..4 ranks with 1 and 2 threads each,
+# every sampler, a wide filter, adaptive sampling, AOVs and motion blur.
+. "$(dirname "$0")/common.sh"
+
+# check NAME NP THREADS TILE SCENE ARGS...: strahl-mpi's PFM (and AOVs) = strahl's.
+check() {
+  local name=$1 np=$2 threads=$3 tile=$4 scene=$5 before=$failures
+  shift 5
+  local args=("$SRC/scenes/$scene" --width 48 --height 27 -q "$@")
+  "$CLI" "${args[@]}" --threads 1 -o "$WORK/$name.ref.pfm" || { fail "$name: strahl failed"; return; }
+  if ! mpirun_strahl "$np" "${args[@]}" --threads "$threads" --tile-size "$tile" -o "$WORK/$name.mpi.pfm"; then
+    fail "$name: strahl-mpi -np $np failed"
+    return
+  fi
+  cmp -s "$WORK/$name.ref.pfm" "$WORK/$name.mpi.pfm" || fail "$name: -np $np --threads $threads: the images differ"
+  for aov in "$WORK/$name".ref.*.exr; do
+    [ -e "$aov" ] || continue
+    local other=${aov/.ref./.mpi.}
+    cmp -s "$aov" "$other" || fail "$name: AOV $(basename "$other") differs"
+  done
+  [ -e "$WORK/$name.mpi.pfm.journal" ] && fail "$name: the journal of a finished render was left behind"
+  [ "$failures" = "$before" ] && echo "ok: $name (-np $np, $threads threads, tile $tile)"
+}
+
+check grid-1       1 2 16 lecture-whitted.yaml --supersample 2
+check grid-2       2 1 8  lecture-whitted.yaml --supersample 2
+check stratified-3 3 2 5  lecture-whitted.yaml --sampler stratified --spp 4
+check sobol-4      4 1 7  lecture-distributed.yaml --sampler sobol --spp 4
+check random-2     2 2 9  soft-shadows.yaml --sampler random --spp 3
+check adaptive-2   2 2 8  lecture-whitted.yaml --sampler adaptive --spp 16 --adaptive-min 2
+check adaptive-4   4 1 6  lecture-whitted.yaml --sampler adaptive --spp 16 --adaptive-min 2
+check mitchell-3   3 1 8  lecture-whitted.yaml --sampler stratified --spp 4 --filter mitchell --filter-radius 2
+check aov-2        2 2 16 lecture-whitted.yaml --aov depth,normal,albedo,id
+check motion-4     4 2 8  motion-blur.yaml --sampler sobol --spp 4
+check dof-3        3 1 8  depth-of-field.yaml --sampler sobol --spp 4
+finish
