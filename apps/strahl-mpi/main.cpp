@@ -97,7 +97,6 @@ int master(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   std::uint64_t hash = 0, key = 0;
   try {
     cli::check_outputs(o, output);
-    check_output_path(journal_path);
     auto t = Clock::now();
     const Scene scene = cli::configured_scene(o);
     timings.load = seconds_since(t);
@@ -136,7 +135,14 @@ int master(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   jo.cancel = cancel;
   jo.progress = [&](long done, long total) { progress.update(done, total); };
   if (o.checkpoint > 0) jo.checkpoint = [&](const Image& partial) { write_image(partial, output, {o.linear}); };
-  jo.on_tile = [&](const TileWork& t) { journal->record(t); };
+  // Test hook (tests/mpi/resume.sh): STRAHL_MPI_KILL_RANK=0 kills the whole job (rank 0 by
+  // SIGKILL: Open MPI then ends every rank) after STRAHL_MPI_KILL_AFTER journalled tiles.
+  const int kill_after = env_int("STRAHL_MPI_KILL_RANK", -1) == 0 ? env_int("STRAHL_MPI_KILL_AFTER", 1) : 0;
+  std::atomic<int> recorded{0};
+  jo.on_tile = [&](const TileWork& t) {
+    journal->record(t);
+    if (kill_after > 0 && ++recorded == kill_after) std::raise(SIGKILL);
+  };
   if (m.resume) jo.replay = [&](int pass, int index) { return journal->find(pass, index); };
   RenderJob job(rs->view(), rs->sampling, std::move(jo));
   job.run(backend);

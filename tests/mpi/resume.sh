@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Kill the whole job mid-render (SIGKILL to every rank), then --resume: only the missing tiles are
+# Kill the whole job mid-render (rank 0 killed: every rank ends), then --resume: only the missing tiles are
 # rendered and the image has the bytes of an uninterrupted run; a journal of other settings is
 # refused and nothing is written.
 . "$(dirname "$0")/common.sh"
@@ -9,17 +9,10 @@ args=("$SRC/scenes/lecture-distributed.yaml" --width 160 --height 90 --sampler a
 "$CLI" "${args[@]}" -q --threads 1 -o "$WORK/ref.pfm" || fail "strahl failed"
 
 out="$WORK/out.pfm"
-setsid timeout -k 5 60 mpirun -np 2 "$MPI_BIN" "${args[@]}" --threads 1 -q -o "$out" > "$WORK/first.txt" 2>&1 &
-pid=$!
-# Wait for a good part of the journal (tiles recorded), then kill every rank at once.
-for _ in $(seq 1 400); do
-  [ -f "$out.journal" ] && [ "$(stat -c %s "$out.journal")" -gt 100000 ] && break
-  sleep 0.05
-done
-pkill -KILL -s "$pid"  # every process of the job: mpirun and its ranks (setsid: a session of their own)
-wait $pid 2>/dev/null
+# Rank 0 raises SIGKILL after 150 journalled tiles (a test hook); Open MPI then ends every rank.
+STRAHL_MPI_KILL_RANK=0 STRAHL_MPI_KILL_AFTER=150 mpirun_strahl 2 "${args[@]}" --threads 1 -q -o "$out" > "$WORK/first.txt" 2>&1
 if [ -e "$out" ] || [ ! -f "$out.journal" ]; then
-  fail "the render finished before it could be killed (make it slower)"
+  fail "the killed render left an image or no journal"
   finish
 fi
 size=$(stat -c %s "$out.journal")
