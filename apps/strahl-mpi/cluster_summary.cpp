@@ -5,8 +5,9 @@
 namespace strahl::cli {
 
 std::string cluster_summary(const mpi::ClusterStats& s) {
-  std::string out = fmt::format("cluster     {} ranks; load imbalance {:.3f} (max/mean busy), parallel efficiency {:.3f}\n",
-                                s.ranks.size(), s.imbalance(), s.efficiency());
+  std::string out = fmt::format(
+      "cluster     {} ranks; load imbalance {:.3f} (max/mean busy), parallel efficiency {:.3f}, latency {:.1f} µs\n",
+      s.ranks.size(), s.imbalance(), s.efficiency(), s.latency * 1e6);
   for (const mpi::RankStats& r : s.ranks) {
     if (r.lost) {
       out += fmt::format("  rank {:<4}  LOST; {} tiles arrived from it before\n", r.rank, r.tiles);

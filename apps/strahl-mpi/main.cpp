@@ -129,6 +129,7 @@ int master(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   mo.tile_log = tile_log;
   mo.warn = [](const std::string& what) { console::err("strahl-mpi: warning: {}\n", what); };
   mpi::Master backend(comm, mo);
+  const double latency = backend.measure_latency();
 
   cli::Progress progress(!o.quiet);
   JobOptions jo = job_options(o);
@@ -149,7 +150,8 @@ int master(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   const RenderStats stats = job.stats();
   if (!stats.cancelled) progress.finish();
   timings.render = stats.seconds;
-  const mpi::ClusterStats cluster = backend.finish(stats.seconds);
+  mpi::ClusterStats cluster = backend.finish(stats.seconds);
+  cluster.latency = latency;
   if (tile_log) std::fclose(tile_log);
 
   const auto t = Clock::now();

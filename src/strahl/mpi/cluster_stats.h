@@ -19,6 +19,7 @@ struct RankStats {
 struct ClusterStats {
   std::vector<RankStats> ranks;  // by rank
   double seconds = 0;            // wall time of the render on rank 0
+  double latency = 0;            // one-way seconds of a small message, measured before the render
 
   // max / mean of the ranks' busy seconds (ranks that rendered; 1 = perfectly balanced).
   double imbalance() const;

@@ -23,6 +23,7 @@ enum Tag : int {
   kQuit,        // master → worker: no more work
   kAlive,       // worker → master: still here (while rendering a long tile)
   kRankStats,   // worker → master: its statistics, before it quits
+  kPing,        // master → worker → master: a round trip, to measure the latency
 };
 
 struct Message {

@@ -210,6 +210,29 @@ void Master::render_pass(RenderJob& job) {
   for (Worker& w : workers_) w.in_flight.clear();
 }
 
+double Master::measure_latency(int round_trips) {
+  double total = 0;
+  int measured = 0;
+  for (Worker& w : workers_) {
+    for (int i = 0; i < round_trips && !w.lost; ++i) {
+      const auto start = Clock::now();
+      if (!comm_.send(w.rank, kPing, {})) break;
+      bool answered = false;
+      while (!answered && since(start) < options_.timeout) {
+        if (std::optional<Message> m = comm_.poll()) {
+          answered = m->from == w.rank && m->tag == kPing;
+          continue;
+        }
+        comm_.progress();
+      }
+      if (!answered) break;
+      total += since(start) / 2;
+      ++measured;
+    }
+  }
+  return measured > 0 ? total / measured : 0;
+}
+
 ClusterStats Master::finish(double render_seconds) {
   // A lost rank makes MPI_Finalize wait for it forever: the quit message says so, and every rank
   // then ends without it.

@@ -36,6 +36,10 @@ class Master final : public TileBackend {
   Master(Comm& comm, MasterOptions options);
   void render_pass(RenderJob& job) override;
 
+  // Mean one-way latency of a small message to the workers, over `round_trips` ping-pongs with
+  // each (call before the render); 0 without workers.
+  double measure_latency(int round_trips = 50);
+
   // Tells the workers to quit and collects their statistics (call once, after the render).
   ClusterStats finish(double render_seconds);
 

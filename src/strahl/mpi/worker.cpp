@@ -87,6 +87,8 @@ bool run_worker(Comm& comm, const SceneView& view, const SamplingSettings& sampl
         std::lock_guard lock(mutex);
         todo.push_back(std::move(t));
         wake.notify_one();
+      } else if (m->tag == kPing) {
+        comm.send(0, kPing, {});
       } else if (m->tag == kStop) {
         stop.request();
       } else if (m->tag == kQuit) {

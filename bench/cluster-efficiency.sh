@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Cluster efficiency (docs/cluster.md, "Figures"): on this machine, strahl-mpi -np 2 with one
+# render thread per rank against one process with one thread, on the bunny on a plane and on the
+# unbalanced scene (bench/cluster/unbalanced.yaml); efficiency = T1 / (2 · T2) from the render
+# times the summaries print. Then the unbalanced scene's tile log (its tiles' CPU times and
+# message sizes) replayed by tools/schedule_sim.py for 1…64 ranks, static against dynamic, with
+# the latency strahl-mpi measured.
+#   bench/cluster-efficiency.sh [build dir] [stanford-bunny.obj]
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+build=${1:-$here/../build}
+bunny=${2:-$here/../../shared/data/stanford-bunny.obj}
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+cat > "$work/bunny.yaml" << SCENE
+camera: {position: [0, 0.12, 0.32], look_at: [-0.02, 0.09, 0], up: [0, 1, 0], fov: 40}
+render: {width: 1280, height: 720, spp: 4, sampler: stratified}
+materials:
+  floor: {color: 0.6, ambient: 0.1, diffuse: 0.7, specular: 0.3, shininess: 50}
+  bunny: {color: [0.8, 0.7, 0.5], ambient: 0.1, diffuse: 0.7, specular: 0.6, shininess: 100}
+lights: [{type: point, position: [0.5, 1, 1], intensity: 1}]
+objects:
+  - {type: plane, normal: [0, 1, 0], distance: 0.033, material: floor}
+  - {type: mesh, file: $bunny, material: bunny}
+SCENE
+
+render_seconds() { sed -n 's/^time .*render \([0-9.]*\) s.*/\1/p' "$1"; }
+echo "load: $(cut -d' ' -f1-3 /proc/loadavg)"
+for scene in "$work/bunny.yaml" "$here/cluster/unbalanced.yaml"; do
+  args=("$scene" --width 1280 --height 720 --tile-size 16 -o "$work/out.png")
+  "$build/bin/strahl" "${args[@]}" --threads 1 > "$work/one.txt" 2> "$work/err.txt" || { cat "$work/err.txt"; exit 2; }
+  mpirun --oversubscribe --bind-to none -np 2 "$build/bin/strahl-mpi" "${args[@]}" --threads 1 > "$work/two.txt" 2>/dev/null
+  t1=$(render_seconds "$work/one.txt") t2=$(render_seconds "$work/two.txt")
+  echo "$(basename "$scene"): 1 process × 1 thread $t1 s, 2 ranks × 1 thread $t2 s, efficiency $(echo "$t1 / (2 * $t2)" | bc -l | cut -c1-5)"
+  grep -E "^cluster|^  rank" "$work/two.txt"
+done
+latency=$(sed -n 's/^cluster .*latency \([0-9.]*\) µs/\1/p' "$work/two.txt")
+mpirun --oversubscribe --bind-to none -np 2 "$build/bin/strahl-mpi" "$here/cluster/unbalanced.yaml" --width 1280 --height 720 \
+  --tile-size 8 --threads 1 -q -o "$work/out.png" --tile-log "$work/tiles.log"
+python3 "$here/../tools/schedule_sim.py" "$work/tiles.log" --latency "${latency:-25}e-6"
