@@ -2,6 +2,7 @@
 #include <utility>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/camera_build.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/validate.h"
 
@@ -15,6 +16,8 @@ void plane_frame(const Vec3& n, Vec3& tangent, Vec3& bitangent) {
   bitangent = normalize(cross(n, a));
   tangent = cross(bitangent, n);
 }
+
+}  // namespace
 
 Camera build_camera(const CameraDescription& c, int nx, int ny) {
   validate::finite(c.position, c.loc, "camera position");
@@ -62,8 +65,6 @@ Camera build_camera(const CameraDescription& c, int nx, int ny) {
   }
   return cam;
 }
-
-}  // namespace
 
 namespace {
 

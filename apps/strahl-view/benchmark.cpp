@@ -1,0 +1,59 @@
+#include "benchmark.h"
+
+#include <tbb/info.h>
+
+#include <chrono>
+
+#include "camera_control.h"
+#include "console.h"
+#include "strahl/render/cpu_backend.h"
+#include "view_renderer.h"
+
+namespace strahl::view {
+
+int run_benchmark(const LoadedScene& scene, const std::string& name, int frames, int threads, int tile_size) {
+  using Clock = std::chrono::steady_clock;
+  CpuBackend cpu(threads);
+  ViewRenderer renderer(cpu, threads, tile_size);
+  const RenderScene& rs = *scene.render;
+  FrameRequest request;
+  request.scene = scene.render;
+  request.camera = scene.camera;
+  request.width = rs.camera.nx;
+  request.height = rs.camera.ny;
+  request.max_depth = rs.settings.max_depth;
+  request.sampling = rs.sampling;
+
+  constexpr int kWarmUp = 2;
+  RayCounters rays;
+  double render_seconds = 0;
+  Clock::time_point start{};
+  for (int i = -kWarmUp; i < frames; ++i) {
+    if (i == 0) start = Clock::now();
+    orbit(request.camera, 0.005, 0);  // a small drag between frames
+    const FrameStatus s = renderer.render_interactive(request, 1);
+    if (!s.error.empty()) {
+      console::err("strahl-view: error: {}\n", s.error);
+      return 2;
+    }
+    if (i >= 0) {
+      rays += s.rays;
+      render_seconds += s.seconds;
+    }
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const int used = threads > 0 ? threads : tbb::info::default_concurrency();
+  console::out("strahl-view benchmark: {} at {}x{}, 1 spp per frame, max depth {}, accel {}, {} threads\n", name,
+               request.width, request.height, request.max_depth, accel_name(scene.accel), used);
+  console::out("frames {} in {:.3f} s: {:.1f} frames/s, {:.1f} Mrays/s ({:.2f} Mrays per frame: camera {:.2f}, shadow {:.2f}, "
+               "reflection {:.2f}, refraction {:.2f})\n",
+               frames, seconds, frames / seconds, double(rays.total()) / seconds * 1e-6,
+               double(rays.total()) / frames * 1e-6, double(rays.camera) / frames * 1e-6,
+               double(rays.shadow) / frames * 1e-6, double(rays.reflection) / frames * 1e-6,
+               double(rays.refraction) / frames * 1e-6);
+  console::out("render time {:.3f} s of {:.3f} s ({:.1f}%: the rest is setting up each frame's job)\n", render_seconds,
+               seconds, 100 * render_seconds / seconds);
+  return 0;
+}
+
+}  // namespace strahl::view
