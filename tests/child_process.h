@@ -26,6 +26,7 @@ struct ChildResult {
   int term_signal = 0;     // the signal that ended it, if one did
   bool timed_out = false;  // killed by us after the time limit
   double cpu_seconds = 0;  // user + system time
+  long max_rss_kib = 0;    // peak resident memory (ru_maxrss)
   std::string out, err;
 };
 
@@ -123,6 +124,7 @@ class ChildProcess {
     close_fds();
     if (WIFEXITED(status)) result_.exit_code = WEXITSTATUS(status);
     if (WIFSIGNALED(status)) result_.term_signal = WTERMSIG(status);
+    result_.max_rss_kib = usage.ru_maxrss;
     result_.cpu_seconds = double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
                           1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
     return result_;

@@ -55,7 +55,7 @@ class PlyTest : public ::testing::Test {
 
 // ---------------------------------------------------------------------------------------------
 // The test mesh: a pyramid on a rhombus. The base is a quad whose diagonal 0–2 is the shorter one,
-// so tinyobjloader (which splits quads along the shorter diagonal) and the PLY reader's fan
+// so the OBJ reader (which splits convex quads along the shorter diagonal) and the PLY reader's fan
 // (0, 1, 2), (0, 2, 3) triangulate it alike. Coordinates are exact in float and in decimal.
 
 struct TestMesh {

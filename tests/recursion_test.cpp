@@ -346,6 +346,53 @@ TEST(Recursion, MinWeightStopsRaysThatContributeLittle) {
   }
 }
 
+// The ray budget (render.ray_budget): a chain of B + 1 mirror bounces with budget B traces B
+// reflections, cuts one, and gives exactly the image of max_depth B + 1 (a cut ray is as if
+// the recursion had stopped there); a budget the chain fits in cuts nothing.
+TEST(Recursion, RayBudgetCutsTheRaysBeyondItAndCountsThem) {
+  for (const int budget : {0, 1, 5, 18}) {
+    Scene cut = facing_mirrors(1, 64, 0, 2);
+    cut.settings.ray_budget = budget;
+    RenderStats stats;
+    const Image a = test::render_image(cut, 1, 32, &stats);
+    EXPECT_EQ(stats.rays.reflection, 4u * std::uint64_t(budget)) << "budget " << budget;
+    EXPECT_EQ(stats.rays.cut, 4u) << "one cut per camera sample, where its chain of mirror rays ends";
+    const Image b = test::render_image(facing_mirrors(1, budget + 1, 0, 2));
+    EXPECT_EQ(test::max_abs_diff(a, b), 0.0f) << "budget " << budget;
+  }
+  Scene fits = facing_mirrors(1, 20, 0, 2);
+  fits.settings.ray_budget = 19;  // max_depth 20: 19 reflections per camera ray
+  RenderStats stats;
+  test::render_image(fits, 1, 32, &stats);
+  EXPECT_EQ(stats.rays.reflection, 4u * 19u);
+  EXPECT_EQ(stats.rays.cut, 0u);
+}
+
+// Issue 12's exponential ray tree: glass that both reflects and refracts everywhere, a camera
+// inside a glass shell looking at a glass ball, max_depth 64, min_weight 0. Without the budget
+// one camera ray would spawn some 2^60 rays; with it, exactly the default budget is traced.
+TEST(Recursion, RayBudgetBoundsAnExponentialRayTree) {
+  Scene s;
+  test::one_ray_camera(s, {0, 0, 0}, {0, 0, -1});
+  Material glass = test::clear_glass(1.5);
+  glass.transparency = 0.5;
+  glass.reflectivity = 0.5;
+  s.add(Sphere({0, 0, -3}, 1, glass));
+  s.add(Sphere({0, 0, 0}, 10, glass));
+  s.settings.max_depth = 64;
+  s.settings.min_weight = 0;
+  RayCounters counters;
+  test::pixel(s, 0, 0, &counters);
+  EXPECT_EQ(counters.reflection + counters.refraction, std::uint64_t(kDefaultRayBudget));
+  EXPECT_GT(counters.cut, 0u);
+  // A larger budget is spent too: the tree is far bigger than any allowed budget.
+  s.settings.ray_budget = int(kMaxRayBudget);
+  counters = {};
+  test::pixel(s, 0, 0, &counters);
+  EXPECT_EQ(counters.reflection + counters.refraction, std::uint64_t(kMaxRayBudget));
+  EXPECT_GT(counters.cut, 0u);
+}
+
 TEST(Recursion, MaxDepthOneShowsOnlyLocalColour) {
   Scene s;
   test::one_ray_camera(s, {0, 0, 0}, {0, 0, -1});

@@ -246,6 +246,33 @@ TEST(Shading, SolidCheckerOnSphereUsesThePointsCoordinates) {
   }
 }
 
+// The checker's cell parity against whole-number arithmetic where that is exact, and defined
+// (no conversion of an out-of-range cell index, which UBSan reports) for any size and point:
+// issue 12's `checker: {size: 1e-300}`. Cells of magnitude 2^53 or more are even.
+TEST(Shading, CheckerParityIsExactAndDefinedForAnySize) {
+  Material m;
+  m.color = {1, 1, 1};
+  m.checker_color = {0, 0, 0};
+  m.checker_size = 0.25;
+  for (int i = -40; i <= 40; ++i)
+    for (int j = -3; j <= 3; ++j) {
+      const Vec3 p(i * 0.1 + 0.01, j * 0.3 + 0.01, -0.6);
+      const long sum = long(std::floor(p.x / 0.25)) + long(std::floor(p.y / 0.25)) + long(std::floor(p.z / 0.25));
+      EXPECT_EQ(surface_color(m, p).x, (sum % 2 != 0) ? 0.0 : 1.0) << p.x << ", " << p.y;
+    }
+  for (const double size : {1e-300, 4.9e-324, 1e-30, 1e300}) {
+    m.checker_size = size;
+    for (const Vec3& p : {Vec3(0.3, 0.7, -0.1), Vec3(-1e200, 3e250, 0), Vec3(1e-300, -1e-300, 0)}) {
+      const Vec3 c = surface_color(m, p);
+      EXPECT_TRUE(c.x == 0 || c.x == 1) << "size " << size << " at " << p.x << ", " << p.y;
+    }
+  }
+  m.checker_size = 1e-300;  // every cell index is a huge even number: the base colour
+  EXPECT_EQ(surface_color(m, Vec3(0.3, 0.7, -0.1)).x, 1.0);
+  m.checker_size = 1;  // −1 + 0 + 0: odd
+  EXPECT_EQ(surface_color(m, Vec3(-0.5, 0.5, 0.5)).x, 0.0);
+}
+
 TEST(Shading, CheckerColourIsShadedLikeTheBaseColour) {
   // Lambert uses the checker colour at the point too.
   Material m = test::phong({0.9, 0.8, 0.7}, 0.1, 0.7, Vec3(0), 1);

@@ -1,6 +1,6 @@
 // strahl: load a scene (or the lecture's), compile, render on all cores, write the image.
-// Exit codes: 0 ok, 1 usage, 2 scene or I/O error, 130 interrupted (SIGINT/SIGTERM; the image
-// rendered so far is written).
+// Exit codes: 0 ok, 1 usage, 2 scene or I/O error, 130 interrupted (SIGINT/SIGTERM/SIGHUP; the
+// image rendered so far is written, or nothing when the signal came before rendering).
 
 #include <tbb/info.h>
 
@@ -18,6 +18,7 @@
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_file.h"
+#include "strahl/util/cancel.h"
 #include "summary.h"
 
 namespace {
@@ -44,10 +45,7 @@ int run(const strahl::cli::Options& o) {
   timings.build = seconds_since(t);
   check_image_size(output, render_scene.camera.nx, render_scene.camera.ny);  // a JPEG of width 65536
 
-  if (cancel->load()) {  // interrupted while loading: nothing rendered, nothing written
-    strahl::console::err("strahl: interrupted before rendering; nothing written\n");
-    return 130;
-  }
+  if (cancel->load()) throw Cancelled();  // interrupted while building: nothing rendered, nothing written
   cli::Progress progress(!o.quiet);
   RenderStats stats;
   RenderOptions render_options;
@@ -59,18 +57,21 @@ int run(const strahl::cli::Options& o) {
     render_options.checkpoint = [&](const Image& partial) { write_image(partial, output, {o.linear}); };
   }
   render_options.cancel = cancel;
-  const Image image = render(render_scene, render_options, &stats,
-                             [&](long done, long total) { progress.update(done, total); });
+  const Image image = render(render_scene, render_options, &stats, [&](long done, long total) {
+    cli::hold_for_test("render");
+    progress.update(done, total);
+  });
   if (!stats.cancelled) progress.finish();
   timings.render = stats.seconds;
 
   t = std::chrono::steady_clock::now();
+  cli::hold_for_test("write");
   write_image(image, output, {o.linear});
   if (!o.aov.empty()) cli::write_aovs(render_scene, o, output);
   timings.write = seconds_since(t);
   if (cancel->load()) {
     strahl::console::err("strahl: interrupted ({}); wrote the image rendered so far to {}\n",
-               cli::interrupt_signal() == SIGTERM ? "SIGTERM" : "SIGINT", output);
+                         cli::interrupt_signal_name(), output);
     return 130;
   }
 
@@ -90,6 +91,10 @@ int main(int argc, char** argv) {
   if (!parsed.options) return parsed.exit_code;
   try {
     return run(*parsed.options);
+  } catch (const strahl::Cancelled&) {  // a signal while loading or building
+    strahl::console::err("strahl: interrupted ({}) before rendering; nothing written\n",
+                         strahl::cli::interrupt_signal_name());
+    return 130;
   } catch (const strahl::Error& e) {
     strahl::console::err("strahl: error: {}\n", e.what());
     return 2;

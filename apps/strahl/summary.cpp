@@ -38,6 +38,10 @@ std::string summary(const std::string& output, int width, int height, int thread
     out += fmt::format("memory      peak {:.1f} MiB resident\n", double(usage.ru_maxrss) / 1024);
   if (r.invalid_samples > 0)
     out += fmt::format("warning     {} samples were NaN or infinite and were set to black\n", r.invalid_samples);
+  if (r.cut > 0)
+    out += fmt::format("warning     {} reflected or refracted rays were cut: the ray budget of {} per camera sample "
+                       "(render.ray_budget) was spent\n",
+                       r.cut, scene.settings.ray_budget);
   return out;
 }
 

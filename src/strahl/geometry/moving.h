@@ -16,21 +16,23 @@ namespace strahl::kernel {
 
 STRAHL_HOST_DEVICE inline Vec3 lerp(const Vec3& a, const Vec3& b, Real u) { return a + (b - a) * u; }
 
+// Centre and radius move linearly from shutter open to close (a keyframed uniform scale
+// changes the radius).
 struct MovingSphere {
   Vec3 center0, center1;  // at shutter open, at shutter close
-  Real radius = 1;
+  Real radius0 = 1, radius1 = 1;
   std::uint32_t material = 0;
 };
 
 STRAHL_HOST_DEVICE inline Sphere at_time(const MovingSphere& s, Real u) {
-  return Sphere{lerp(s.center0, s.center1, u), s.radius, s.material};
+  return Sphere{lerp(s.center0, s.center1, u), s.radius0 + (s.radius1 - s.radius0) * u, s.material};
 }
 
+// Each coordinate of the box at time u is linear in u, so the boxes at the two ends hold it.
 inline Bounds swept_bounds(const MovingSphere& s) {
   Bounds b;
-  const Vec3 r(s.radius);
-  b.extend(s.center0 - r); b.extend(s.center0 + r);
-  b.extend(s.center1 - r); b.extend(s.center1 + r);
+  b.extend(s.center0 - Vec3(s.radius0)); b.extend(s.center0 + Vec3(s.radius0));
+  b.extend(s.center1 - Vec3(s.radius1)); b.extend(s.center1 + Vec3(s.radius1));
   return b;
 }
 

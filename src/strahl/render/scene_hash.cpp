@@ -42,13 +42,13 @@ void Hasher::add_all(const std::vector<T>& items) {
 // A new field in one of these structs must be hashed too: the sizes below fail to compile until
 // it is (update the function and the size together).
 static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && sizeof(kernel::Triangle) == 88 &&
-                  sizeof(kernel::VertexNormals) == 72 && sizeof(kernel::MovingSphere) == 64 &&
+                  sizeof(kernel::VertexNormals) == 72 && sizeof(kernel::MovingSphere) == 72 &&
                   sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 144 && sizeof(Light) == 168 &&
-                  sizeof(Camera) == 176 && sizeof(TraceSettings) == 72 && sizeof(SamplingSettings) == 48,
+                  sizeof(Camera) == 176 && sizeof(TraceSettings) == 80 && sizeof(SamplingSettings) == 48,
               "a kernel struct changed: hash its new fields in scene_hash.cpp and update the size here");
 // A new array in the render-ready scene must be hashed too (with Embree: its scene handle).
 #if defined(STRAHL_HAVE_EMBREE)
-static_assert(sizeof(RenderScene) == 1056, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+static_assert(sizeof(RenderScene) == 1064, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
 #endif
 
 void hash(Hasher& h, const Material& m) {
@@ -95,6 +95,7 @@ void hash(Hasher& h, const TraceSettings& s) {
   h.add(s.background);
   h.add(s.ambient_light);
   h.add(s.medium_ior);
+  h.add(s.ray_budget);
 }
 
 void hash(Hasher& h, const SamplingSettings& s) {
@@ -139,7 +140,8 @@ void hash(Hasher& h, const kernel::VertexNormals& x) {
 void hash(Hasher& h, const kernel::MovingSphere& x) {
     h.add(x.center0);
   h.add(x.center1);
-  h.add(x.radius);
+  h.add(x.radius0);
+  h.add(x.radius1);
   h.add(x.material);
 }
 

@@ -11,6 +11,7 @@
 #include "strahl/geometry/sphere.h"
 #include "strahl/geometry/triangle.h"
 #include "strahl/math/bounds.h"
+#include "strahl/render/ray_budget.h"
 #include "strahl/shading/light.h"
 #include "strahl/shading/material.h"
 
@@ -22,6 +23,10 @@ struct TraceSettings {
   Vec3 background{0};         // radiance of rays that hit nothing
   Vec3 ambient_light{1};      // scales every material's ambient term
   Real medium_ior = 1;        // index of refraction of the space between objects
+  // Reflected and refracted rays one camera sample may spawn (docs/scene-format.md, "Recursion").
+  // With min_weight 0 and glass (k_r + k_t = 1 at every hit) the ray tree doubles at each bounce;
+  // the budget bounds one sample's work, so a cancel checked between samples acts in bounded time.
+  std::uint32_t ray_budget = kDefaultRayBudget;
 };
 
 struct SceneView {

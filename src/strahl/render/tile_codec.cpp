@@ -123,7 +123,7 @@ std::vector<std::uint8_t> encode_tile(const TileWork& t, TilePart part) {
   }
   if (!request) {
     const RayCounters& c = t.counters;
-    for (std::uint64_t v : {c.camera, c.shadow, c.reflection, c.refraction, c.invalid_samples}) w.put(v);
+    for (std::uint64_t v : {c.camera, c.shadow, c.reflection, c.refraction, c.invalid_samples, c.cut}) w.put(v);
   }
   return std::move(w.out);
 }
@@ -181,7 +181,7 @@ void decode_tile(std::span<const std::uint8_t> bytes, TilePart part, TileWork& t
   }
   if (!request) {
     RayCounters& c = t.counters;
-    for (std::uint64_t* v : {&c.camera, &c.shadow, &c.reflection, &c.refraction, &c.invalid_samples})
+    for (std::uint64_t* v : {&c.camera, &c.shadow, &c.reflection, &c.refraction, &c.invalid_samples, &c.cut})
       *v = r.get<std::uint64_t>();
   }
   if (!r.done()) throw Error("tile data has trailing bytes");

@@ -99,6 +99,16 @@ STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const Surf
   return result;
 }
 
+// Takes one ray from the sample's budget; false (and the cut counted) when none is left.
+STRAHL_HOST_DEVICE inline bool spend(std::uint32_t& budget, RayCounters& counters) {
+  if (budget == 0) {
+    ++counters.cut;
+    return false;
+  }
+  --budget;
+  return true;
+}
+
 // The nearest area light the ray meets before t_max, or −1.
 STRAHL_HOST_DEVICE inline int nearest_emitter(const SceneView& s, const Ray& ray, Real t_max) {
   int nearest = -1;
@@ -113,9 +123,13 @@ STRAHL_HOST_DEVICE inline int nearest_emitter(const SceneView& s, const Ray& ray
   return nearest;
 }
 
-// Radiance arriving along `ray`. `depth` is 1 for camera rays; `weight` is the ray's share of the pixel.
+// Radiance arriving along `ray`. `depth` is 1 for camera rays; `weight` is the ray's share of the
+// pixel; `budget` is what is left of the camera sample's ray budget (TraceSettings::ray_budget):
+// each reflected or refracted ray takes one, and once none is left further ones are cut (not
+// traced, counted), depth first, the reflected ray before the refracted one.
 STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int depth, Real weight,
-                                     const MediumStack& media, RayCounters& counters, SampleStream& rng) {
+                                     const MediumStack& media, RayCounters& counters, SampleStream& rng,
+                                     std::uint32_t& budget) {
   const Hit hit = closest_hit(s, ray, 0, kInfinity);
   if (s.area_light_count > 0) {
     const int emitter = nearest_emitter(s, ray, hit.t);
@@ -153,19 +167,19 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int dep
       next_media = front ? media.entered(m.ior) : media.left();
     }
   }
-  if (kr > 0 && kr * weight >= s.settings.min_weight) {
+  if (kr > 0 && kr * weight >= s.settings.min_weight && spend(budget, counters)) {
     ++counters.reflection;
     Vec3 dir = reflect(ray.direction, n);
     if (m.roughness > 0) dir = glossy_direction(dir, sp.geometric_normal, m.roughness, rng.next2());
     const Ray r = spawn_ray(sp.p, sp.geometric_normal, dir, ray.time);
-    color += trace(s, r, depth + 1, weight * kr, media, counters, rng) * kr;
+    color += trace(s, r, depth + 1, weight * kr, media, counters, rng, budget) * kr;
   }
-  if (kt > 0 && kt * weight >= s.settings.min_weight) {
+  if (kt > 0 && kt * weight >= s.settings.min_weight && spend(budget, counters)) {
     ++counters.refraction;
     if (m.roughness > 0) refracted_dir = glossy_direction(refracted_dir, sp.geometric_normal, m.roughness, rng.next2());
     const Ray r = spawn_ray(sp.p, sp.geometric_normal, refracted_dir, ray.time);
     const Vec3 tint = m.filter ? m.color : Vec3(1);
-    color += trace(s, r, depth + 1, weight * kt, next_media, counters, rng) * tint * kt;
+    color += trace(s, r, depth + 1, weight * kt, next_media, counters, rng, budget) * tint * kt;
   }
   return color;
 }

@@ -5,6 +5,7 @@
 #include "strahl/scene/camera_build.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/validate.h"
+#include "strahl/util/cancel.h"
 
 namespace strahl {
 
@@ -103,7 +104,20 @@ void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::u
   validate::positive(radius, loc, "sphere radius");
   if (motion.moving()) {
     validate_motion(motion, loc);
-    out.moving_spheres.push_back({moved(motion, out, center, 0), moved(motion, out, center, 1), radius, material_index});
+    // Keyframes transform the sphere in world space: its centre moves, and its radius scales
+    // with the keyframe's uniform scale (a non-uniform one would make an ellipsoid: refused).
+    Real radius_at[2] = {radius, radius};
+    if (motion.kind == Motion::Kind::Keyframes) {
+      for (int key = 0; key < 2; ++key) {
+        const Vec3 s = (key == 0 ? motion.from : motion.to).scale;
+        if (std::fabs(s.x) != std::fabs(s.y) || std::fabs(s.x) != std::fabs(s.z))
+          throw Error(loc, std::string(kNonUniformSphereScale));
+        radius_at[key] = radius * std::fabs(s.x);
+        validate::positive(radius_at[key], loc, "sphere radius after the motion scale");
+      }
+    }
+    out.moving_spheres.push_back({moved(motion, out, center, 0), moved(motion, out, center, 1), radius_at[0],
+                                  radius_at[1], material_index});
     return;
   }
   out.spheres.push_back({center, radius, material_index});
@@ -281,18 +295,21 @@ RenderScene compile(const Scene& scene) {
   validate::int_range(s.max_depth, 1, 64, s.loc, "max_depth");
   validate::int_range(s.supersample, 1, 64, s.loc, "supersample");
   validate::in_range(s.min_weight, 0, 1, s.loc, "min_weight");
+  validate::int_range(s.ray_budget, 0, int(kMaxRayBudget), s.loc, "ray_budget");
   validate::non_negative(s.background, s.loc, "background");
   validate::non_negative(s.ambient_light, s.loc, "ambient_light");
   validate::positive(s.medium_ior, s.loc, "medium_ior");
 
   RenderScene out;
   out.camera = build_camera(scene.camera, s.width, s.height);
-  out.settings = {s.max_depth, s.min_weight, s.background, s.ambient_light, s.medium_ior};
+  out.settings = {s.max_depth, s.min_weight, s.background, s.ambient_light, s.medium_ior,
+                  std::uint32_t(s.ray_budget)};
   out.supersample = s.supersample;
   out.sampling = compile_sampling(s);
 
   std::uint32_t object_id = 0;  // (the camera, with its shutter, is built first: moving shapes need it)
   for (const auto& object : scene.objects()) {
+    if ((object_id & 0x3ff) == 0) check_cancelled("build");
     validate::material(object->material, object->loc);
     const auto material_index = static_cast<std::uint32_t>(out.materials.size());
     out.materials.push_back(object->material);
@@ -312,7 +329,9 @@ RenderScene compile(const Scene& scene) {
     }
     out.lights.push_back(light);
   }
+  check_cancelled("build");
   out.accel = build_accel(s.accel, out.primitives());
+  check_cancelled("build");
   if (!out.moving_spheres.empty() || !out.moving_triangles.empty()) {
     std::vector<Bounds> boxes;
     boxes.reserve(out.moving_spheres.size() + out.moving_triangles.size());

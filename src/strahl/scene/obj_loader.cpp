@@ -1,7 +1,5 @@
 #include "strahl/scene/obj_loader.h"
 
-#include <tiny_obj_loader.h>
-
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -10,6 +8,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "strahl/scene/polygon.h"
+#include "strahl/util/cancel.h"
 #include "strahl/util/error.h"
 #include "strahl/util/system_error.h"
 
@@ -17,19 +17,21 @@ namespace strahl {
 
 namespace {
 
-// The strict pass. tinyobjloader is lenient: it reads "v 1 abc" as (1, 0, 0), keeps NaN, drops
-// faces with fewer than three corners and normal indices out of range without a word. This pass
-// reads every line the way the OBJ format defines it and throws at the first problem, with its
-// line and column, so that tinyobjloader only ever sees well-formed text.
-class ObjChecker {
+// One strict pass over the text. It reads every line the way the OBJ format defines it and throws
+// at the first problem, with its line and column (tinyobjloader, used before, read "v 1 abc" as
+// (1, 0, 0), kept NaN, dropped bad faces without a word, and stored at most 255 corners per
+// polygon). Triangles go straight into the mesh; larger polygons are kept as corner lists and
+// split by polygon.h once all vertices are read (a face may refer to vertices defined after it).
+class ObjReader {
  public:
-  explicit ObjChecker(const std::string& name) : name_(name) {}
+  ObjReader(const std::string& name, MeshData& mesh) : name_(name), mesh_(mesh) {}
 
-  void check(std::string_view text) {
+  void read(std::string_view text) {
     int line = 0;
     std::size_t pos = 0;
     while (pos < text.size()) {
       ++line;
+      if ((line & 0xfff) == 0) check_cancelled("load");
       std::size_t end = text.find('\n', pos);
       if (end == std::string_view::npos) end = text.size();
       check_line(text.substr(pos, end - pos), line);
@@ -41,6 +43,7 @@ class ObjChecker {
         fail(r.line, r.column, std::string("face refers to ") + kKinds[k] + " " + std::to_string(r.index) +
                                    ", but the file has " + std::to_string(counts_[k]));
     }
+    split_polygons();
   }
 
  private:
@@ -86,32 +89,49 @@ class ObjChecker {
     const std::string_view key = tokens[0].text;
     if (key == "v") {
       // x y z, optionally w or an r g b colour
-      numbers(tokens, line, 3, 6, "vertex", "x, y and z");
+      const Vec3 p = numbers(tokens, line, 3, 6, "vertex", "x, y and z");
+      mesh_.positions.push_back(p);
       ++counts_[0];
     } else if (key == "vt") {
       numbers(tokens, line, 1, 3, "texture coordinate", "u");
       ++counts_[1];
     } else if (key == "vn") {
-      numbers(tokens, line, 3, 3, "normal", "x, y and z");
+      mesh_.normals.push_back(numbers(tokens, line, 3, 3, "normal", "x, y and z"));
       ++counts_[2];
     } else if (key == "f") {
       if (tokens.size() < 4)
         fail(line, tokens.back().column + int(tokens.back().text.size()),
              "face needs at least three corners (got " + std::to_string(tokens.size() - 1) + ")");
       int layout = -1;  // which of v, vt, vn every corner gives (bit mask); must be the same for all
+      corners_.clear();
       for (std::size_t t = 1; t < tokens.size(); ++t) {
-        const int l = corner(tokens[t], line);
+        Corner c;
+        const int l = corner(tokens[t], line, c);
         if (layout >= 0 && l != layout)
           fail(line, tokens[t].column, "face corners mix forms (v, v/vt, v//vn, v/vt/vn): '" +
                                            std::string(tokens[t].text) + "'");
         layout = l;
+        corners_.push_back(c);
+      }
+      if (corners_.size() == 3) {
+        MeshData::Face f;
+        for (std::size_t k = 0; k < 3; ++k) {
+          f.v[k] = std::uint32_t(corners_[k].v);
+          f.n[k] = corners_[k].n;
+        }
+        mesh_.faces.push_back(f);
+      } else {
+        polygons_.push_back({polygon_corners_.size(), corners_.size(), mesh_.faces.size(), line});
+        polygon_corners_.insert(polygon_corners_.end(), corners_.begin(), corners_.end());
       }
     }
     // Everything else (o, g, s, usemtl, mtllib, l, p, ...) does not change the triangles.
   }
 
-  void numbers(const std::vector<Token>& tokens, int line, std::size_t lo, std::size_t hi, const char* what,
+  // Checks the numbers of a v, vt or vn line and returns the first three (0 where there are fewer).
+  Vec3 numbers(const std::vector<Token>& tokens, int line, std::size_t lo, std::size_t hi, const char* what,
                const char* needs) const {
+    double xyz[3] = {0, 0, 0};
     const std::size_t n = tokens.size() - 1;
     if (n < lo)
       fail(line, tokens.back().column + int(tokens.back().text.size()),
@@ -129,11 +149,23 @@ class ObjChecker {
         fail(line, tokens[t].column, std::string(what) + ": '" + std::string(tokens[t].text) + "' is not a number");
       if (!std::isfinite(x))
         fail(line, tokens[t].column, std::string(what) + ": '" + std::string(tokens[t].text) + "' is not a finite number");
+      if (t <= 3) xyz[t - 1] = x;
     }
+    return Vec3(Real(xyz[0]), Real(xyz[1]), Real(xyz[2]));
   }
 
+  struct Corner {
+    long long v = 0;      // position index from 0
+    std::int32_t n = -1;  // normal index from 0, −1 for none
+  };
+  struct Polygon {
+    std::size_t first, count;  // in polygon_corners_
+    std::size_t at;            // the number of faces before it
+    int line;
+  };
+
   // One face corner: v, v/vt, v//vn or v/vt/vn. Returns which indices it gives (1 v, 2 vt, 4 vn).
-  int corner(const Token& token, int line) {
+  int corner(const Token& token, int line, Corner& out) {
     std::string_view s = token.text;
     int mask = 0;
     int column = token.column;
@@ -141,7 +173,9 @@ class ObjChecker {
       const std::size_t slash = s.find('/');
       const std::string_view part = s.substr(0, slash);
       if (!part.empty()) {
-        index(part, k, line, column);
+        const long long i = index(part, k, line, column);
+        if (k == 0) out.v = i;
+        if (k == 2) out.n = std::int32_t(i);
         mask |= 1 << k;
       } else if (k == 0) {
         fail(line, column, "face corner '" + std::string(token.text) + "' has no vertex index");
@@ -155,7 +189,8 @@ class ObjChecker {
     fail(line, token.column, "face corner '" + std::string(token.text) + "' is malformed");
   }
 
-  void index(std::string_view s, int kind, int line, int column) {
+  // Checks an index and returns it counted from 0 (negative ones are relative to the elements read so far).
+  long long index(std::string_view s, int kind, int line, int column) {
     long long v = 0;
     const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == s.data() + s.size() &&
@@ -169,60 +204,60 @@ class ObjChecker {
       if (-v > counts_[kind])
         fail(line, column, std::string(kKinds[kind]) + " index " + std::to_string(v) + " reaches before the first of the " +
                                std::to_string(counts_[kind]) + " read so far");
-    } else if (v > max_ref_[kind].index) {
-      max_ref_[kind] = {v, line, column};  // positive indices are checked against the final count
+      return counts_[kind] + v;
     }
+    if (v > max_ref_[kind].index) max_ref_[kind] = {v, line, column};  // checked against the final count
+    return v - 1;
+  }
+
+  // Polygons of more than three corners into triangles (polygon.h), each in its place in file order.
+  void split_polygons() {
+    if (polygons_.empty()) return;
+    std::vector<MeshData::Face> faces;
+    faces.reserve(mesh_.faces.size() + polygon_corners_.size() - 2 * polygons_.size());
+    std::size_t copied = 0;
+    std::vector<Vec3> points;
+    std::vector<PolygonTriangle> triangles;
+    for (std::size_t p = 0; p < polygons_.size(); ++p) {
+      if ((p & 0xfff) == 0) check_cancelled("load");
+      const Polygon& poly = polygons_[p];
+      const Corner* c = polygon_corners_.data() + poly.first;
+      points.clear();
+      for (std::size_t k = 0; k < poly.count; ++k) points.push_back(mesh_.positions[std::size_t(c[k].v)]);
+      triangles.clear();
+      if (!triangulate_polygon(points, triangles))
+        fail(poly.line, 1, "a face of " + std::to_string(poly.count) +
+                               " corners with too many reflex (inward) corners to split into triangles in "
+                               "reasonable time; split it into smaller polygons");
+      faces.insert(faces.end(), mesh_.faces.begin() + std::ptrdiff_t(copied), mesh_.faces.begin() + std::ptrdiff_t(poly.at));
+      copied = poly.at;
+      for (const PolygonTriangle& t : triangles) {
+        MeshData::Face f;
+        for (std::size_t k = 0; k < 3; ++k) {
+          f.v[k] = std::uint32_t(c[t[k]].v);
+          f.n[k] = c[t[k]].n;
+        }
+        faces.push_back(f);
+      }
+    }
+    faces.insert(faces.end(), mesh_.faces.begin() + std::ptrdiff_t(copied), mesh_.faces.end());
+    mesh_.faces = std::move(faces);
   }
 
   const std::string& name_;
+  MeshData& mesh_;
   long long counts_[3] = {0, 0, 0};  // v, vt, vn
   Ref max_ref_[3];
+  std::vector<Corner> corners_;  // of the current face
+  std::vector<Polygon> polygons_;
+  std::vector<Corner> polygon_corners_;
 };
 
 }  // namespace
 
 MeshData parse_obj(std::string_view text, const std::string& name) {
-  ObjChecker(name).check(text);
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(std::string(text), std::string(), config)) {
-    std::string message = reader.Error();
-    while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
-    throw Error(FileLoc{name}, "cannot read OBJ: " + (message.empty() ? "parse error" : message));
-  }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
   MeshData mesh;
-  mesh.positions.reserve(attrib.vertices.size() / 3);
-  for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
-    mesh.positions.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
-  mesh.normals.reserve(attrib.normals.size() / 3);
-  for (std::size_t i = 0; i + 2 < attrib.normals.size(); i += 3)
-    mesh.normals.emplace_back(attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2]);
-
-  const auto vertex_count = static_cast<long>(mesh.positions.size());
-  const auto normal_count = static_cast<long>(mesh.normals.size());
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    const auto& indices = shape.mesh.indices;
-    std::size_t offset = 0;
-    for (const unsigned int fv : shape.mesh.num_face_vertices) {
-      if (offset + fv > indices.size()) throw Error(FileLoc{name}, "cannot read OBJ: inconsistent face list");
-      if (fv == 3) {
-        MeshData::Face face;
-        for (int k = 0; k < 3; ++k) {
-          const tinyobj::index_t& idx = indices[offset + std::size_t(k)];
-          if (idx.vertex_index < 0 || idx.vertex_index >= vertex_count)
-            throw Error(FileLoc{name}, "face in shape '" + shape.name + "' refers to vertex " +
-                                           std::to_string(idx.vertex_index + 1) + " of " + std::to_string(vertex_count));
-          face.v[std::size_t(k)] = static_cast<std::uint32_t>(idx.vertex_index);
-          face.n[std::size_t(k)] = (idx.normal_index >= 0 && idx.normal_index < normal_count) ? idx.normal_index : -1;
-        }
-        mesh.faces.push_back(face);
-      }
-      offset += fv;
-    }
-  }
+  ObjReader(name, mesh).read(text);
   if (mesh.faces.empty()) throw Error(FileLoc{name}, "OBJ file contains no faces");
   return mesh;
 }

@@ -17,6 +17,7 @@
 
 #include "strahl/accel/accel.h"
 #include "strahl/math/transform.h"
+#include "strahl/render/ray_budget.h"
 #include "strahl/sampling/pixel_sampler.h"
 #include "strahl/scene/mesh_data.h"
 #include "strahl/shading/light.h"
@@ -40,6 +41,10 @@ inline Material material_with_color(const Vec3& color) {
 // sphere's centre, move linearly in between). Keyframes act in the object's own coordinates:
 // world space for spheres and triangles, before a mesh's own scale/rotate/translate (so a mesh
 // turns about its own origin). Planes cannot move.
+inline constexpr const char* kNonUniformSphereScale =
+    "a sphere's motion scale must be the same on every axis up to sign (a non-uniform scale would make an "
+    "ellipsoid, which a sphere cannot be)";
+
 struct Motion {
   enum class Kind { None, Velocity, Keyframes };
   Kind kind = Kind::None;
@@ -187,6 +192,7 @@ struct RenderSettings {
   int height = 720;
   int max_depth = 8;
   Real min_weight = 1e-3;
+  int ray_budget = int(kDefaultRayBudget);  // reflected and refracted rays per camera sample
   int supersample = 1;
   Vec3 background{0};
   Vec3 ambient_light{1};

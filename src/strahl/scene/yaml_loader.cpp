@@ -16,7 +16,9 @@
 #include "strahl/scene/mesh_file.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/validate.h"
+#include "strahl/scene/yaml_limits.h"
 #include "strahl/shading/area_light.h"
+#include "strahl/util/cancel.h"
 #include "strahl/util/system_error.h"
 
 namespace strahl {
@@ -36,11 +38,18 @@ namespace {
 
 using Keys = std::initializer_list<std::string_view>;
 
+struct ObjectText {
+  int line;          // of its first line in the file, 0-based
+  std::string text;  // from there on, the `- ` before it blanked
+};
+
 class Reader {
  public:
   Reader(std::string name, fs::path base_dir) : name_(std::move(name)), base_dir_(std::move(base_dir)) {}
 
-  Scene read(const YAML::Node& root) {
+  // `objects`: when not empty, the text of each element of the top-level objects list, read one
+  // at a time (the list itself was blanked out of `root`'s text, line numbers kept).
+  Scene read(const YAML::Node& root, const std::vector<ObjectText>& objects = {}) {
     Scene scene;
     if (root.IsNull()) fail(root, "the scene file is empty");
     map(root, "scene");
@@ -59,9 +68,25 @@ class Reader {
       sequence(n, "lights");
       for (const YAML::Node& l : n) light(l, scene);
     }
-    if (const YAML::Node n = root["objects"]) {
+    if (!objects.empty()) {
+      for (const ObjectText& o : objects) {
+        check_cancelled("load");
+        YAML::Node element;
+        try {
+          element = YAML::Load(o.text);
+        } catch (const YAML::Exception& e) {
+          throw Error(FileLoc{name_, o.line + e.mark.line + 1, e.mark.column + 1}, "syntax error: " + e.msg);
+        }
+        line_offset_ = o.line;
+        object(element, scene);
+        line_offset_ = 0;
+      }
+    } else if (const YAML::Node n = root["objects"]) {
       sequence(n, "objects");
-      for (const YAML::Node& o : n) object(o, scene);
+      for (const YAML::Node& o : n) {
+        check_cancelled("load");
+        object(o, scene);
+      }
     }
     if (scene.objects().empty()) fail(root, "the scene has no objects");
     return scene;
@@ -70,7 +95,7 @@ class Reader {
  private:
   FileLoc loc(const YAML::Node& n) const {
     const YAML::Mark m = n.Mark();
-    return FileLoc{name_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0};
+    return FileLoc{name_, m.line >= 0 ? m.line + 1 + line_offset_ : 0, m.column >= 0 ? m.column + 1 : 0};
   }
   [[noreturn]] void fail(const YAML::Node& n, const std::string& message) const { throw Error(loc(n), message); }
 
@@ -157,7 +182,7 @@ class Reader {
 
   void render(const YAML::Node& n, RenderSettings& s) const {
     map(n, "render");
-    keys(n, {"width", "height", "max_depth", "min_weight", "supersample", "background", "ambient_light", "medium_ior",
+    keys(n, {"width", "height", "max_depth", "min_weight", "ray_budget", "supersample", "background", "ambient_light", "medium_ior",
              "accel", "sampler", "spp", "seed", "filter", "filter_radius", "adaptive_min", "adaptive_threshold"},
          "render");
     s.loc = loc(n);
@@ -165,6 +190,7 @@ class Reader {
     if (const auto v = n["height"]) s.height = integer(v, "height", 1, 65536);
     if (const auto v = n["max_depth"]) s.max_depth = integer(v, "max_depth", 1, 64);
     if (const auto v = n["min_weight"]) s.min_weight = unit(v, "min_weight");
+    if (const auto v = n["ray_budget"]) s.ray_budget = integer(v, "ray_budget", 0, int(kMaxRayBudget));
     if (const auto v = n["supersample"]) s.supersample = integer(v, "supersample", 1, 64);
     if (const auto v = n["background"]) s.background = color(v, "background");
     if (const auto v = n["ambient_light"]) s.ambient_light = color(v, "ambient_light");
@@ -384,6 +410,14 @@ class Reader {
       keys(n, {"type", "center", "radius", "material", "motion"}, "sphere");
       const Vec3 center = vec3(required(n, "center", "sphere"), "sphere center");
       const Real radius = positive(required(n, "radius", "sphere"), "sphere radius");
+      // A keyframe's scale acts on the radius too; one that differs between axes would make an ellipsoid.
+      if (const YAML::Node m = n["motion"]; m && m.IsMap())
+        for (const char* key : {"from", "to"})
+          if (const YAML::Node k = m[key]; k && k.IsMap())
+            if (const YAML::Node s = k["scale"]; s && s.IsSequence()) {
+              const Vec3 v = vec3(s, "scale");
+              if (std::fabs(v.x) != std::fabs(v.y) || std::fabs(v.x) != std::fabs(v.z)) fail(s, kNonUniformSphereScale);
+            }
       added = &scene.add(Sphere(center, radius, object_material(n)));
     } else if (type == "plane") {
       keys(n, {"type", "normal", "distance", "material"}, "plane");
@@ -428,7 +462,49 @@ class Reader {
   std::string name_;
   fs::path base_dir_;
   std::map<std::string, Material> materials_;
+  int line_offset_ = 0;  // of the object being read from its own text
 };
+
+// The scene's text with the top-level objects list cut out (its lines left empty, so line numbers
+// stay), and the text of each of its elements: the lines from its start to the next one's, with
+// the `- ` in front of it blanked (columns stay). Empty when the outline does not allow it.
+struct SplitText {
+  std::string rest;
+  std::vector<ObjectText> objects;
+};
+SplitText split_objects(const std::string& text, const YamlOutline& outline) {
+  SplitText out;
+  if (!outline.objects_by_element) return out;
+  std::vector<std::size_t> starts{0};  // of each line
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n') starts.push_back(i + 1);
+  const auto line_start = [&](int line) { return line < int(starts.size()) ? starts[std::size_t(line)] : text.size(); };
+  const int first = outline.elements.front().line;
+  const int end = outline.objects_end_line >= 0 ? outline.objects_end_line : int(starts.size());
+  std::vector<ObjectText> objects;
+  objects.reserve(outline.elements.size());
+  for (std::size_t k = 0; k < outline.elements.size(); ++k) {
+    const YamlOutline::Element& e = outline.elements[k];
+    const int next = k + 1 < outline.elements.size() ? outline.elements[k + 1].line : end;
+    if (next <= e.line) return out;  // two elements on one line: read the whole tree
+    const std::size_t from = line_start(e.line), to = line_start(next);
+    std::string element = text.substr(from, to - from);
+    // Only blanks and the element's dash may stand before it on its first line.
+    const std::size_t prefix = std::size_t(e.column);
+    if (prefix > element.size() || element.substr(0, prefix).find('-') == std::string::npos) return out;
+    for (std::size_t i = 0; i < prefix; ++i) {
+      if (element[i] != ' ' && element[i] != '\t' && element[i] != '-') return out;
+      element[i] = ' ';
+    }
+    objects.push_back({e.line, std::move(element)});
+  }
+  out.rest.reserve(text.size() - (line_start(end) - line_start(first)) + std::size_t(end - first));
+  out.rest.append(text, 0, line_start(first));
+  out.rest.append(std::size_t(std::max(0, std::min(end, int(starts.size())) - first)), '\n');
+  out.rest.append(text, line_start(end), std::string::npos);
+  out.objects = std::move(objects);
+  return out;
+}
 
 }  // namespace
 
@@ -440,13 +516,18 @@ Scene parse_scene(const std::string& text, const std::string& name, const fs::pa
     const int column = int(nul - (line_start == std::string::npos ? 0 : line_start + 1)) + 1;
     throw Error(FileLoc{name, line, column}, "not a text file (a NUL byte; scene files are UTF-8 text)");
   }
+  // Before the tree is built: an input too large for the format is refused at constant memory.
+  // Then the objects are read one at a time where the text allows it, so that memory holds one
+  // object's tree, not the whole file's (docs/scene-format.md, "Size limits").
+  SplitText split = split_objects(text, check_yaml_limits(text, name));
   YAML::Node root;
   try {
-    root = YAML::Load(text);
+    root = YAML::Load(split.objects.empty() ? text : split.rest);
   } catch (const YAML::Exception& e) {
     throw Error(FileLoc{name, e.mark.line + 1, e.mark.column + 1}, "syntax error: " + e.msg);
   }
-  return Reader(name, base_dir).read(root);
+  split.rest = std::string();
+  return Reader(name, base_dir).read(root, split.objects);
 }
 
 Scene load_scene(const fs::path& path) {

@@ -29,13 +29,18 @@ struct Material {
   Vec3 checker_color{0.1};
 };
 
+// Is floor(a) odd? Computed in floating point: a cell index past the range of an integer type
+// (a checker of size 1e-300, a point at 1e200) must not be converted to one, which is undefined
+// behaviour. Every Real of magnitude 2^53 (float: 2^24) or more is an even whole number, and
+// NaN or ±∞ (a size so small that 1/size overflows) count as even.
+STRAHL_HOST_DEVICE inline bool odd_cell(Real a) { return std::fabs(std::fmod(std::floor(a), Real(2))) == Real(1); }
+
 // Colour C at a point with plane coordinates (u, v) or, for solids, position p.
 STRAHL_HOST_DEVICE inline Vec3 surface_color(const Material& m, const Vec3& texcoord) {
   if (m.checker_size <= 0) return m.color;
   const Real s = Real(1) / m.checker_size;
-  const long sum = static_cast<long>(std::floor(texcoord.x * s)) + static_cast<long>(std::floor(texcoord.y * s)) +
-                   static_cast<long>(std::floor(texcoord.z * s));
-  return (sum & 1) ? m.checker_color : m.color;
+  const bool odd = (odd_cell(texcoord.x * s) != odd_cell(texcoord.y * s)) != odd_cell(texcoord.z * s);
+  return odd ? m.checker_color : m.color;
 }
 
 }  // namespace strahl
