@@ -25,6 +25,7 @@
 #include "outputs.h"
 #include "progress.h"
 #include "setup.h"
+#include "strahl/util/cancel.h"
 #include "strahl/image/image_io.h"
 #include "strahl/mpi/comm.h"
 #include "strahl/mpi/master.h"
@@ -78,7 +79,7 @@ int worker(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   } catch (const std::exception& e) {
     error = e.what();
   }
-  if (!mpi::report_scene(comm, hash, error, 600) || !rs) return 2;  // rank 0 says why
+  if (!mpi::report_scene(comm, hash, error, 600) || !rs) return cancel->load() ? 130 : 2;  // rank 0 says why
   mpi::WorkerOptions w;
   w.threads = threads_of(o);
   w.timeout = m.timeout;
@@ -110,6 +111,10 @@ int master(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
     error = e.what();
   }
   const std::string problem = mpi::agree_on_scene(comm, hash, error, 600);
+  if (!problem.empty() && cancel->load()) {  // loading stopped by a signal (util/cancel.h)
+    console::err("strahl-mpi: interrupted before rendering; nothing written\n");
+    return 130;
+  }
   if (!problem.empty()) {
     console::err("strahl-mpi: error: {}\n", error.empty() ? problem : error);
     return 2;
@@ -206,6 +211,9 @@ int main(int argc, char** argv) {
   int code = 2;
   try {
     code = comm.rank() == 0 ? master(comm, *parsed.options, m, cancel) : worker(comm, *parsed.options, m, cancel);
+  } catch (const strahl::Cancelled&) {  // a signal while loading or building (util/cancel.h)
+    if (comm.rank() == 0) console::err("strahl-mpi: interrupted before rendering; nothing written\n");
+    code = 130;
   } catch (const std::exception& e) {
     console::err("strahl-mpi: error: rank {}: {}\n", comm.rank(), e.what());
     code = 2;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace strahl {
 
@@ -66,7 +67,7 @@ bool is_convex(const std::vector<Point2>& p, double delta) {
     const double e1x = b.x - a.x, e1y = b.y - a.y, e2x = d.x - b.x, e2y = d.y - b.y;
     turning += std::atan2(e1x * e2y - e1y * e2x, e1x * e2x + e1y * e2y);
   }
-  return std::fabs(turning - 2 * M_PI) < 1;
+  return std::fabs(turning - 2 * std::numbers::pi) < 1;
 }
 
 // Ear clipping over a circular list of the remaining corners. A corner is an ear when it turns
