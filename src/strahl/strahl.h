@@ -8,4 +8,5 @@
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/scene_file.h"
+#include "strahl/scene/scene_writer.h"
 #include "strahl/version.h"

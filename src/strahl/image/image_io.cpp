@@ -206,6 +206,11 @@ bool is_supported_image_extension(const fs::path& path) {
 }
 
 void write_image(const Image& image, const fs::path& path, const WriteOptions& options) {
+  // (Callers that did not ask check_output_path first — the library, Python — get its message,
+  // not the encoder's failure.)
+  if (!is_supported_image_extension(path))
+    throw Error(path.string() + ": unknown image format '" + path.extension().string() +
+                "' (use .png, .jpg/.jpeg, .ppm, .pfm or .exr)");
   check_image_size(path, image.width(), image.height());
   OutputFile out(path);  // removed again unless committed
   write_by_extension(image, out, path, lower_extension(path), options.linear);

@@ -47,9 +47,10 @@ inline void non_zero(const Vec3& v, const FileLoc& loc, const std::string& what)
   if (length_squared(v) == 0) throw Error(loc, what + " must not be the zero vector");
 }
 inline void int_range(long v, long lo, long hi, const FileLoc& loc, const std::string& what) {
+  // Whole numbers in full ("[1, 1048576]", not "1.04858e+06").
   if (v < lo || v > hi)
-    throw Error(loc, what + " must lie in [" + str(lo) + ", " + str(hi) + "] (got " +
-                         str(v) + ")");
+    throw Error(loc, what + " must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
+                         std::to_string(v) + ")");
 }
 
 inline void material(const Material& m, const FileLoc& loc) {

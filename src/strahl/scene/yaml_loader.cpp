@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <fstream>
 #include <initializer_list>
 #include <map>
@@ -142,6 +143,17 @@ class Reader {
     validate::int_range(static_cast<long>(std::clamp<long long>(v, -(1ll << 40), 1ll << 40)), lo, hi, loc(n), what);
     return static_cast<int>(v);
   }
+  // The sampler's seed: any 64-bit unsigned number, as --seed takes.
+  std::uint64_t seed(const YAML::Node& n) const {
+    if (!n.IsScalar()) fail(n, "seed must be a whole number");
+    const std::string& text = n.Scalar();
+    std::uint64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec == std::errc::invalid_argument || end != text.data() + text.size())
+      fail(n, "seed must be a whole number (got '" + text + "')");
+    if (ec == std::errc::result_out_of_range) fail(n, "seed must lie in [0, 18446744073709551615] (got " + text + ")");
+    return v;
+  }
   bool boolean(const YAML::Node& n, const std::string& what) const {
     bool v = false;
     if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) fail(n, what + " must be true or false");
@@ -210,7 +222,7 @@ class Reader {
       s.sampler = *kind;
     }
     if (const auto v = n["spp"]) s.spp = integer(v, "spp", 1, kMaxSpp);
-    if (const auto v = n["seed"]) s.seed = std::uint64_t(integer(v, "seed", 0, 2147483647));
+    if (const auto v = n["seed"]) s.seed = seed(v);
     if (const auto v = n["filter"]) {
       const std::optional<FilterKind> kind = filter_from_name(scalar(v, "filter"));
       if (!kind) fail(v, "unknown filter '" + v.Scalar() + "' (" + kFilterNames + ")");
@@ -360,7 +372,7 @@ class Reader {
       const YAML::Node nn = required(n, "normal", what);
       const Vec3 normal = vec3(nn, "light normal");
       validate::non_zero(normal, loc(nn), "light normal");
-      l = disk_light(vec3(required(n, "center", what), "light center"), normalize(normal),
+      l = disk_light(vec3(required(n, "center", what), "light center"), normal,  // compile() normalises it
                      positive(required(n, "radius", what), "light radius"), Vec3(1), samples);
     } else {
       l = sphere_light(vec3(required(n, "center", what), "light center"),

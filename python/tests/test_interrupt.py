@@ -1,0 +1,125 @@
+# Ctrl-C cancels a render promptly, and the GIL is released while rendering.
+import _thread
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+
+import numpy as np
+import pytest
+
+strahl = pytest.importorskip("strahl")
+
+# A render that would take minutes: the lecture scene with a million samples per pixel.
+LONG = dict(width=320, height=180, spp=1 << 20, sampler="random", time_limit=60)  # (the limit: a broken test ends)
+
+
+def test_sigint_stops_a_render_within_a_second():
+    """A real SIGINT to a python process rendering (as Ctrl-C in a terminal sends)."""
+    code = textwrap.dedent(f"""
+        import sys, time, strahl
+        print("rendering", flush=True)
+        try:
+            strahl.render(strahl.lecture_scene(), **{LONG!r})
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+            sys.exit(42)
+        sys.exit(1)
+    """)
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True, env=os.environ.copy())
+    try:
+        assert proc.stdout.readline().strip() == "rendering"
+        time.sleep(1.0)  # well inside the render
+        assert proc.poll() is None, "the render ended by itself"
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=10)
+        elapsed = time.monotonic() - sent
+    finally:
+        proc.kill()
+        proc.wait()
+    assert proc.returncode == 42, f"exit code {proc.returncode}, not KeyboardInterrupt"
+    assert elapsed < 1.0, f"took {elapsed:.2f} s to stop"
+
+
+def test_interrupt_main_raises_keyboardinterrupt_promptly():
+    fired = []
+
+    def interrupt():
+        fired.append(time.monotonic())
+        _thread.interrupt_main()
+
+    timer = threading.Timer(0.3, interrupt)
+    timer.start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        strahl.render(strahl.lecture_scene(), **LONG)
+    timer.join()
+    assert fired and time.monotonic() - fired[0] < 1.0
+    assert time.monotonic() - start < 5
+
+
+def test_an_exception_from_progress_cancels_the_render():
+    class Stop(Exception):
+        pass
+
+    def progress(done, total):
+        raise Stop()  # on the first report (0 samples done: a tile of a million samples takes long)
+
+    start = time.monotonic()
+    with pytest.raises(Stop):
+        strahl.render(strahl.lecture_scene(), progress=progress, **LONG)
+    assert time.monotonic() - start < 5
+
+
+def test_the_gil_is_released_while_rendering():
+    """A Python thread keeps running while another renders: its ticks have no long gaps."""
+    ticks = []
+    done = threading.Event()
+
+    def ticker():
+        while not done.is_set():
+            ticks.append(time.monotonic())
+            time.sleep(0.001)
+
+    results = {}
+
+    def renderer():
+        start = time.monotonic()
+        results["image"] = strahl.render(strahl.lecture_scene(), width=160, height=90, spp=256, threads=1)
+        results["seconds"] = time.monotonic() - start
+
+    t = threading.Thread(target=ticker)
+    t.start()
+    r = threading.Thread(target=renderer)
+    r.start()
+    r.join(timeout=120)
+    done.set()
+    t.join()
+    seconds = results["seconds"]
+    assert seconds > 0.3, f"the render was too short to tell ({seconds:.2f} s)"
+    gaps = np.diff(ticks)
+    # With the GIL held, the ticker would stop for the whole render.
+    assert gaps.max() < seconds / 3, f"the ticker stopped for {gaps.max():.2f} s of a {seconds:.2f} s render"
+    assert len(ticks) > 50
+    assert results["image"].shape == (90, 160, 3)
+
+
+def test_renders_in_two_threads_at_once_equal_one_alone():
+    scene = strahl.lecture_scene()
+    alone = strahl.render(scene, width=64, height=36, spp=4)
+    out = [None, None]
+
+    def job(i):
+        out[i] = strahl.render(strahl.lecture_scene(), width=64, height=36, spp=4, threads=1)
+
+    threads = [threading.Thread(target=job, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for image in out:
+        assert np.array_equal(np.asarray(image), np.asarray(alone))

@@ -1,0 +1,108 @@
+# Meshes from numpy arrays are the same meshes as from files: the same compiled scene and image.
+import numpy as np
+import pytest
+
+strahl = pytest.importorskip("strahl")
+
+
+def torus(n=12, m=8, R=0.4, r=0.15):
+    """A closed torus, as float64 arrays of float32 values (tinyobjloader, which reads OBJ files
+    for strahl, keeps floats)."""
+    u, v = np.meshgrid(np.arange(n) * 2 * np.pi / n, np.arange(m) * 2 * np.pi / m, indexing="ij")
+    vertices = np.stack([(R + r * np.cos(v)) * np.cos(u), r * np.sin(v) + 0.3, (R + r * np.cos(v)) * np.sin(u)], -1)
+    vertices = vertices.reshape(-1, 3)
+    normals = np.stack([np.cos(v) * np.cos(u), np.sin(v), np.cos(v) * np.sin(u)], -1).reshape(-1, 3)
+    faces = []
+    for i in range(n):
+        for j in range(m):
+            a, b = i * m + j, ((i + 1) % n) * m + j
+            c, d = ((i + 1) % n) * m + (j + 1) % m, i * m + (j + 1) % m
+            faces += [[a, d, c], [a, c, b]]
+    as_float = lambda a: a.astype(np.float32).astype(np.float64)
+    return as_float(vertices), np.array(faces), as_float(normals)
+
+
+def write_obj(path, vertices, faces, normals=None):
+    # repr() of a float64 is its shortest round-trip form.
+    with open(path, "w") as f:
+        for p in vertices:
+            f.write("v %r %r %r\n" % tuple(float(x) for x in p))
+        if normals is not None:
+            for n in normals:
+                f.write("vn %r %r %r\n" % tuple(float(x) for x in n))
+        for t in faces + 1:
+            f.write("f " + " ".join(f"{i}//{i}" if normals is not None else f"{i}" for i in t) + "\n")
+
+
+def scene_with(mesh):
+    scene = strahl.Scene()
+    scene.add(strahl.Plane((0, 1, 0), 0, color=(0.3, 0.3, 0.3)))
+    scene.add(mesh)
+    scene.add_light((1, 1.5, 1))
+    return scene
+
+
+@pytest.mark.parametrize("smooth", [False, True])
+def test_numpy_mesh_equals_the_same_obj(tmp_path, smooth):
+    vertices, faces, normals = torus()
+    if not smooth:
+        normals = None
+    write_obj(tmp_path / "torus.obj", vertices, faces, normals)
+    place = dict(color=(0.2, 0.6, 0.9), rotate=(20, 0, 0), translate=(0, 0.1, 0))
+    from_file = strahl.Mesh.load(tmp_path / "torus.obj", **place)
+    from_numpy = strahl.Mesh(vertices, faces, normals, **place)
+    # The file reads back to the arrays.
+    assert np.array_equal(from_file.vertices, vertices)
+    assert np.array_equal(from_file.indices, faces)
+    a, b = scene_with(from_file), scene_with(from_numpy)
+    assert strahl._scene_hash(a) == strahl._scene_hash(b)
+    image_a = strahl.render(a, width=64, height=48)
+    assert np.array_equal(np.asarray(image_a), np.asarray(strahl.render(b, width=64, height=48)))
+    # The torus is in the picture: without it the image differs.
+    assert not np.array_equal(np.asarray(image_a), np.asarray(strahl.render(scene_with(strahl.Sphere((9, 9, 9), 0.1)),
+                                                                             width=64, height=48)))
+    # And a scene file naming the OBJ gives the same compiled scene.
+    (tmp_path / "scene.yaml").write_text(
+        "lights: [{type: point, position: [1, 1.5, 1]}]\n"
+        "objects:\n"
+        "  - {type: plane, normal: [0, 1, 0], distance: 0, material: {color: [0.3, 0.3, 0.3]}}\n"
+        "  - {type: mesh, file: torus.obj, rotate: [20, 0, 0], translate: [0, 0.1, 0],"
+        " material: {color: [0.2, 0.6, 0.9]}}\n")
+    from_yaml = strahl.load(tmp_path / "scene.yaml")
+    assert strahl._scene_hash(from_yaml) == strahl._scene_hash(a)
+
+
+def test_a_different_mesh_hashes_differently():
+    vertices, faces, _ = torus()
+    other = vertices.copy()
+    other[5, 1] = np.nextafter(other[5, 1], 1)
+    assert strahl._scene_hash(scene_with(strahl.Mesh(vertices, faces))) != \
+        strahl._scene_hash(scene_with(strahl.Mesh(other, faces)))
+
+
+def test_mesh_arguments_are_checked():
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float32)
+    with pytest.raises(strahl.Error, match="refers to vertex 3, which does not exist"):
+        strahl.Mesh(v, [[0, 1, 3]])
+    with pytest.raises(strahl.Error, match="refers to vertex -1"):
+        strahl.Mesh(v, [[0, 1, -1]])
+    with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
+        strahl.Mesh(v[:, :2], [[0, 1, 2]])
+    with pytest.raises(ValueError, match=r"shape \(m, 3\)"):
+        strahl.Mesh(v, [0, 1, 2])
+    with pytest.raises(TypeError, match="integers"):
+        strahl.Mesh(v, [[0.0, 1.0, 2.0]])
+    with pytest.raises(TypeError):
+        strahl.Mesh(v, "abc")
+    with pytest.raises(strahl.Error, match="finite"):
+        strahl.Mesh([[0, 0, np.nan], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    with pytest.raises(strahl.Error, match="no faces"):
+        strahl.Mesh(v, np.zeros((0, 3), dtype=int))
+    with pytest.raises(ValueError, match="one row per vertex"):
+        strahl.Mesh(v, [[0, 1, 2]], normals=[[0, 0, 1]])
+    with pytest.raises(strahl.Error, match="scale must not be zero"):
+        strahl.Mesh(v, [[0, 1, 2]], scale=(1, 0, 1))
+    with pytest.raises(strahl.Error, match=r"cannot open mesh file|no such file"):
+        strahl.Mesh.load("/nonexistent/x.obj")
+    mesh = strahl.Mesh(v, np.array([[0, 1, 2]], dtype=np.uint8))  # any integer dtype
+    assert mesh.indices.tolist() == [[0, 1, 2]] and mesh.vertices.dtype == np.float64

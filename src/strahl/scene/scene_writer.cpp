@@ -1,0 +1,230 @@
+#include "strahl/scene/scene_writer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "strahl/image/output_file.h"
+#include "strahl/shading/light.h"
+
+namespace strahl {
+
+namespace {
+
+// Text built up line by line; numbers in std::to_chars's shortest form, which reads back
+// (strtod, as yaml-cpp does) to the very same double.
+class Writer {
+ public:
+  std::string text;
+
+  void line(int indent, const std::string& s) {
+    text.append(std::size_t(indent), ' ');
+    text += s;
+    text += '\n';
+  }
+  static std::string num(Real v, const std::string& what) {
+    if (!std::isfinite(v)) throw Error("cannot write " + what + ": it is not a finite number");
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, double(v));
+    return std::string(buf, r.ptr);
+  }
+  static std::string integer(long long v) { return std::to_string(v); }
+  static std::string vec(const Vec3& v, const std::string& what) {
+    return "[" + num(v.x, what) + ", " + num(v.y, what) + ", " + num(v.z, what) + "]";
+  }
+  static std::string boolean(bool b) { return b ? "true" : "false"; }
+};
+
+std::string material_map(const Material& m) {
+  using W = Writer;
+  std::string s = "{color: " + W::vec(m.color, "material color") + ", ambient: " + W::num(m.ambient, "ambient") +
+                  ", diffuse: " + W::num(m.diffuse, "diffuse") + ", specular: " + W::vec(m.specular, "specular") +
+                  ", shininess: " + W::num(m.shininess, "shininess") +
+                  ", reflectivity: " + W::num(m.reflectivity, "reflectivity") +
+                  ", transparency: " + W::num(m.transparency, "transparency") + ", ior: " + W::num(m.ior, "ior") +
+                  ", fresnel: " + W::boolean(m.fresnel) + ", filter: " + W::boolean(m.filter) +
+                  ", roughness: " + W::num(m.roughness, "roughness");
+  // (checker_color without a checker has no effect and no key; it is not written.)
+  if (m.checker_size > 0)
+    s += ", checker: {size: " + W::num(m.checker_size, "checker size") +
+         ", color: " + W::vec(m.checker_color, "checker color") + "}";
+  return s + "}";
+}
+
+std::string transform_map(const Transform& t, const std::string& what) {
+  return "{scale: " + Writer::vec(t.scale, what + " scale") + ", rotate: " + Writer::vec(t.rotate_degrees, what + " rotate") +
+         ", translate: " + Writer::vec(t.translate, what + " translate") + "}";
+}
+
+void motion(Writer& w, const Motion& m) {
+  switch (m.kind) {
+    case Motion::Kind::None: return;
+    case Motion::Kind::Velocity: w.line(4, "motion: {velocity: " + Writer::vec(m.velocity, "motion velocity") + "}"); return;
+    case Motion::Kind::Keyframes:
+      w.line(4, "motion: {from: " + transform_map(m.from, "motion") + ", to: " + transform_map(m.to, "motion") + "}");
+      return;
+  }
+}
+
+void mesh(Writer& w, const Mesh& mesh, const std::string& file) {
+  using W = Writer;
+  w.line(4, "file: " + file);
+  w.line(4, "scale: " + W::vec(mesh.transform.scale, "mesh scale"));
+  w.line(4, "rotate: " + W::vec(mesh.transform.rotate_degrees, "mesh rotate"));
+  w.line(4, "translate: " + W::vec(mesh.transform.translate, "mesh translate"));
+}
+
+std::string mesh_file(const std::string& stem, int index) { return stem + ".mesh" + std::to_string(index) + ".obj"; }
+
+void object(Writer& w, const SceneObject& o, const std::string& mesh_stem, int& meshes) {
+  using W = Writer;
+  if (const auto* s = dynamic_cast<const Sphere*>(&o)) {
+    w.line(2, "- type: sphere");
+    w.line(4, "center: " + W::vec(s->center, "sphere center"));
+    w.line(4, "radius: " + W::num(s->radius, "sphere radius"));
+  } else if (const auto* p = dynamic_cast<const Plane*>(&o)) {
+    w.line(2, "- type: plane");
+    w.line(4, "normal: " + W::vec(p->normal, "plane normal"));
+    w.line(4, "distance: " + W::num(p->distance, "plane distance"));
+  } else if (const auto* t = dynamic_cast<const Triangle*>(&o)) {
+    w.line(2, "- type: triangle");
+    w.line(4, "vertices: [" + W::vec(t->v0, "triangle vertex") + ", " + W::vec(t->v1, "triangle vertex") + ", " +
+                  W::vec(t->v2, "triangle vertex") + "]");
+  } else if (const auto* m = dynamic_cast<const Mesh*>(&o)) {
+    w.line(2, "- type: mesh");
+    mesh(w, *m, mesh_file(mesh_stem, meshes++));
+  } else {
+    throw Error(o.loc, "cannot write this kind of object to a scene file");
+  }
+  w.line(4, "material: " + material_map(o.material));
+  motion(w, o.motion);
+}
+
+// Lights as their radiance: colour = radiance, intensity 1 (the loader multiplies the two).
+void light(Writer& w, const Light& l) {
+  using W = Writer;
+  const std::string color = ", color: " + W::vec(l.radiance, "light color");
+  switch (l.kind) {
+    case LightKind::Point: w.line(2, "- {type: point, position: " + W::vec(l.position, "light position") + color + "}"); return;
+    case LightKind::Directional:
+      w.line(2, "- {type: directional, direction: " + W::vec(l.direction, "light direction") + color + "}");
+      return;
+    case LightKind::Rect:
+      w.line(2, "- {type: rect, corner: " + W::vec(l.position, "light corner") + ", edge_u: " + W::vec(l.edge_u, "edge_u") +
+                    ", edge_v: " + W::vec(l.edge_v, "edge_v") + color + ", samples: " + W::integer(l.samples) + "}");
+      return;
+    case LightKind::Disk:
+      w.line(2, "- {type: disk, center: " + W::vec(l.position, "light center") + ", normal: " + W::vec(l.normal, "light normal") +
+                    ", radius: " + W::num(l.radius, "light radius") + color + ", samples: " + W::integer(l.samples) + "}");
+      return;
+    case LightKind::Sphere:
+      w.line(2, "- {type: sphere, center: " + W::vec(l.position, "light center") + ", radius: " + W::num(l.radius, "light radius") +
+                    color + ", samples: " + W::integer(l.samples) + "}");
+      return;
+  }
+}
+
+void camera(Writer& w, const CameraDescription& c) {
+  using W = Writer;
+  w.line(0, "camera:");
+  w.line(2, "position: " + W::vec(c.position, "camera position"));
+  w.line(2, "look_at: " + W::vec(c.look_at, "camera look_at"));
+  w.line(2, "up: " + W::vec(c.up, "camera up"));
+  if (c.explicit_image_plane) {
+    w.line(2, "image_plane: {l: " + W::num(c.l, "l") + ", r: " + W::num(c.r, "r") + ", b: " + W::num(c.b, "b") +
+                  ", t: " + W::num(c.t, "t") + ", d: " + W::num(c.d, "d") + "}");
+  } else {
+    w.line(2, "fov: " + W::num(c.fov_degrees, "fov"));
+    w.line(2, std::string("fov_axis: ") +
+                  (c.fov_axis == CameraDescription::FovAxis::Horizontal ? "horizontal" : "vertical"));
+  }
+  w.line(2, "aperture: " + W::num(c.aperture, "aperture"));
+  if (c.has_focus_point) w.line(2, "focus_point: " + W::vec(c.focus_point, "focus_point"));
+  else if (c.focus_distance > 0) w.line(2, "focus_distance: " + W::num(c.focus_distance, "focus_distance"));
+  w.line(2, "shutter: [" + W::num(c.shutter_open, "shutter open") + ", " + W::num(c.shutter_close, "shutter close") + "]");
+}
+
+void render_settings(Writer& w, const RenderSettings& s) {
+  using W = Writer;
+  const SamplingSettings& p = s.sampling;
+  w.line(0, "render:");
+  w.line(2, "width: " + W::integer(s.width));
+  w.line(2, "height: " + W::integer(s.height));
+  w.line(2, "max_depth: " + W::integer(s.max_depth));
+  w.line(2, "min_weight: " + W::num(s.min_weight, "min_weight"));
+  w.line(2, "supersample: " + W::integer(s.supersample));
+  w.line(2, "background: " + W::vec(s.background, "background"));
+  w.line(2, "ambient_light: " + W::vec(s.ambient_light, "ambient_light"));
+  w.line(2, "medium_ior: " + W::num(s.medium_ior, "medium_ior"));
+  w.line(2, "accel: " + std::string(accel_name(s.accel)));
+  w.line(2, std::string("sampler: ") + sampler_name(p.sampler));
+  if (p.spp != 0) w.line(2, "spp: " + W::integer(p.spp));  // 0: supersample² (the key's default)
+  w.line(2, "seed: " + std::to_string(p.seed));
+  w.line(2, std::string("filter: ") + filter_name(p.filter.kind));
+  w.line(2, "filter_radius: " + W::num(p.filter.radius, "filter_radius"));
+  w.line(2, "adaptive_min: " + W::integer(p.adaptive_min));
+  w.line(2, "adaptive_threshold: " + W::num(p.adaptive_threshold, "adaptive_threshold"));
+}
+
+}  // namespace
+
+std::string scene_to_yaml(const Scene& scene, const std::string& mesh_stem) {
+  Writer w;
+  w.line(0, "# Written by strahl " + std::string("(scene_to_yaml); docs/scene-format.md describes every key."));
+  camera(w, scene.camera);
+  render_settings(w, scene.settings);
+  if (!scene.lights().empty()) {
+    w.line(0, "lights:");
+    for (const Light& l : scene.lights()) light(w, l);
+  }
+  w.line(0, "objects:");
+  int meshes = 0;
+  for (const auto& o : scene.objects()) object(w, *o, mesh_stem, meshes);
+  return w.text;
+}
+
+std::string mesh_to_obj(const MeshData& mesh) {
+  using W = Writer;
+  Writer w;
+  w.line(0, "# Written by strahl (mesh_to_obj)");
+  const auto coords = [](const Vec3& v, const char* what) {
+    return W::num(v.x, what) + " " + W::num(v.y, what) + " " + W::num(v.z, what);
+  };
+  for (const Vec3& p : mesh.positions) w.line(0, "v " + coords(p, "mesh vertex"));
+  for (const Vec3& n : mesh.normals) w.line(0, "vn " + coords(n, "mesh normal"));
+  for (const MeshData::Face& f : mesh.faces) {
+    // compile() shades a face smoothly only when all three corners have normals.
+    const bool smooth = f.n[0] >= 0 && f.n[1] >= 0 && f.n[2] >= 0;
+    std::string line = "f";
+    for (std::size_t k = 0; k < 3; ++k) {
+      line += " " + std::to_string(std::uint64_t(f.v[k]) + 1);
+      if (smooth) line += "//" + std::to_string(std::int64_t(f.n[k]) + 1);
+    }
+    w.line(0, line);
+  }
+  return w.text;
+}
+
+void save_scene(const Scene& scene, const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".yaml" && ext != ".yml")
+    throw Error(FileLoc{path.string()}, "unknown scene format '" + ext + "' for writing (use .yaml or .yml)");
+  const std::string stem = path.stem().string();
+  const std::string text = scene_to_yaml(scene, stem);  // (checks every number before anything is written)
+  const auto write = [](const std::filesystem::path& target, const std::string& bytes) {
+    OutputFile out(target);
+    out.write(bytes.data(), bytes.size());
+    out.commit();
+  };
+  std::vector<std::string> objs;  // every file's text first: a number that cannot be written fails before any file
+  for (const auto& o : scene.objects())
+    if (const auto* m = dynamic_cast<const Mesh*>(o.get())) objs.push_back(mesh_to_obj(m->data));
+  for (std::size_t i = 0; i < objs.size(); ++i) write(path.parent_path() / mesh_file(stem, int(i)), objs[i]);
+  write(path, text);
+}
+
+}  // namespace strahl
