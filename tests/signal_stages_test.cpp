@@ -1,5 +1,6 @@
 // Every signal at every stage of a run (issue 12, "Signals and streams"; docs/cli.md,
-// "Signals"): SIGINT, SIGTERM and SIGHUP while loading or building end the run with 130 and
+// "Interrupting a run"): SIGINT, SIGTERM and SIGHUP while loading (the YAML scene, its OBJ and
+// its PLY mesh) or building end the run with 130 and
 // nothing written; while rendering, the image so far is written; while writing, the image is
 // finished; SIGPIPE is ignored throughout. Never a half-written file or a stray temporary one.
 // The CLI's test hook (STRAHL_TEST_HOLD=STAGE:SECONDS) holds the stage open until the signal
@@ -25,9 +26,20 @@ const char* kScene =
     "objects:\n"
     "  - {type: plane, normal: [0, 1, 0], distance: 0}\n"
     "  - {type: sphere, center: [0, 0.5, 0], radius: 0.5}\n"
-    "  - {type: mesh, file: quad.obj, translate: [0, 0, -1]}\n";
+    "  - {type: mesh, file: quad.obj, translate: [0, 0, -1]}\n"
+    "  - {type: mesh, file: quad.ply, translate: [0, 0, -2]}\n";
 
 const char* kQuad = "v -1 0 0\nv 1 0 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+const char* kQuadPly =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "-1 0 0\n1 0 0\n1 1 0\n-1 1 0\n4 0 1 2 3\n";
+
+void write_inputs(const fs::path& dir) {
+  test::write_text(dir / "scene.yaml", kScene);
+  test::write_text(dir / "quad.obj", kQuad);
+  test::write_text(dir / "quad.ply", kQuadPly);
+}
 
 std::set<std::string> listing(const fs::path& dir) {
   std::set<std::string> names;
@@ -64,8 +76,7 @@ SignalRun run_with_signal(const fs::path& dir, const std::string& stage, int sig
 
 TEST(SignalStages, EachSignalAtEachStageDoesWhatTheDocsSay) {
   test::TempDir ref_dir;
-  test::write_text(ref_dir / "scene.yaml", kScene);
-  test::write_text(ref_dir / "quad.obj", kQuad);
+  write_inputs(ref_dir.path());
   const test::ChildResult ref =
       test::run_child({STRAHL_CLI, "scene.yaml", "--threads", "1", "-q", "-o", "out.png"}, ref_dir.path(), 60);
   ASSERT_EQ(ref.exit_code, 0) << ref.err;
@@ -73,12 +84,12 @@ TEST(SignalStages, EachSignalAtEachStageDoesWhatTheDocsSay) {
 
   const std::pair<int, const char*> signals[] = {{SIGINT, "SIGINT"}, {SIGTERM, "SIGTERM"}, {SIGHUP, "SIGHUP"},
                                                  {SIGPIPE, "SIGPIPE"}};
-  for (const char* stage : {"load", "build", "render", "write"}) {
+  // Loading the scene file, its OBJ mesh and its PLY mesh; compiling; rendering; writing.
+  for (const char* stage : {"yaml", "obj", "ply", "build", "render", "write"}) {
     for (const auto& [sig, name] : signals) {
       SCOPED_TRACE(std::string(name) + " while at stage " + stage);
       test::TempDir dir;
-      test::write_text(dir / "scene.yaml", kScene);
-      test::write_text(dir / "quad.obj", kQuad);
+      write_inputs(dir.path());
       const bool ignored = sig == SIGPIPE;
       // An ignored signal leaves the hold to time out; a handled one ends it at once.
       const SignalRun run = run_with_signal(dir.path(), stage, sig, ignored ? 0.3 : 30);
@@ -92,7 +103,7 @@ TEST(SignalStages, EachSignalAtEachStageDoesWhatTheDocsSay) {
         EXPECT_EQ(r.exit_code, 0) << r.err;
         const Image img = read_image(dir / "out.png");
         EXPECT_EQ(test::max_abs_diff(img, reference), 0.0f);
-      } else if (stage_s == "load" || stage_s == "build") {
+      } else if (stage_s != "render" && stage_s != "write") {
         EXPECT_EQ(r.exit_code, 130) << r.err;
         EXPECT_NE(r.err.find(std::string("strahl: interrupted (") + name + ") before rendering; nothing written"),
                   std::string::npos)
@@ -114,7 +125,7 @@ TEST(SignalStages, EachSignalAtEachStageDoesWhatTheDocsSay) {
         }
       }
       // Nothing but the inputs and (where one was written) the whole image: no temporary files.
-      std::set<std::string> expected = {"scene.yaml", "quad.obj"};
+      std::set<std::string> expected = {"scene.yaml", "quad.obj", "quad.ply"};
       if (ignored || stage_s == "render" || stage_s == "write") expected.insert("out.png");
       EXPECT_EQ(listing(dir.path()), expected);
     }

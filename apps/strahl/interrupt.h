@@ -17,7 +17,8 @@ int interrupt_signal();
 const char* interrupt_signal_name();
 
 // A test hook: with STRAHL_TEST_HOLD=STAGE[:SECONDS] in the environment, the run stops at the first
-// poll of that stage (load, build, render or write), prints "strahl: holding at STAGE" to stderr
+// poll of that stage (yaml, obj, ply, build, render or write), prints "strahl: holding at STAGE"
+// to stderr
 // and waits until a signal sets the flag or SECONDS (default 10) pass, then goes on. The signal
 // tests use it to deliver a signal inside a stage, deterministically.
 void hold_for_test(const char* stage);

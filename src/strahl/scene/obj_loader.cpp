@@ -31,7 +31,7 @@ class ObjReader {
     std::size_t pos = 0;
     while (pos < text.size()) {
       ++line;
-      if ((line & 0xfff) == 0) check_cancelled("load");
+      if (((line - 1) & 0xfff) == 0) check_cancelled("obj");
       std::size_t end = text.find('\n', pos);
       if (end == std::string_view::npos) end = text.size();
       check_line(text.substr(pos, end - pos), line);
@@ -219,7 +219,7 @@ class ObjReader {
     std::vector<Vec3> points;
     std::vector<PolygonTriangle> triangles;
     for (std::size_t p = 0; p < polygons_.size(); ++p) {
-      if ((p & 0xfff) == 0) check_cancelled("load");
+      if ((p & 0xfff) == 0) check_cancelled("obj");
       const Polygon& poly = polygons_[p];
       const Corner* c = polygon_corners_.data() + poly.first;
       points.clear();

@@ -631,7 +631,7 @@ void skip_element(Source& src, const Element& e) {
     }
   }
   for (long long i = 0; i < e.count; ++i) {
-    if ((i & 0xfff) == 0) check_cancelled("load");
+    if ((i & 0xfff) == 0) check_cancelled("ply");
     src.begin(e.name, i, e.count);
     for (const Property& p : e.properties) {
       if (p.list) src.skip_items(p.type, list_length(src, p));
@@ -674,7 +674,7 @@ void read_vertices(Source& src, const Element& e, bool normals, MeshData& mesh) 
       src.begin(e.name, 0, e.count);
       const unsigned char* entry = src.take(static_cast<std::uint64_t>(e.count) * stride);
       for (long long i = 0; i < e.count; ++i, entry += stride) {
-        if ((i & 0xfff) == 0) check_cancelled("load");
+        if ((i & 0xfff) == 0) check_cancelled("ply");
         double v[6] = {};
         for (int f = 0; f < used; ++f) v[fields[f].slot] = src.value(entry + fields[f].offset, fields[f].type);
         src.at(i, entry);
@@ -684,7 +684,7 @@ void read_vertices(Source& src, const Element& e, bool normals, MeshData& mesh) 
     }
   }
   for (long long i = 0; i < e.count; ++i) {
-    if ((i & 0xfff) == 0) check_cancelled("load");
+    if ((i & 0xfff) == 0) check_cancelled("ply");
     src.begin(e.name, i, e.count);
     double v[6] = {};
     for (const Property& p : e.properties) {
@@ -727,7 +727,7 @@ void read_faces(Source& src, const Element& e, long long vertex_count, bool norm
       const auto vertices = static_cast<std::uint64_t>(vertex_count);
       src.begin(e.name, 0, e.count);
       for (long long i = 0; i < e.count; ++i) {
-        if ((i & 0xfff) == 0) check_cancelled("load");
+        if ((i & 0xfff) == 0) check_cancelled("ply");
         src.at(i, src.position());
         const std::int64_t n = src.integer(src.take(count_size), p.count_type);
         if (n < 0)
@@ -750,7 +750,7 @@ void read_faces(Source& src, const Element& e, long long vertex_count, bool norm
   }
   const double vertices = static_cast<double>(vertex_count);
   for (long long i = 0; i < e.count; ++i) {
-    if ((i & 0xfff) == 0) check_cancelled("load");
+    if ((i & 0xfff) == 0) check_cancelled("ply");
     src.begin(e.name, i, e.count);
     for (const Property& p : e.properties) {
       if (!p.list) {

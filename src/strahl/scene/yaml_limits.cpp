@@ -64,7 +64,7 @@ class LimitChecker : public YAML::EventHandler {
     if (++nodes_ > kMaxSceneNodes)
       fail(mark, "the scene file holds more than " + std::to_string(kMaxSceneNodes) +
                      " YAML values, lists and maps; put large geometry in a mesh file (OBJ or PLY)");
-    if ((nodes_ & 0xfff) == 0) check_cancelled("load");
+    if ((nodes_ & 0xfff) == 0) check_cancelled("yaml");
     if (stack_.empty()) return;
     Container& c = stack_.back();
     ++c.entries;

@@ -71,7 +71,7 @@ class Reader {
     }
     if (!objects.empty()) {
       for (const ObjectText& o : objects) {
-        check_cancelled("load");
+        check_cancelled("yaml");
         YAML::Node element;
         try {
           element = YAML::Load(o.text);
@@ -85,7 +85,7 @@ class Reader {
     } else if (const YAML::Node n = root["objects"]) {
       sequence(n, "objects");
       for (const YAML::Node& o : n) {
-        check_cancelled("load");
+        check_cancelled("yaml");
         object(o, scene);
       }
     }
