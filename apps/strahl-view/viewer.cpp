@@ -184,6 +184,10 @@ class Viewer {
   std::deque<Clock::time_point> frame_times_;  // images shown in the last second (frames/s)
   Clock::time_point last_hud_{};
   bool quit_ = false;
+  // How often the input is looked at: turns of the loop, and the longest time between two.
+  std::uint64_t turns_ = 0;
+  double longest_gap_ = 0;
+  std::deque<Clock::time_point> turn_times_;  // of the last second (the HUD's input rate)
 };
 
 void Viewer::adopt(LoadedScene s, bool first) {
@@ -589,7 +593,8 @@ std::vector<std::string> Viewer::hud_lines(const FrameStatus& s) {
   while (!frame_times_.empty() && seconds_between(frame_times_.front(), now) > 1) frame_times_.pop_front();
   std::vector<std::string> l;
   const double mrays = s.seconds > 0 ? double(s.rays.total()) / s.seconds * 1e-6 : 0;
-  l.push_back(fmt::format("{} frames/s  {:.1f} Mrays/s", frame_times_.size(), mrays));
+  while (!turn_times_.empty() && seconds_between(turn_times_.front(), now) > 1) turn_times_.pop_front();
+  l.push_back(fmt::format("{} frames/s  {:.1f} Mrays/s  input {} Hz", frame_times_.size(), mrays, turn_times_.size()));
   if (s.interactive)
     l.push_back(fmt::format("moving: {}x{} (1/{}), 1 spp", s.width, s.height, s.scale));
   else
@@ -654,7 +659,8 @@ void Viewer::draw() {
 int Viewer::run(const std::atomic<bool>* interrupted) {
   open_window();
   script_last_ = Clock::now();
-  Clock::time_point last = Clock::now();
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start;
   while (!quit_) {
     if (interrupted->load()) {
       exit_code_ = 130;
@@ -667,6 +673,9 @@ int Viewer::run(const std::atomic<bool>* interrupted) {
       while (!quit_ && SDL_PollEvent(&e)) handle(e);
     }
     const Clock::time_point now = Clock::now();
+    ++turns_;
+    longest_gap_ = std::max(longest_gap_, seconds_between(last, now));
+    turn_times_.push_back(now);
     fly(std::min(0.1, seconds_between(last, now)));
     last = now;
     poll_files();
@@ -677,6 +686,10 @@ int Viewer::run(const std::atomic<bool>* interrupted) {
     play_script();
   }
   if (exit_code_ == 130) console::err("strahl-view: interrupted\n");
+  const double seconds = seconds_between(start, Clock::now());
+  if (!script_.empty() && !options_.quiet)
+    console::out("input: looked at {} times in {:.2f} s ({:.0f} Hz), longest gap {:.1f} ms\n", turns_, seconds,
+                 double(turns_) / std::max(seconds, 1e-9), longest_gap_ * 1e3);
   return exit_code_;
 }
 

@@ -50,6 +50,51 @@ check() {
   [ "$failures" = "$before" ] && echo "ok: $name"
 }
 
+# The input is looked at 60 times a second or more while frames take long: full-resolution
+# moving frames (--scale 1) of a scene with meshes, 64 spp when still, a drag all the while.
+{
+  echo "0.1 mouse down left 10 10"
+  for i in $(seq 1 40); do echo "0.03 mouse move $((10 + i)) $((10 + i / 2))"; done
+  echo "0 mouse up left 50 30"
+  echo "0.5 quit"
+} > "$WORK/drag.txt"
+if view_offscreen "$SRC/scenes/mesh.yaml" --width 480 --height 270 --spp 64 --scale 1 -o "$WORK/drag.png" \
+    --script "$WORK/drag.txt" > "$WORK/drag.out" 2> "$WORK/drag.err"; then
+  rate=$(sed -n 's/^input: .* (\([0-9]*\) Hz).*/\1/p' "$WORK/drag.out")
+  if [ -n "$rate" ] && [ "$rate" -ge 60 ]; then echo "ok: input at $rate Hz while rendering"
+  else fail "input looked at less than 60 times a second: $(cat "$WORK/drag.out")"; fi
+else
+  fail "the drag session failed: $(cat "$WORK/drag.err")"
+fi
+
+# Ctrl-C (SIGINT) and SIGTERM close the window and end with 130, at once, however long the
+# still image would take (unlimited spp).
+for signal in INT TERM; do
+  printf '0 key u\n0 wait spp 2\n0 key ctrl+s\n600 quit\n' > "$WORK/long.txt"
+  # Not under timeout(1), which would take the signal itself; a watchdog instead.
+  SDL_VIDEODRIVER=offscreen "$VIEW" "$SRC/scenes/lecture-whitted.yaml" --width 96 --height 54 -o "$WORK/sig$signal.pfm" \
+    --script "$WORK/long.txt" > /dev/null 2> "$WORK/sig.err" &
+  pid=$!
+  (sleep 120 && kill -KILL $pid) > /dev/null 2>&1 &
+  watchdog=$!
+  if wait_for "$WORK/sig$signal-0001.pfm" 60; then
+    kill -$signal $pid
+    started=$(date +%s%N)
+    wait $pid
+    rc=$?
+    took=$((($(date +%s%N) - started) / 1000000))
+    kill $watchdog 2> /dev/null
+    if [ "$rc" = 130 ] && grep -q "strahl-view: interrupted" "$WORK/sig.err" && [ "$took" -lt 5000 ]; then
+      echo "ok: SIG$signal ends the viewer with 130 in $took ms"
+    else
+      fail "SIG$signal: exit $rc after $took ms: $(cat "$WORK/sig.err")"
+    fi
+  else
+    kill -KILL $pid $watchdog
+    fail "SIG$signal: the viewer did not get going: $(cat "$WORK/sig.err")"
+  fi
+done
+
 check grid       lecture.yaml         pfm --supersample 2
 check png        lecture-whitted.yaml png --supersample 2
 check stratified lecture-whitted.yaml pfm --sampler stratified --spp 4 --filter mitchell --filter-radius 2
