@@ -21,7 +21,8 @@ double cpu_seconds() {
 }
 }  // namespace
 
-int run_benchmark(const LoadedScene& scene, const std::string& name, int frames, int threads, int tile_size) {
+int run_benchmark(const LoadedScene& scene, const std::string& name, int frames, int threads, int tile_size,
+                  const std::atomic<bool>* interrupted) {
   using Clock = std::chrono::steady_clock;
   CpuBackend cpu(threads);
   ViewRenderer renderer(cpu, threads, tile_size);
@@ -43,6 +44,10 @@ int run_benchmark(const LoadedScene& scene, const std::string& name, int frames,
     if (i == 0) {
       start = Clock::now();
       cpu_start = cpu_seconds();
+    }
+    if (interrupted && interrupted->load()) {
+      console::err("strahl-view: interrupted\n");
+      return 130;
     }
     orbit(request.camera, 0.005, 0);  // a small drag between frames
     const FrameStatus s = renderer.render_interactive(request, 1);

@@ -8,8 +8,10 @@
 
 #include "benchmark.h"
 #include "console.h"
+#include "interrupt.h"
 #include "options.h"
 #include "scene_source.h"
+#include "strahl/util/cancel.h"
 #include "strahl/util/error.h"
 #include "viewer.h"
 
@@ -31,12 +33,18 @@ int main(int argc, char** argv) {
   });
   if (!parsed.options) return parsed.exit_code;
   const cli::Options& o = *parsed.options;
+  // Before loading: a signal while the scene loads ends the viewer with 130 (the loaders poll the flag).
+  const std::atomic<bool>* interrupted = cli::install_interrupt_handlers();
   try {
     if (o.checkpoint > 0) console::err("strahl-view: --checkpoint has no effect in the viewer (Ctrl+S saves)\n");
     view::LoadedScene scene = view::load_scene_now(o);
     if (v.benchmark > 0)
-      return view::run_benchmark(scene, o.scene.empty() ? "the lecture scene" : o.scene, v.benchmark, o.threads, o.tile_size);
-    return view::run_viewer(o, v, std::move(scene));
+      return view::run_benchmark(scene, o.scene.empty() ? "the lecture scene" : o.scene, v.benchmark, o.threads,
+                                 o.tile_size, interrupted);
+    return view::run_viewer(o, v, std::move(scene), interrupted);
+  } catch (const Cancelled&) {
+    console::err("strahl-view: interrupted while loading the scene\n");
+    return 130;
   } catch (const std::exception& e) {
     console::err("strahl-view: error: {}\n", e.what());
     return 2;

@@ -685,7 +685,7 @@ int Viewer::run(const std::atomic<bool>* interrupted) {
     if (redraw_ || seconds_between(last_hud_, now) > 0.25) draw();
     play_script();
   }
-  if (exit_code_ == 130) console::err("strahl-view: interrupted\n");
+  if (exit_code_ == 130) console::err("strahl-view: interrupted ({})\n", cli::interrupt_signal_name());
   const double seconds = seconds_between(start, Clock::now());
   if (!script_.empty() && !options_.quiet)
     console::out("input: looked at {} times in {:.2f} s ({:.0f} Hz), longest gap {:.1f} ms\n", turns_, seconds,
@@ -695,8 +695,8 @@ int Viewer::run(const std::atomic<bool>* interrupted) {
 
 }  // namespace
 
-int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first) {
-  const std::atomic<bool>* interrupted = cli::install_interrupt_handlers();
+int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first,
+               const std::atomic<bool>* interrupted) {
   // SDL would turn SIGINT into a quit event; the CLI's handler keeps Ctrl-C's meaning (130).
   SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
   if (SDL_Init(SDL_INIT_VIDEO) != 0)

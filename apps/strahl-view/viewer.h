@@ -3,6 +3,7 @@
 // → a texture, with the HUD and help overlay on top; live reload; scripts (script.h).
 // Everything here runs on the window's thread, which never waits for rendering.
 
+#include <atomic>
 #include <string>
 
 #include "options.h"
@@ -19,7 +20,9 @@ struct ViewOptions {
   double reload_poll = 0.2;  // seconds between looks at the scene's files
 };
 
-// Opens the window and runs until it is closed (0), Ctrl-C (130), or a script fails (2).
-int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first);
+// Opens the window and runs until it is closed (0), `interrupted` is set (Ctrl-C: 130), or a
+// script fails (2).
+int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first,
+               const std::atomic<bool>* interrupted);
 
 }  // namespace strahl::view
