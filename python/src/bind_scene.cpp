@@ -337,12 +337,7 @@ void bind_shapes(py::module_& m) {
              const py::object& scale, const Vec3& rotate, const Vec3& translate, const std::optional<Motion>& motion) {
             Material mat = object_material(color, material);
             Transform t = make_transform(scale, rotate, translate, "mesh");
-            MeshData data;
-            {
-              py::gil_scoped_release release;
-              data = load_mesh(path);
-            }
-            Mesh mesh(std::move(data), mat, t);
+            Mesh mesh(interruptible<MeshData>([&] { return load_mesh(path); }), mat, t);
             return placed(mesh, motion);
           },
           py::arg("path"), py::arg("color") = py::none(), py::kw_only(), py::arg("material") = py::none(),
@@ -624,12 +619,11 @@ void bind_scene_class(py::module_& m) {
 
   m.def("lecture_scene", &lecture_scene, "The lecture's scene (five spheres, a plane, one light): what `strahl` renders without a scene file.");
   m.def("load", [](const std::filesystem::path& path) {
-    py::gil_scoped_release release;
-    return load_scene(path);
-  }, py::arg("path"), "Reads a scene file (.yaml, .yml, .json); errors raise strahl.Error with file, line and column.");
+    return interruptible<Scene>([&] { return load_scene(path); });
+  }, py::arg("path"), "Reads a scene file (.yaml, .yml, .json); errors raise strahl.Error with file, line and column. Ctrl-C "
+  "(KeyboardInterrupt) stops it.");
   m.def("loads", [](const std::string& text, const std::string& name, const std::filesystem::path& base_dir) {
-    py::gil_scoped_release release;
-    return parse_scene(text, name, base_dir);
+    return interruptible<Scene>([&] { return parse_scene(text, name, base_dir); });
   }, py::arg("text"), py::arg("name") = "<string>", py::arg("base_dir") = ".",
   "Reads a scene from YAML or JSON text; `name` stands for the file in errors, mesh paths are relative to base_dir.");
 }

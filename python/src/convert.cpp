@@ -3,8 +3,15 @@
 #include <frameobject.h>
 #include <pybind11/eval.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
+#include <mutex>
+#include <thread>
+
+#include "strahl/util/cancel.h"
 
 namespace strahl::python {
 
@@ -61,6 +68,55 @@ Image from_numpy(const py::handle& object) {
   return image;
 }
 
+namespace {
+// The loaders' cancel flag while the module is loaded (util/cancel.h); set only while a load
+// that a signal handler interrupted winds down.
+std::atomic<bool> g_cancel{false};
+std::mutex g_cancel_mutex;  // loads in several Python threads: one at a time resets the flag
+int g_interrupted_loads = 0;
+}  // namespace
+
+std::optional<py::error_already_set> wait_interruptible(const std::function<void()>& work) {
+  set_cancel_flag(&g_cancel);  // (idempotent; the module owns the process-wide flag)
+  std::optional<py::error_already_set> raised;
+  std::mutex mutex;
+  std::condition_variable done_cv;
+  bool done = false;
+  {
+    py::gil_scoped_release release;
+    std::thread worker([&] {
+      work();
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        done = true;
+      }
+      done_cv.notify_all();
+    });
+    bool cancelling = false;
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        if (done_cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) break;
+      }
+      if (cancelling) continue;
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) {
+        raised.emplace();
+        cancelling = true;
+        const std::lock_guard<std::mutex> lock(g_cancel_mutex);
+        ++g_interrupted_loads;
+        g_cancel.store(true);
+      }
+    }
+    worker.join();
+    if (cancelling) {
+      const std::lock_guard<std::mutex> lock(g_cancel_mutex);
+      if (--g_interrupted_loads == 0) g_cancel.store(false);
+    }
+  }
+  return raised;
+}
+
 void register_error(py::module_& m) {
   // Defined in Python so that it carries the location as attributes (file, line, column; None
   // where unknown) besides the message the CLI prints.
@@ -92,6 +148,10 @@ class Error(ValueError):
                                   loc.line > 0 ? py::object(py::int_(loc.line)) : none,
                                   loc.column > 0 ? py::object(py::int_(loc.column)) : none);
       PyErr_SetObject(error_type.ptr(), exc.ptr());
+    } catch (const Cancelled&) {
+      // A load stopped by the cancel flag (Ctrl-C in this or, the flag being process-wide,
+      // another Python thread's load).
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
   });
 }

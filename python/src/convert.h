@@ -6,6 +6,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <functional>
+#include <optional>
 #include <string>
 
 #include "strahl/image/image.h"
@@ -64,8 +66,36 @@ py::array_t<float> to_numpy(const Image& image, int channels = 3);
 // numpy (H × W × 3 or H × W, any real dtype) to an image; throws py::type_error / value_error.
 Image from_numpy(const py::handle& array);
 
+// Runs work() — reading a scene or mesh file — in a thread of its own while this thread waits
+// without the GIL, running Python's signal handlers every 50 ms. When one raises
+// (KeyboardInterrupt on Ctrl-C), the loaders' cancel flag (util/cancel.h) is set, and the
+// exception is raised once work() has stopped. The GIL must be held; work() must not touch
+// Python objects.
+template <class T>
+T interruptible(const std::function<T()>& work);
+
 // The Python exception strahl.Error (a ValueError) with the attributes file, line, column and
 // message; set up once by the module.
 void register_error(py::module_& m);
+
+// The flag interruptible() sets (the module makes it the loaders' cancel flag), and the loop it
+// waits in: returns the exception a signal handler raised, if one did (after work() ended).
+std::optional<py::error_already_set> wait_interruptible(const std::function<void()>& work);
+
+template <class T>
+T interruptible(const std::function<T()>& work) {
+  std::optional<T> result;
+  std::exception_ptr failure;
+  std::optional<py::error_already_set> raised = wait_interruptible([&] {
+    try {
+      result.emplace(work());
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  });
+  if (raised) throw std::move(*raised);
+  if (failure) std::rethrow_exception(failure);
+  return std::move(*result);
+}
 
 }  // namespace strahl::python

@@ -123,3 +123,42 @@ def test_renders_in_two_threads_at_once_equal_one_alone():
         t.join()
     for image in out:
         assert np.array_equal(np.asarray(image), np.asarray(alone))
+
+
+def test_ctrl_c_stops_a_long_load(tmp_path):
+    """strahl.load reads in a thread of its own; Ctrl-C sets the loaders' cancel flag."""
+    big = tmp_path / "big.obj"
+    with open(big, "w") as f:
+        for _ in range(10):
+            f.write("v 0.125 0.25 0.5\n" * 1_000_000)
+        f.write("f 1 2 3\n")
+    (tmp_path / "big.yaml").write_text("objects: [{type: mesh, file: big.obj}]\n")
+    fired = []
+
+    def interrupt():
+        fired.append(time.monotonic())
+        _thread.interrupt_main()
+
+    # (At 1 s: the OBJ reader polls the flag while it parses lines, not in its first pass over
+    # the bytes, which takes a while for this 170 MB file.)
+    timer = threading.Timer(1.0, interrupt)
+    timer.start()
+    try:
+        strahl.load(tmp_path / "big.yaml")
+    except KeyboardInterrupt:
+        stopped = time.monotonic()
+    else:
+        ended = time.monotonic()
+        try:  # an interrupt still to come must arrive here, not in pytest
+            timer.join()
+            time.sleep(0.2)
+        except KeyboardInterrupt:
+            pass
+        if fired and fired[0] < ended:
+            pytest.fail(f"the load went on for {ended - fired[0]:.2f} s after the interrupt and returned")
+        pytest.skip("the load ended before the interrupt")
+    timer.join()
+    assert stopped - fired[0] < 1.0, f"took {stopped - fired[0]:.2f} s to stop"
+    # The flag is cleared again: the next load works.
+    (tmp_path / "small.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    assert strahl.Mesh.load(tmp_path / "small.obj").indices.tolist() == [[0, 1, 2]]
