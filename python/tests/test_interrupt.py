@@ -25,7 +25,7 @@ def test_sigint_stops_a_render_within_a_second():
         try:
             strahl.render(strahl.lecture_scene(), **{LONG!r})
         except KeyboardInterrupt:
-            print("interrupted", flush=True)
+            print("interrupted", time.monotonic(), flush=True)  # (one clock for all processes)
             sys.exit(42)
         sys.exit(1)
     """)
@@ -37,12 +37,15 @@ def test_sigint_stops_a_render_within_a_second():
         sent = time.monotonic()
         proc.send_signal(signal.SIGINT)
         proc.wait(timeout=10)
-        elapsed = time.monotonic() - sent
+        words = proc.stdout.readline().split()
     finally:
         proc.kill()
         proc.wait()
     assert proc.returncode == 42, f"exit code {proc.returncode}, not KeyboardInterrupt"
-    assert elapsed < 1.0, f"took {elapsed:.2f} s to stop"
+    # From the signal to the KeyboardInterrupt caught in the child (not counting its exit).
+    assert words[0] == "interrupted"
+    elapsed = float(words[1]) - sent
+    assert 0 <= elapsed < 1.0, f"took {elapsed:.2f} s to stop"
 
 
 def test_interrupt_main_raises_keyboardinterrupt_promptly():
