@@ -1,8 +1,12 @@
 #include "view_renderer.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_scheduler_observer.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -84,8 +88,26 @@ struct ViewRenderer::Active {
   }
 };
 
-ViewRenderer::ViewRenderer(TileBackend& backend, int threads, int tile_size)
-    : backend_(backend), threads_(threads), tile_size_(tile_size), thread_([this] { loop(); }) {}
+namespace {
+// Linux gives every thread its own nice value; lowering it needs no privilege (failure is harmless).
+void lower_this_threads_priority() { setpriority(PRIO_PROCESS, id_t(::syscall(SYS_gettid)), 5); }
+}  // namespace
+
+struct ViewRenderer::Yield : tbb::task_scheduler_observer {
+  Yield() { observe(true); }  // every arena of the process: only rendering uses oneTBB here
+  ~Yield() override { observe(false); }
+  void on_scheduler_entry(bool worker) override {
+    if (worker) lower_this_threads_priority();
+  }
+};
+
+ViewRenderer::ViewRenderer(TileBackend& backend, int threads, int tile_size, bool yield_to_window)
+    : backend_(backend),
+      threads_(threads),
+      tile_size_(tile_size),
+      yield_(yield_to_window),
+      yield_observer_(yield_to_window ? std::make_unique<Yield>() : nullptr),
+      thread_([this] { loop(); }) {}
 
 ViewRenderer::~ViewRenderer() {
   {
@@ -112,6 +134,7 @@ std::uint64_t ViewRenderer::submit(FrameRequest request) {
 }
 
 void ViewRenderer::loop() {
+  if (yield_) lower_this_threads_priority();
   for (;;) {
     FrameRequest request;
     std::uint64_t number;

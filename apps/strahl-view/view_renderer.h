@@ -64,8 +64,10 @@ struct FrameStatus {
 
 class ViewRenderer {
  public:
-  // `backend` renders the tiles (must outlive this); `threads` also runs the AOV frames.
-  ViewRenderer(TileBackend& backend, int threads, int tile_size);
+  // `backend` renders the tiles (must outlive this); `threads` also runs the AOV frames. With
+  // `yield_to_window`, the render thread and oneTBB's workers run at a lower priority (nice +5)
+  // than the rest of the process, so that the window's thread gets a core when it wakes.
+  ViewRenderer(TileBackend& backend, int threads, int tile_size, bool yield_to_window = false);
   ~ViewRenderer();  // cancels and joins
   ViewRenderer(const ViewRenderer&) = delete;
   ViewRenderer& operator=(const ViewRenderer&) = delete;
@@ -92,8 +94,11 @@ class ViewRenderer {
   void render(const FrameRequest& request, bool interactive, std::uint64_t number);
   int choose_scale(const FrameRequest& request) const;
 
+  struct Yield;  // the oneTBB observer that lowers the workers' priority
   TileBackend& backend_;
   int threads_, tile_size_;
+  bool yield_;
+  std::unique_ptr<Yield> yield_observer_;
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;

@@ -87,7 +87,7 @@ class Viewer {
       : options_(options),
         view_(view),
         cpu_(options.threads),
-        renderer_(cpu_, options.threads, options.tile_size),
+        renderer_(cpu_, options.threads, options.tile_size, true),
         loader_(options) {
     settings_.exposure = view.exposure;
     settings_.hud = view.hud;
