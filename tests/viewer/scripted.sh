@@ -95,6 +95,62 @@ for signal in INT TERM; do
   fi
 done
 
+# Every key once (smoke): the viewer goes through all of them, rebuilds with the next
+# accelerator (B), reloads (L), shows every AOV (V), saves one (Ctrl+S while showing depth),
+# and ends normally; R brings back the scene's camera, so the last save is strahl's image.
+cat > "$WORK/keys.txt" << 'SCRIPT'
+0.1 mouse move 48 30
+0 key f
+0 key ]
+0 key [
+0 key [
+0 key m
+0 key .
+0 key ,
+0 key u
+0 key u
+0 key 9
+0 key 0
+0 key +
+0 key -
+0 key tab
+0 key h
+0 key f1
+0 key tab
+0 key p
+0 key b
+0 wait reload 1
+0 key l
+0 wait reload 2
+0 key v
+0 wait still
+0 key ctrl+s
+0 key v
+0 key v
+0 key v
+0 key v
+0 key m
+0 key m
+0 key m
+0 key m
+0 key ]
+0 key r
+0 wait still
+0 key ctrl+s
+0 key escape
+SCRIPT
+if view_offscreen "$SRC/scenes/lecture-whitted.yaml" --width 96 --height 54 -o "$WORK/keys.pfm" --script "$WORK/keys.txt" \
+    > "$WORK/keys.out" 2> "$WORK/keys.err"; then
+  [ "$(grep -c '^reloaded' "$WORK/keys.out")" = 2 ] || fail "keys: not two reloads (B, L): $(cat "$WORK/keys.out")"
+  [ -e "$WORK/keys.depth-0001.exr" ] || fail "keys: the depth AOV was not saved: $(cat "$WORK/keys.out")"
+  "$CLI" "$SRC/scenes/lecture-whitted.yaml" --width 96 --height 54 -q -o "$WORK/keys.strahl.pfm" || fail "strahl failed"
+  cmp -s "$WORK/keys-0001.pfm" "$WORK/keys.strahl.pfm" || fail "keys: after R (and the settings back) the image is not strahl's"
+  [ -s "$WORK/keys.err" ] && fail "keys: messages on stderr: $(cat "$WORK/keys.err")"
+  [ "$failures" = 0 ] && echo "ok: every key"
+else
+  fail "keys: strahl-view failed: $(cat "$WORK/keys.err")"
+fi
+
 check grid       lecture.yaml         pfm --supersample 2
 check png        lecture-whitted.yaml png --supersample 2
 check stratified lecture-whitted.yaml pfm --sampler stratified --spp 4 --filter mitchell --filter-radius 2
