@@ -23,6 +23,7 @@
 #include "strahl/accel/accel.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
+#include "strahl/scene/expression_compiler.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/scene_file.h"
 #include "test_random.h"
@@ -35,9 +36,23 @@ constexpr AccelKind kAllKinds[] = {AccelKind::Naive, AccelKind::Bvh, AccelKind::
 struct Prims {
   std::vector<kernel::Sphere> spheres;
   std::vector<kernel::Triangle> triangles;
+  // Solids (geometry/solid.h), after the triangles in the id space.
+  std::vector<kernel::Solid> solids;
+  std::vector<kernel::Box> boxes;
+  std::vector<kernel::Cone> cones;
+  std::vector<kernel::Disk> disks;
+  std::vector<kernel::Torus> tori;
+  std::vector<kernel::Quadric> quadrics;
+  std::vector<kernel::Implicit> implicits;
 
   PrimitiveSet set() const {
-    return {spheres.data(), std::uint32_t(spheres.size()), triangles.data(), std::uint32_t(triangles.size())};
+    return {spheres.data(),
+            std::uint32_t(spheres.size()),
+            triangles.data(),
+            std::uint32_t(triangles.size()),
+            solids.data(),
+            std::uint32_t(solids.size()),
+            {boxes.data(), cones.data(), disks.data(), tori.data(), quadrics.data(), implicits.data(), nullptr}};
   }
   void sphere(const Vec3& c, Real r) { spheres.push_back({c, r, 0}); }
   void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -193,6 +208,10 @@ std::vector<Query> awkward_rays(const Prims& s, const std::vector<std::pair<int,
         if (s.set().is_sphere(prim)) {
           const kernel::Sphere& sp = s.spheres[prim];
           target = sp.center + rng.direction() * (sp.radius * (rng.coin() ? 1 : rng.uniform()));
+        } else if (s.set().is_solid(prim)) {  // a corner, the centre or any point of its box
+          const Bounds b = primitive_bounds(s.set(), prim);
+          const Vec3 u = rng.coin() ? Vec3(rng.below(2), rng.below(2), rng.below(2)) : rng.point(0, 1);
+          target = b.lo + (b.hi - b.lo) * u;
         } else {
           const kernel::Triangle& t = s.triangles[prim - s.spheres.size()];
           const Vec3 corners[6] = {t.v0, t.v1, t.v2, t.v0 + t.edge1() * 0.5, t.v0 + t.edge2() * 0.5,
@@ -396,6 +415,78 @@ TEST(AccelCrossCheck, BvhHitsOnBoundingBoxFaces) {
   const CrossCheck c = cross_check(s, queries);
   EXPECT_EQ(c.disagreements[int(AccelKind::Bvh)], 0)
       << "of " << queries.size() << " queries aimed at boundaries" << c.report(AccelKind::Bvh);
+}
+
+// Every kind of solid, with spheres and triangles among them: boxes (some flat against the
+// structures' planes), capped and open cylinders and cones, disks, tori, clipped quadrics and
+// implicit surfaces by each root-finding method.
+Prims solid_scene(std::uint64_t seed) {
+  Random rng(seed);
+  Prims s;
+  for (int i = 0; i < 30; ++i) s.sphere(rng.point(-1, 1), rng.log_uniform(1e-2, 0.3));
+  for (int i = 0; i < 60; ++i) random_triangle(s, rng, rng.point(-1, 1), rng.log_uniform(1e-2, 0.5));
+  const auto handle = [&](kernel::SolidKind kind, std::size_t index) {
+    s.solids.push_back({kind, std::uint32_t(index), 0});
+  };
+  for (int i = 0; i < 30; ++i) {
+    const Vec3 a = rng.point(-1, 1), b = a + rng.point(0.01, 0.5);
+    s.boxes.push_back({i % 5 == 0 ? Vec3(0, a.y, a.z) : a, b});  // some with a face in x = 0
+    handle(kernel::SolidKind::Box, s.boxes.size() - 1);
+  }
+  for (int i = 0; i < 40; ++i) {
+    kernel::Cone c;
+    c.base = rng.point(-1, 1);
+    c.axis = i % 4 == 0 ? Vec3(0, 1, 0) : rng.direction();  // some along an axis
+    c.height = rng.log_uniform(0.05, 0.8);
+    c.base_radius = rng.log_uniform(0.01, 0.3);
+    c.cap_radius = i % 2 ? c.base_radius : (i % 3 ? 0 : rng.log_uniform(0.01, 0.3));
+    c.open = i % 5 == 1;
+    s.cones.push_back(c);
+    handle(kernel::SolidKind::Cone, s.cones.size() - 1);
+  }
+  for (int i = 0; i < 20; ++i) {
+    s.disks.push_back({rng.point(-1, 1), i % 3 ? rng.direction() : Vec3(0, 0, 1), rng.log_uniform(0.01, 0.4)});
+    handle(kernel::SolidKind::Disk, s.disks.size() - 1);
+  }
+  for (int i = 0; i < 30; ++i) {
+    const Real major = rng.log_uniform(0.02, 0.5);
+    s.tori.push_back({rng.point(-1, 1), i % 3 ? rng.direction() : Vec3(1, 0, 0), major, major * rng.uniform(0.05, 0.9)});
+    handle(kernel::SolidKind::Torus, s.tori.size() - 1);
+  }
+  for (int i = 0; i < 15; ++i) {
+    kernel::Quadric q;
+    for (Real& c : q.coef) c = rng.uniform(-1, 1);
+    q.clipped = true;
+    q.lo = rng.point(-1, 1);
+    q.hi = q.lo + rng.point(0.05, 0.8);
+    s.quadrics.push_back(q);
+    handle(kernel::SolidKind::Quadric, s.quadrics.size() - 1);
+  }
+  const kernel::RootMethod methods[] = {kernel::RootMethod::Lipschitz, kernel::RootMethod::SphereTrace,
+                                        kernel::RootMethod::March};
+  for (int i = 0; i < 3; ++i) {
+    kernel::Implicit f;
+    f.f = compile_expression(i == 1 ? "sqrt(x^2 + y^2 + z^2) - 0.3" : "sqrt(x^2 + z^2) - 0.25 + 0.05*sin(9*y)");
+    f.lo = rng.point(-0.6, 0.6) - Vec3(0.4);
+    f.hi = f.lo + Vec3(0.8);
+    f.method = methods[i];
+    f.max_gradient = 1.5;
+    f.accuracy = 1e-3;
+    f.step = 0.01;
+    f.normal_step = 1e-6;
+    s.implicits.push_back(f);
+    handle(kernel::SolidKind::Implicit, s.implicits.size() - 1);
+  }
+  return s;
+}
+
+TEST(AccelCrossCheck, SolidsMatchNaive) {
+  const Prims s = solid_scene(21);
+  const CrossCheck c = cross_check(s, awkward_rays(s, split_planes(s), 30000, 22));
+  expect_spatial_structures_agree(c);
+  expect_bvh_agrees_off_boundaries(c);
+  EXPECT_EQ(c.disagreements[int(AccelKind::Bvh)], 0) << c.report(AccelKind::Bvh);
+  EXPECT_GT(c.hits, 10000);
 }
 
 // Piles of identical and coplanar primitives: builds must terminate with sane sizes, queries agree.
@@ -722,7 +813,7 @@ TEST(AccelCrossCheck, RaysLeavingLeavesThroughEdgesAndCornersMatchNaive) {
 // Whole renders (shadows through transparent spheres, reflection, refraction, meshes): every
 // structure gives the same image as naive, bit for bit.
 TEST(AccelCrossCheck, RendersIdenticalImages) {
-  for (const char* file : {"scenes/lecture-whitted.yaml", "scenes/mesh.yaml"}) {
+  for (const char* file : {"scenes/lecture-whitted.yaml", "scenes/mesh.yaml", "scenes/shapes.yaml"}) {
     SCOPED_TRACE(file);
     Scene scene = load_scene(std::string(STRAHL_SOURCE_DIR) + "/" + file);
     scene.settings.width = 96;

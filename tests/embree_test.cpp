@@ -56,7 +56,7 @@ struct Prims {
   std::vector<kernel::Sphere> spheres;
   std::vector<kernel::Triangle> triangles;
   PrimitiveSet set() const {
-    return {spheres.data(), std::uint32_t(spheres.size()), triangles.data(), std::uint32_t(triangles.size())};
+    return {spheres.data(), std::uint32_t(spheres.size()), triangles.data(), std::uint32_t(triangles.size()), nullptr, 0, {}};
   }
 };
 

@@ -158,7 +158,7 @@ TEST(Watertight, EveryAcceleratorFindsTheGridBehindEdgesAndVertices) {
   // triangle the ray meets exactly at an edge or vertex.
   for (const Placement& pl : kPlacements) {
     const Grid g = make_grid(24, pl.offset, pl.scale, 3);
-    const PrimitiveSet prims{nullptr, 0, g.triangles.data(), std::uint32_t(g.triangles.size())};
+    const PrimitiveSet prims{nullptr, 0, g.triangles.data(), std::uint32_t(g.triangles.size()), nullptr, 0, {}};
     Random rng(17);
     const std::vector<Vec3> targets = edge_and_vertex_targets(g, rng);
     for (AccelKind kind : accel_kinds()) {

@@ -23,7 +23,7 @@ struct BenchScene {
 
   PrimitiveSet primitives() const {
     return {spheres.data(), static_cast<std::uint32_t>(spheres.size()), triangles.data(),
-            static_cast<std::uint32_t>(triangles.size())};
+            static_cast<std::uint32_t>(triangles.size()), nullptr, 0, {}};
   }
   std::size_t size() const { return spheres.size() + triangles.size(); }
 };

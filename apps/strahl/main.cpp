@@ -18,6 +18,7 @@
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_file.h"
+#include "strahl/scene/solids.h"
 #include "strahl/util/cancel.h"
 #include "summary.h"
 
@@ -75,6 +76,8 @@ int run(const strahl::cli::Options& o) {
     return 130;
   }
 
+  // POV-Ray's isosurface warning: the gradient met, and the max_gradient to use instead.
+  for (const std::string& w : implicit_warnings(render_scene)) strahl::console::err("strahl: warning: {}\n", w);
   if (!o.quiet) {
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
     strahl::console::out("{}", cli::summary(output, image.width(), image.height(), threads, timings,

@@ -14,8 +14,8 @@ std::string summary(const std::string& output, int width, int height, int thread
   out += fmt::format("image       {} ({}x{}, {} {} spp, {} filter r={}, {} threads)\n", output, width, height,
                      sampler_name(sm.sampler), sm.spp, filter_name(sm.filter.kind), sm.filter.radius, threads);
   const AccelBuildStats& a = scene.accel.stats;
-  out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} lights\n", scene.spheres.size(),
-                     scene.planes.size(), scene.triangles.size(), scene.lights.size());
+  out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} solids, {} lights\n", scene.spheres.size(),
+                     scene.planes.size(), scene.triangles.size(), scene.solids.size(), scene.lights.size());
   // Embree reports no node count or depth.
   const std::string nodes =
       a.nodes > 0 ? fmt::format("{} nodes, {} leaves, depth {}, ", a.nodes, a.leaves, a.max_depth) : std::string();

@@ -55,7 +55,15 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
     case AccelKind::KdTree: a.kdtree = build_kdtree(prims, &a.stats); break;
     case AccelKind::Octree: a.octree = build_octree(prims, &a.stats); break;
 #if defined(STRAHL_HAVE_EMBREE)
-    case AccelKind::Embree: a.embree = build_embree(prims, &a.stats); break;
+    // Solids have no Embree user geometry yet: such scenes get the BVH, whose answers are the same.
+    case AccelKind::Embree:
+      if (prims.solid_count > 0) {
+        a.kind = AccelKind::Bvh;
+        a.bvh = build_wide_bvh(prims, &a.stats);
+      } else {
+        a.embree = build_embree(prims, &a.stats);
+      }
+      break;
 #endif
   }
   a.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

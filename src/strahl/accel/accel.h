@@ -1,5 +1,5 @@
 #pragma once
-// The interchangeable acceleration structures over a scene's bounded primitives (spheres and
+// The interchangeable acceleration structures over a scene's bounded primitives (spheres, solids and
 // triangles): the lecture's naive loop, a BVH (default), a kd-tree and an octree, and Embree
 // where CMake found it (STRAHL_HAVE_EMBREE). Kernel code dispatches on AccelKind with a switch;
 // each structure has one traversal (see traversal.h) that every query — nearest hit, any hit,
@@ -118,15 +118,15 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
 #endif
   NearestHit result;
   if (a.kind == AccelKind::Bvh && !a.one_leaf) {  // leaf copies: no visitor, no indirection
-    wide_bvh_nearest(a.bvh, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
+    wide_bvh_nearest(a.bvh, a.prims, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
   if (a.kind == AccelKind::KdTree && !a.one_leaf) {  // the same, with each leaf's interval unused
-    spatial_nearest(a.kdtree, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
+    spatial_nearest(a.kdtree, a.prims, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
   if (a.kind == AccelKind::Octree && !a.one_leaf) {
-    spatial_nearest(a.octree, a.prims.spheres, ray, t_min, t_max, result.prim, result.hit);
+    spatial_nearest(a.octree, a.prims, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
   const kernel::RayShear shear = kernel::ray_shear(ray.direction);
@@ -149,9 +149,9 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
   if (a.kind == AccelKind::Embree) return embree_occluded(a, ray, t_min, t_max);
 #endif
   if (!a.one_leaf) {
-    if (a.kind == AccelKind::Bvh) return wide_bvh_occluded(a.bvh, a.prims.spheres, ray, t_min, t_max);
-    if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims.spheres, ray, t_min, t_max);
-    if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims.spheres, ray, t_min, t_max);
+    if (a.kind == AccelKind::Bvh) return wide_bvh_occluded(a.bvh, a.prims, ray, t_min, t_max);
+    if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims, ray, t_min, t_max);
+    if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims, ray, t_min, t_max);
   }
   bool found = false;
   const kernel::RayShear shear = kernel::ray_shear(ray.direction);

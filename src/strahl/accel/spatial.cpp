@@ -64,7 +64,7 @@ std::uint32_t append_leaf(const PrimitiveSet& prims, const std::uint32_t* list, 
     SpatialLeaf& block = out[first + i / kernel::kTriangleBlockWidth];
     const int lane = int(i % kernel::kTriangleBlockWidth);
     const std::uint32_t prim = list[i];
-    if (prims.is_sphere(prim)) {
+    if (!prims.is_triangle(prim)) {
       kernel::set_other(block, lane, prim);
     } else {
       const kernel::Triangle& t = prims.triangles[prim - prims.sphere_count];
@@ -117,7 +117,7 @@ Bounds clipped_bounds(const PrimitiveSet& prims, std::uint32_t prim, const Bound
   const Bounds whole = primitive_bounds(prims, prim);
   if (inside(whole, box)) return padded(whole, pad);
   Bounds b;
-  if (prims.is_sphere(prim)) {
+  if (!prims.is_triangle(prim)) {
     b = intersection(whole, box);
   } else {
     const kernel::Triangle& t = prims.triangles[prim - prims.sphere_count];

@@ -60,8 +60,8 @@ STRAHL_HOST_DEVICE inline bool clip_to_box(const Bounds& b, const Vec3& origin, 
 // A leaf is a run of triangle blocks (accel/triangle_block.h): its triangles' vertices copied, four
 // side by side, contiguous with the leaf's others (no indirection through primitive indices and no
 // 88-byte scene triangles in the hot loop) and tested four at once, bit for bit as
-// intersect_primitive() tests them. Its spheres sit in lanes of their own (the blocks' `other`
-// bits) and are tested from the scene's own array: spheres are few where speed matters. A
+// intersect_primitive() tests them. Its spheres and solids sit in lanes of their own (the `other`
+// bits) and are tested from the primitive set's arrays: they are few where speed matters. A
 // primitive listed in several leaves is copied into each.
 using SpatialLeaf = kernel::TriangleBlock;
 
@@ -171,14 +171,13 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void spatial_traverse(const View& view, c
   traverse_leaves(view, ray, t_min, t_max, leaf);
 }
 
-// The nearest hit in (t_min, t_max): its id and hit, t = kInfinity when none. `spheres` is the
-// PrimitiveSet's sphere array.
+// The nearest hit in (t_min, t_max): its id and hit, t = kInfinity when none. 
 template <class View>
-STRAHL_HOST_DEVICE inline void spatial_nearest(const View& view, const kernel::Sphere* spheres, const Ray& ray,
+STRAHL_HOST_DEVICE inline void spatial_nearest(const View& view, const PrimitiveSet& prims, const Ray& ray,
                                                Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
   const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    kernel::blocks_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
+    kernel::blocks_nearest(first, count, prims, br, t_min, t_far, prim, hit);
     return false;
   };
   traverse_leaves(view, ray, t_min, t_max, leaf);
@@ -186,12 +185,12 @@ STRAHL_HOST_DEVICE inline void spatial_nearest(const View& view, const kernel::S
 
 // Any hit in (t_min, t_max)? Stops at the first one.
 template <class View>
-STRAHL_HOST_DEVICE inline bool spatial_occluded(const View& view, const kernel::Sphere* spheres, const Ray& ray,
+STRAHL_HOST_DEVICE inline bool spatial_occluded(const View& view, const PrimitiveSet& prims, const Ray& ray,
                                                 Real t_min, Real t_max) {
   const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   bool found = false;
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
-    return found = kernel::blocks_any(first, count, spheres, br, t_min, t_far);
+    return found = kernel::blocks_any(first, count, prims, br, t_min, t_far);
   };
   traverse_leaves(view, ray, t_min, t_max, leaf);
   return found;
@@ -239,7 +238,7 @@ bool overlaps(const Bounds& a, const Bounds& b);
 // empty when nothing of it is there. A primitive listed in a node by these bounds is listed in
 // every leaf it comes within `pad` of. Triangles are clipped to the box (Sutherland–Hodgman), so
 // one that crosses a corner of a box without touching it is not listed there ("perfect splits",
-// Havran 2000); spheres are bounded by their box's intersection with it.
+// Havran 2000); spheres and solids are bounded by their box's intersection with it.
 Bounds clipped_bounds(const PrimitiveSet& prims, std::uint32_t prim, const Bounds& box, Real pad);
 
 }  // namespace strahl

@@ -16,15 +16,15 @@
 //                    // lane ≥ 0: h is lane's hit, the nearest in (t_min, t_max), the lowest lane
 //                    // among equal t (what a scalar loop over the lanes with `h.t < t_far` finds)
 //                    if (intersect_any(b, br, t_min, t_max)) ...
-// A lane may also hold something that is not a triangle (a sphere: the structures test spheres
-// from the scene's own array): its vertices stay NaN, its bit is set in `other`, and the caller
-// tests it itself.
+// A lane may also hold something that is not a triangle (a sphere or a solid: the structures
+// test those from the primitive set's arrays, accel/primitive.h intersect_other()): its vertices
+// stay NaN, its bit is set in `other`, and the caller tests it itself.
 
 #include <cstdint>
 #include <cstring>
 #include <limits>
 
-#include "strahl/geometry/sphere.h"
+#include "strahl/accel/primitive.h"
 #include "strahl/geometry/triangle.h"
 
 #if !defined(__CUDACC__) && defined(__AVX__)
@@ -205,12 +205,12 @@ STRAHL_HOST_DEVICE inline bool intersect_any(const TriangleBlock& b, const Trian
 
 // ---- runs of blocks (the leaves of every structure) ----
 
-// The nearest hit among `count` consecutive blocks in (t_min, t_far), their spheres (the `other`
-// lanes, tested from the scene's array `spheres`) included: lowers t_far and sets prim and hit
+// The nearest hit among `count` consecutive blocks in (t_min, t_far), their spheres and solids
+// (the `other` lanes, tested from the primitive set's arrays) included: lowers t_far and sets prim and hit
 // when one is found. Within a block the answer is what a scalar loop over the lanes in order with
 // `t < t_far` gives: the nearest, the lowest lane among equal t.
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void blocks_nearest(const TriangleBlock* first, std::uint32_t count,
-                                                           const Sphere* spheres, const TriangleBlockRay& br,
+                                                           const PrimitiveSet& prims, const TriangleBlockRay& br,
                                                            Real t_min, Real& t_far, std::uint32_t& prim,
                                                            TriangleHit& hit) {
   for (std::uint32_t i = 0; i < count; ++i) {
@@ -220,10 +220,12 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void blocks_nearest(const TriangleBlock* 
     if (b.other != 0) {
       for (int k = 0; k < kTriangleBlockWidth; ++k) {
         if (((b.other >> k) & 1u) == 0) continue;
-        const Real t = intersect(spheres[b.prim[k]], br.ray, t_min, t_far);
-        if (t < kInfinity && (lane < 0 || t < h.t || (t == h.t && k < lane))) {
+        const std::uint32_t p = b.prim[k];
+        const TriangleHit o = prims.is_sphere(p) ? TriangleHit{intersect(prims.spheres[p], br.ray, t_min, t_far), 0, 0}
+                                                 : intersect_other(prims, p, br.ray, t_min, t_far);
+        if (o.t < kInfinity && (lane < 0 || o.t < h.t || (o.t == h.t && k < lane))) {
           lane = k;
-          h = {t, 0, 0};
+          h = o;
         }
       }
     }
@@ -235,16 +237,19 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void blocks_nearest(const TriangleBlock* 
   }
 }
 
-// Is any primitive of `count` consecutive blocks (spheres included) hit in (t_min, t_far)?
+// Is any primitive of `count` consecutive blocks (spheres and solids included) hit in (t_min, t_far)?
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool blocks_any(const TriangleBlock* first, std::uint32_t count,
-                                                       const Sphere* spheres, const TriangleBlockRay& br, Real t_min,
+                                                       const PrimitiveSet& prims, const TriangleBlockRay& br, Real t_min,
                                                        Real t_far) {
   for (std::uint32_t i = 0; i < count; ++i) {
     const TriangleBlock& b = first[i];
     if (intersect_any(b, br, t_min, t_far)) return true;
     if (b.other != 0)
       for (int k = 0; k < kTriangleBlockWidth; ++k)
-        if (((b.other >> k) & 1u) && intersect(spheres[b.prim[k]], br.ray, t_min, t_far) < kInfinity) return true;
+        if (((b.other >> k) & 1u) &&
+            (prims.is_sphere(b.prim[k]) ? intersect(prims.spheres[b.prim[k]], br.ray, t_min, t_far)
+                                        : intersect_other(prims, b.prim[k], br.ray, t_min, t_far).t) < kInfinity)
+          return true;
   }
   return false;
 }

@@ -81,7 +81,7 @@ struct Collapser {
       const std::uint32_t prim = bin.prims[c.offset + i];
       WideBvhLeaf& l = out.leaves[first + i / kernel::kTriangleBlockWidth];
       const int lane = int(i % kernel::kTriangleBlockWidth);
-      if (prims.is_sphere(prim)) {
+      if (!prims.is_triangle(prim)) {
         kernel::set_other(l, lane, prim);
       } else {
         const kernel::Triangle& t = prims.triangles[prim - prims.sphere_count];

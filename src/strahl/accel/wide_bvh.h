@@ -46,8 +46,8 @@ struct alignas(64) WideBvhNode {
 static_assert(sizeof(WideBvhNode) == 256);
 
 // A leaf is a run of triangle blocks (accel/triangle_block.h: four triangles' vertices copied side
-// by side, tested four at once); its spheres sit in lanes of their own (the block's `other` bits)
-// and are tested from the scene's own array: spheres are few where speed matters.
+// by side, tested four at once); its spheres and solids sit in lanes of their own (the `other` bits)
+// and are tested from the primitive set's arrays: they are few where speed matters.
 using WideBvhLeaf = kernel::TriangleBlock;
 
 struct WideBvhView {
@@ -279,24 +279,24 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const WideBvhView& bvh, con
 }
 
 // The nearest hit in (t_min, t_max) among the leaves' primitives: its id and hit, t = kInfinity
-// when none. `spheres` is the PrimitiveSet's sphere array.
-STRAHL_HOST_DEVICE inline void wide_bvh_nearest(const WideBvhView& bvh, const kernel::Sphere* spheres, const Ray& ray,
+// when none.
+STRAHL_HOST_DEVICE inline void wide_bvh_nearest(const WideBvhView& bvh, const PrimitiveSet& prims, const Ray& ray,
                                                 Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
   const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
-    kernel::blocks_nearest(first, count, spheres, br, t_min, t_far, prim, hit);
+    kernel::blocks_nearest(first, count, prims, br, t_min, t_far, prim, hit);
     return false;
   };
   traverse_leaves(bvh, ray, t_min, t_max, leaf);
 }
 
 // Any hit in (t_min, t_max)? Stops at the first one.
-STRAHL_HOST_DEVICE inline bool wide_bvh_occluded(const WideBvhView& bvh, const kernel::Sphere* spheres, const Ray& ray,
+STRAHL_HOST_DEVICE inline bool wide_bvh_occluded(const WideBvhView& bvh, const PrimitiveSet& prims, const Ray& ray,
                                                  Real t_min, Real t_max) {
   const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
   bool found = false;
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
-    return found = kernel::blocks_any(first, count, spheres, br, t_min, t_far);
+    return found = kernel::blocks_any(first, count, prims, br, t_min, t_far);
   };
   traverse_leaves(bvh, ray, t_min, t_max, leaf);
   return found;

@@ -148,6 +148,7 @@ struct ImplicitQuery {
   const Ray& ray;
   ImplicitStats& stats;
   Real speed = length(ray.direction);  // distance per unit of t
+  Real limit = kInfinity;              // no bracket is looked for beyond this t
   int evaluations = 0;
 
   STRAHL_HOST_DEVICE RaySample sample(Real t) {
@@ -178,7 +179,7 @@ STRAHL_HOST_DEVICE inline bool lipschitz_bracket(ImplicitQuery& q, RaySample a, 
   RaySample stack[kMaxBisectionDepth];
   int n = 0;
   stack[n++] = b;
-  while (n > 0) {
+  while (n > 0 && a.t < q.limit) {
     const RaySample e = stack[n - 1];
     q.slope(a, e);
     const bool change = changes_side(a, e);
@@ -208,7 +209,7 @@ STRAHL_HOST_DEVICE inline bool lipschitz_bracket(ImplicitQuery& q, RaySample a, 
 STRAHL_HOST_DEVICE inline bool sphere_trace_bracket(ImplicitQuery& q, RaySample a, const RaySample& b, Bracket& out) {
   const Real L = q.s.max_gradient * q.speed;
   const Real shortest = q.s.accuracy / q.speed;
-  while (!q.out_of_budget()) {
+  while (a.t < q.limit && !q.out_of_budget()) {
     Real step = std::fabs(a.f) / L;
     if (!(step >= shortest)) step = shortest;  // NaN too
     const Real t = a.t + step;
@@ -228,7 +229,7 @@ STRAHL_HOST_DEVICE inline bool sphere_trace_bracket(ImplicitQuery& q, RaySample 
 // the other side of the surface ends it.
 STRAHL_HOST_DEVICE inline bool march_bracket(ImplicitQuery& q, RaySample a, const RaySample& b, Bracket& out) {
   const Real start = a.t, dt = q.s.step / q.speed;
-  for (int k = 1; !q.out_of_budget(); ++k) {
+  for (int k = 1; a.t < q.limit && !q.out_of_budget(); ++k) {
     const Real t = start + Real(k) * dt;
     const RaySample c = t < b.t ? q.sample(t) : b;
     if (changes_side(a, c)) {
@@ -312,15 +313,19 @@ STRAHL_HOST_DEVICE inline void for_each_implicit_crossing(const Implicit& s, con
   } else {
     a = q.sample(t_min);
   }
-  const bool leaves_bound = tb < t_max;
-  const RaySample b = q.sample(leaves_bound ? tb : t_max);
+  // The search always runs to the bound's exit, stopping once past t_max: the samples, and so
+  // the roots found, do not depend on t_max (every acceleration structure, whatever nearer hit
+  // it has found already, gets the same root, bit for bit).
+  const RaySample b = q.sample(tb);
+  q.limit = t_max;
   Bracket br;
-  while (a.t < b.t && find_bracket(q, a, b, br)) {
+  while (a.t < b.t && a.t < t_max && find_bracket(q, a, b, br)) {
     const Real t = refine(q, br);
-    if (t > t_min && t < t_max && visit(ImplicitCrossing{t, false, inside_value(br.b.f)})) return;
+    if (!(t < t_max)) return;
+    if (t > t_min && visit(ImplicitCrossing{t, false, inside_value(br.b.f)})) return;
     a = br.b;  // beyond the root
   }
-  if (leaves_bound && inside_value(b.f)) visit(ImplicitCrossing{tb, true, false});
+  if (tb < t_max && inside_value(b.f)) visit(ImplicitCrossing{tb, true, false});
 }
 
 // The nearest crossing in (t_min, t_max); t = kInfinity when there is none.

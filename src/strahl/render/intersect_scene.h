@@ -1,6 +1,7 @@
 #pragma once
 // Scene queries: the nearest intersection (lecture 2.1) and the light a shadow ray lets through
-// (2.3). Spheres and triangles go through the acceleration structure, planes are tested one by one.
+// (2.3). Spheres, triangles and bounded solids go through the acceleration structure, planes and
+// unbounded solids are tested one by one.
 
 #include "strahl/geometry/hit.h"
 #include "strahl/render/moving_shapes.h"
@@ -16,12 +17,20 @@ STRAHL_HOST_DEVICE inline Hit closest_hit(const SceneView& s, const Ray& ray, Re
     const Real t = kernel::intersect(s.planes[i], ray, t_min, hit.t);
     if (t < hit.t) { hit.t = t; hit.kind = ShapeKind::Plane; hit.index = i; }
   }
+  for (std::uint32_t i = s.bounded_solid_count; i < s.solid_count; ++i) {
+    const kernel::SolidCrossing c = kernel::intersect(s.accel.prims.shapes, s.solids[i], ray, t_min, hit.t);
+    if (c.t < hit.t) { hit.t = c.t; hit.kind = ShapeKind::Solid; hit.index = i; hit.b1 = c.part; }
+  }
   const NearestHit nearest = nearest_hit(s.accel, ray, t_min, hit.t);
   if (nearest.hit.t < hit.t) {
     hit.t = nearest.hit.t;
     if (s.accel.prims.is_sphere(nearest.prim)) {
       hit.kind = ShapeKind::Sphere;
       hit.index = nearest.prim;
+    } else if (s.accel.prims.is_solid(nearest.prim)) {
+      hit.kind = ShapeKind::Solid;
+      hit.index = nearest.prim - s.accel.prims.first_solid();
+      hit.b1 = nearest.hit.b1;
     } else {
       hit.kind = ShapeKind::Triangle;
       hit.index = nearest.prim - s.accel.prims.sphere_count;
@@ -51,6 +60,11 @@ STRAHL_HOST_DEVICE inline Vec3 transmittance(const SceneView& s, const Ray& ray,
     if (kernel::intersect(s.planes[i], ray, 0, distance) < kInfinity &&
         !attenuate(s.materials[s.planes[i].material], tr))
       return Vec3(0);
+  }
+  for (std::uint32_t i = s.bounded_solid_count; i < s.solid_count; ++i) {
+    const int n = kernel::crossings(s.accel.prims.shapes, s.solids[i], ray, 0, distance);
+    for (int k = 0; k < n; ++k)
+      if (!attenuate(s.materials[s.solids[i].material], tr)) return Vec3(0);
   }
   // Nothing transparent: the first surface found blocks the light (any-hit, no crossings to count).
   if (s.opaque && s.moving_sphere_count + s.moving_triangle_count == 0)

@@ -6,6 +6,7 @@
 
 #include "strahl/render/scene_view.h"
 #include "strahl/sampling/pixel_sampler.h"
+#include "strahl/util/error.h"
 
 namespace strahl {
 
@@ -14,7 +15,20 @@ struct RenderScene {
   std::vector<kernel::Plane> planes;
   std::vector<kernel::Triangle> triangles;
   std::vector<kernel::VertexNormals> vertex_normals;
-  Accel accel;  // built by compile() over spheres and triangles
+  // Solids (geometry/solid.h): handles, bounded ones first (see SceneView), and the arrays of
+  // each kind they index. The tallies are what implicit surfaces' root finding met while
+  // rendering (written by every thread with atomics, hence mutable).
+  std::vector<kernel::Solid> solids;
+  std::uint32_t bounded_solid_count = 0;
+  std::vector<kernel::Box> boxes;
+  std::vector<kernel::Cone> cones;
+  std::vector<kernel::Disk> disks;
+  std::vector<kernel::Torus> tori;
+  std::vector<kernel::Quadric> quadrics;
+  std::vector<kernel::Implicit> implicits;
+  mutable std::vector<kernel::ImplicitTally> implicit_tallies;
+  std::vector<FileLoc> implicit_locs;  // for the end-of-render warning
+  Accel accel;  // built by compile() over spheres, triangles and the bounded solids
   std::vector<kernel::MovingSphere> moving_spheres;
   std::vector<kernel::MovingTriangle> moving_triangles;
   Bvh moving_bvh;  // over the moving shapes' swept boxes (empty when nothing moves)
@@ -25,9 +39,14 @@ struct RenderScene {
   int supersample = 1;  // N×N regular samples per pixel (what `sampling` holds when no spp is given)
   SamplingSettings sampling;  // pixel sampler, spp (made square for grid/stratified), filter, seed
 
+  kernel::SolidArrays shapes() const {
+    return {boxes.data(), cones.data(), disks.data(), tori.data(), quadrics.data(), implicits.data(),
+            implicit_tallies.data()};
+  }
+
   PrimitiveSet primitives() const {
     return {spheres.data(), static_cast<std::uint32_t>(spheres.size()), triangles.data(),
-            static_cast<std::uint32_t>(triangles.size())};
+            static_cast<std::uint32_t>(triangles.size()), solids.data(), bounded_solid_count, shapes()};
   }
 
   SceneView view() const {
@@ -40,6 +59,9 @@ struct RenderScene {
     v.triangle_count = static_cast<std::uint32_t>(triangles.size());
     v.vertex_normals = vertex_normals.data();
     v.accel = accel.view(primitives());
+    v.solids = solids.data();
+    v.solid_count = static_cast<std::uint32_t>(solids.size());
+    v.bounded_solid_count = bounded_solid_count;
     v.moving_spheres = moving_spheres.data();
     v.moving_sphere_count = static_cast<std::uint32_t>(moving_spheres.size());
     v.moving_triangles = moving_triangles.data();

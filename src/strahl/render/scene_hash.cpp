@@ -46,9 +46,13 @@ static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && siz
                   sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 144 && sizeof(Light) == 168 &&
                   sizeof(Camera) == 176 && sizeof(TraceSettings) == 80 && sizeof(SamplingSettings) == 48,
               "a kernel struct changed: hash its new fields in scene_hash.cpp and update the size here");
+static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof(kernel::Cone) == 80 &&
+                  sizeof(kernel::Disk) == 56 && sizeof(kernel::Torus) == 64 && sizeof(kernel::Quadric) == 136 &&
+                  sizeof(kernel::Implicit) == 1168,
+              "a solid's struct changed: hash its new fields in scene_hash.cpp and update the size here");
 // A new array in the render-ready scene must be hashed too (with Embree: its scene handle).
 #if defined(STRAHL_HAVE_EMBREE)
-static_assert(sizeof(RenderScene) == 1064, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+static_assert(sizeof(RenderScene) == 1288, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
 #endif
 
 void hash(Hasher& h, const Material& m) {
@@ -155,6 +159,61 @@ void hash(Hasher& h, const kernel::MovingTriangle& x) {
   h.add(x.object);
 }
 
+void hash(Hasher& h, const kernel::Solid& x) {
+  h.add(x.kind);
+  h.add(x.index);
+  h.add(x.material);
+}
+void hash(Hasher& h, const kernel::Box& x) {
+  h.add(x.lo);
+  h.add(x.hi);
+}
+void hash(Hasher& h, const kernel::Cone& x) {
+  h.add(x.base);
+  h.add(x.axis);
+  h.add(x.height);
+  h.add(x.base_radius);
+  h.add(x.cap_radius);
+  h.add(x.open);
+}
+void hash(Hasher& h, const kernel::Disk& x) {
+  h.add(x.center);
+  h.add(x.normal);
+  h.add(x.radius);
+}
+void hash(Hasher& h, const kernel::Torus& x) {
+  h.add(x.center);
+  h.add(x.axis);
+  h.add(x.major);
+  h.add(x.minor);
+}
+void hash(Hasher& h, const kernel::Quadric& x) {
+  for (Real c : x.coef) h.add(c);
+  h.add(x.clipped);
+  h.add(x.lo);
+  h.add(x.hi);
+}
+void hash(Hasher& h, const kernel::Implicit& x) {
+  h.add(x.f.length);
+  for (int i = 0; i < x.f.length; ++i) {
+    h.add(x.f.code[i].op);
+    h.add(x.f.code[i].arg);
+  }
+  h.add(x.f.constant_count);
+  for (int i = 0; i < x.f.constant_count; ++i) h.add(x.f.constants[i]);
+  h.add(x.bound);
+  h.add(x.lo);
+  h.add(x.hi);
+  h.add(x.center);
+  h.add(x.radius);
+  h.add(x.method);
+  h.add(x.max_gradient);
+  h.add(x.accuracy);
+  h.add(x.step);
+  h.add(x.normal_step);
+  h.add(x.material);
+}
+
 }  // namespace
 
 std::uint64_t scene_hash(const RenderScene& s) {
@@ -165,6 +224,14 @@ std::uint64_t scene_hash(const RenderScene& s) {
   h.add_all(s.vertex_normals);
   h.add_all(s.moving_spheres);
   h.add_all(s.moving_triangles);
+  h.add_all(s.solids);
+  h.add(s.bounded_solid_count);
+  h.add_all(s.boxes);
+  h.add_all(s.cones);
+  h.add_all(s.disks);
+  h.add_all(s.tori);
+  h.add_all(s.quadrics);
+  h.add_all(s.implicits);
   h.add_all(s.materials);
   h.add_all(s.lights);
   hash(h, s.camera);

@@ -37,7 +37,13 @@ struct SceneView {
   const kernel::Triangle* triangles = nullptr;
   std::uint32_t triangle_count = 0;
   const kernel::VertexNormals* vertex_normals = nullptr;
-  AccelView accel;  // over spheres and triangles; planes are tested one by one
+  AccelView accel;  // over spheres, triangles and bounded solids; planes are tested one by one
+  // Every solid (geometry/solid.h): the first bounded_solid_count are in the structure (as its
+  // primitives from accel.prims.first_solid() on), the rest (unclipped quadrics) are unbounded
+  // and tested one by one, as planes are. Their arrays: accel.prims.shapes.
+  const kernel::Solid* solids = nullptr;
+  std::uint32_t solid_count = 0;
+  std::uint32_t bounded_solid_count = 0;
   // Moving shapes (motion blur), in a BVH of their own over their swept boxes: primitive i is
   // moving sphere i, or moving triangle i − moving_sphere_count. Empty for static scenes.
   const kernel::MovingSphere* moving_spheres = nullptr;

@@ -74,6 +74,13 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
       sp.material = mt.material;
       break;
     }
+    case ShapeKind::Solid: {
+      const kernel::Solid& solid = s.solids[hit.index];
+      sp.geometric_normal = sp.normal = kernel::normal_at(s.accel.prims.shapes, solid, int(hit.b1), sp.p);
+      sp.texcoord = sp.p;
+      sp.material = solid.material;
+      break;
+    }
     case ShapeKind::None: break;
   }
   return sp;

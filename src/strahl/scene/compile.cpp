@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -315,6 +316,15 @@ RenderScene compile(const Scene& scene) {
     out.materials.push_back(object->material);
     object->compile_into(out, material_index, object_id++);
   }
+  // Bounded solids first (they enter the acceleration structure), unclipped quadrics after.
+  const auto unbounded = [&](const kernel::Solid& k) {
+    return k.kind == kernel::SolidKind::Quadric && !out.quadrics[k.index].clipped;
+  };
+  std::stable_partition(out.solids.begin(), out.solids.end(), [&](const kernel::Solid& k) { return !unbounded(k); });
+  out.bounded_solid_count =
+      static_cast<std::uint32_t>(std::count_if(out.solids.begin(), out.solids.end(), [&](const kernel::Solid& k) {
+        return !unbounded(k);
+      }));
   for (std::size_t i = 0; i < scene.lights().size(); ++i) {
     Light light = scene.lights()[i];
     const FileLoc& loc = scene.light_locs()[i];

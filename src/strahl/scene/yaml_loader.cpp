@@ -16,6 +16,7 @@
 
 #include "strahl/scene/mesh_file.h"
 #include "strahl/scene/scene_file.h"
+#include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
 #include "strahl/scene/yaml_limits.h"
 #include "strahl/shading/area_light.h"
@@ -464,11 +465,161 @@ class Reader {
         fail(f, std::string("mesh: ") + e.what());
       }
       added = &scene.add(Mesh(std::move(data), m, t));
+    } else if (SceneObject* solid = this->solid(type, n, scene)) {
+      added = solid;
     } else {
-      fail(n["type"], "unknown object type '" + type + "' (sphere, plane, triangle or mesh)");
+      fail(n["type"], "unknown object type '" + type +
+                          "' (sphere, plane, triangle, mesh, box, cylinder, cone, disk, torus, quadric or implicit)");
     }
     added->loc = loc(n);
     if (const auto m = n["motion"]) added->motion = motion(m);
+  }
+
+  // [[x, y, z], [x, y, z]]: two opposite corners.
+  void corners(const YAML::Node& n, const std::string& what, Vec3& a, Vec3& b) const {
+    if (!n.IsSequence() || n.size() != 2) fail(n, what + " must be a list of two corners [[x, y, z], [x, y, z]]");
+    a = vec3(n[0], what + " corner");
+    b = vec3(n[1], what + " corner");
+    const Vec3 lo = min(a, b), hi = max(a, b);
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) fail(n, what + " is flat: its corners must differ in x, y and z");
+  }
+  // {type: box, corners: [...]} (and, where allowed, {type: sphere, center, radius}).
+  void bound(const YAML::Node& n, const std::string& what, bool sphere_allowed, ImplicitSurface* s, ClipBox* clip) const {
+    map(n, what);
+    const std::string type = scalar(required(n, "type", what), what + " type");
+    if (type == "box") {
+      keys(n, {"type", "corners"}, what);
+      Vec3 a, b;
+      corners(required(n, "corners", what), what + " box", a, b);
+      if (s) { s->bound = kernel::ImplicitBound::Box; s->box_a = a; s->box_b = b; }
+      if (clip) *clip = {a, b};
+    } else if (type == "sphere" && sphere_allowed) {
+      keys(n, {"type", "center", "radius"}, what);
+      s->bound = kernel::ImplicitBound::Sphere;
+      s->center = vec3(required(n, "center", what), what + " center");
+      s->radius = positive(required(n, "radius", what), what + " radius");
+    } else {
+      fail(n["type"], "unknown " + what + " type '" + type + (sphere_allowed ? "' (box or sphere)" : "' (box)"));
+    }
+  }
+
+  // The solids (scene/solids.h); nullptr for another type.
+  SceneObject* solid(const std::string& type, const YAML::Node& n, Scene& scene) const {
+    if (type == "box") {
+      keys(n, {"type", "corners", "material"}, "box");
+      Vec3 a, b;
+      corners(required(n, "corners", "box"), "box", a, b);
+      return &scene.add(Box(a, b, object_material(n)));
+    }
+    if (type == "cylinder") {
+      keys(n, {"type", "base", "cap", "radius", "open", "material"}, "cylinder");
+      const Vec3 base = vec3(required(n, "base", "cylinder"), "cylinder base");
+      const Vec3 cap = vec3(required(n, "cap", "cylinder"), "cylinder cap");
+      if (base == cap) fail(n["cap"], "degenerate cylinder: its base and cap are the same point");
+      const Real radius = positive(required(n, "radius", "cylinder"), "cylinder radius");
+      const bool open = n["open"] ? boolean(n["open"], "open") : false;
+      return &scene.add(Cone::cylinder(base, cap, radius, object_material(n), open));
+    }
+    if (type == "cone") {
+      keys(n, {"type", "base", "base_radius", "cap", "cap_radius", "open", "material"}, "cone");
+      const Vec3 base = vec3(required(n, "base", "cone"), "cone base");
+      const Vec3 cap = vec3(required(n, "cap", "cone"), "cone cap");
+      if (base == cap) fail(n["cap"], "degenerate cone: its base and cap are the same point");
+      const Real r0 = non_negative(required(n, "base_radius", "cone"), "cone base_radius");
+      const Real r1 = non_negative(required(n, "cap_radius", "cone"), "cone cap_radius");
+      if (!(r0 > 0 || r1 > 0)) fail(n["cap_radius"], "cone radii are both 0 (one must be positive)");
+      const bool open = n["open"] ? boolean(n["open"], "open") : false;
+      return &scene.add(Cone(base, r0, cap, r1, object_material(n), open));
+    }
+    if (type == "disk") {
+      keys(n, {"type", "center", "normal", "radius", "material"}, "disk");
+      const Vec3 center = vec3(required(n, "center", "disk"), "disk center");
+      const YAML::Node nn = required(n, "normal", "disk");
+      const Vec3 normal = vec3(nn, "disk normal");
+      validate::non_zero(normal, loc(nn), "disk normal");
+      const Real radius = positive(required(n, "radius", "disk"), "disk radius");
+      return &scene.add(Disk(center, normal, radius, object_material(n)));
+    }
+    if (type == "torus") {
+      keys(n, {"type", "center", "axis", "major_radius", "minor_radius", "material"}, "torus");
+      const Vec3 center = n["center"] ? vec3(n["center"], "torus center") : Vec3(0);
+      Vec3 axis(0, 1, 0);
+      if (const auto v = n["axis"]) {
+        axis = vec3(v, "torus axis");
+        validate::non_zero(axis, loc(v), "torus axis");
+      }
+      const Real major = positive(required(n, "major_radius", "torus"), "torus major_radius");
+      const YAML::Node mn = required(n, "minor_radius", "torus");
+      const Real minor = positive(mn, "torus minor_radius");
+      if (!(minor < major)) fail(mn, "torus minor_radius must be smaller than its major_radius");
+      return &scene.add(Torus(center, major, minor, object_material(n), axis));
+    }
+    if (type == "quadric") {
+      keys(n, {"type", "coefficients", "clipped_by", "material"}, "quadric");
+      const YAML::Node c = required(n, "coefficients", "quadric");
+      if (!c.IsSequence() || c.size() != 10)
+        fail(c, "quadric coefficients must be a list of ten numbers [A, B, C, D, E, F, G, H, I, J]");
+      std::array<Real, 10> k{};
+      bool surface = false;
+      for (std::size_t i = 0; i < 10; ++i) {
+        k[i] = number(c[i], "quadric coefficient");
+        surface = surface || (i < 9 && k[i] != 0);
+      }
+      if (!surface) fail(c, "quadric describes no surface: its coefficients A to I are all 0");
+      std::optional<ClipBox> clip;
+      if (const auto v = n["clipped_by"]) {
+        ClipBox b;
+        bound(v, "clipped_by", false, nullptr, &b);
+        clip = b;
+      }
+      return &scene.add(Quadric(k, object_material(n), clip));
+    }
+    if (type == "implicit") return implicit(n, scene);
+    return nullptr;
+  }
+
+  SceneObject* implicit(const YAML::Node& n, Scene& scene) const {
+    keys(n, {"type", "expression", "parameters", "contained_by", "max_gradient", "accuracy", "method", "step",
+             "material"},
+         "implicit");
+    const YAML::Node e = required(n, "expression", "implicit");
+    ImplicitSurface s(scalar(e, "implicit expression"), object_material(n));
+    if (const auto p = n["parameters"]) {
+      map(p, "parameters");
+      for (const auto& kv : p) {
+        const std::string name = scalar(kv.first, "parameter name");
+        if (!valid_parameter_name(name))
+          fail(kv.first, "'" + name + "' cannot be a parameter (a name of letters, digits and _, not x, y, z, pi "
+                         "or a function)");
+        s.parameters[name] = number(kv.second, "parameter " + name);
+      }
+    }
+    // The expression is compiled here too, so that an error points at its column in the file:
+    // the text starts one column later when it is quoted.
+    try {
+      const kernel::Expression f = compile_expression(s.expression, s.parameters);
+      if (!uses_coordinates(f)) fail(e, "implicit expression does not use x, y or z: it describes no surface");
+    } catch (const ExpressionError& err) {
+      FileLoc at = loc(e);
+      if (at.column > 0 && e.Tag() != "!") at.column += err.column() - 1;  // a plain scalar, on its own line
+      else if (at.column > 0) at.column += err.column();
+      throw Error(at, "implicit expression: " + err.message());
+    }
+    bound(required(n, "contained_by", "implicit"), "contained_by", true, &s, nullptr);
+    if (const auto v = n["max_gradient"]) s.max_gradient = positive(v, "max_gradient");
+    if (const auto v = n["accuracy"]) s.accuracy = positive(v, "accuracy");
+    if (const auto v = n["method"]) {
+      const std::string m = scalar(v, "method");
+      if (m == "lipschitz") s.method = kernel::RootMethod::Lipschitz;
+      else if (m == "distance") s.method = kernel::RootMethod::SphereTrace;
+      else if (m == "march") s.method = kernel::RootMethod::March;
+      else fail(v, "unknown method '" + m + "' (lipschitz, distance or march)");
+    }
+    if (const auto v = n["step"]) {
+      if (s.method != kernel::RootMethod::March) fail(v, "step is for method: march");
+      s.step = positive(v, "step");
+    }
+    return &scene.add(std::move(s));
   }
 
   std::string name_;
