@@ -13,6 +13,7 @@
 
 #include "strahl/geometry/solid.h"
 #include "strahl/geometry/sphere.h"
+#include "strahl/render/intersect_scene.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/expression_compiler.h"
@@ -457,3 +458,38 @@ TEST(Solids, EmbreeFallsBackToTheBvh) {
 }  // namespace
 }  // namespace strahl
 #endif
+
+namespace strahl {
+namespace {
+
+// A shadow ray through a transparent (non-filtering) solid is attenuated once per crossing: twice
+// through a box, four times along a torus's diameter, and an unclipped quadric (outside the
+// acceleration structure) counts as well; an opaque solid blocks it.
+TEST(Solids, ShadowRaysAttenuatedByEveryCrossing) {
+  const std::string scene =
+      "lights: [{type: point, position: [0, 5, 0]}]\n"
+      "materials: {clear: {transparency: 0.5}}\n"
+      "objects:\n"
+      "  - {type: box, corners: [[-1, -1, -1], [1, 1, 1]], material: clear}\n"
+      "  - {type: torus, center: [10, 0, 0], major_radius: 2, minor_radius: 0.5, material: clear}\n"
+      "  - {type: quadric, coefficients: [1, 1, 1, 0, 0, 0, 0, 0, -40, 399], material: clear}\n"
+      "  - {type: cylinder, base: [0, -1, 30], cap: [0, 1, 30], radius: 1}\n";
+  for (AccelKind k : {AccelKind::Naive, AccelKind::Bvh, AccelKind::KdTree, AccelKind::Octree}) {
+    Scene sc = parse_scene(scene, "shadow.yaml", ".");
+    sc.settings.accel = k;
+    const RenderScene rs = compile(sc);
+    ASSERT_EQ(rs.bounded_solid_count, 3u);
+    const SceneView v = rs.view();
+    // Through the box along x, from outside to outside.
+    EXPECT_EQ(transmittance(v, {{-5, 0, 0}, {1, 0, 0}}, 10).x, 0.25) << accel_name(k);
+    // Along the torus's diameter: four crossings.
+    EXPECT_EQ(transmittance(v, {{4, 0, 0}, {1, 0, 0}}, 12).x, 0.0625) << accel_name(k);
+    // Through the sphere quadric x² + y² + (z − 20)² = 1: two crossings.
+    EXPECT_EQ(transmittance(v, {{0, 0, 15}, {0, 0, 1}}, 10).x, 0.25) << accel_name(k);
+    // Into the opaque cylinder: blocked.
+    EXPECT_EQ(transmittance(v, {{0, 0, 25}, {0, 0, 1}}, 10).x, 0.0) << accel_name(k);
+  }
+}
+
+}  // namespace
+}  // namespace strahl
