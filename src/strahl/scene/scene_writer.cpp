@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "strahl/image/output_file.h"
+#include "strahl/scene/solids.h"
 #include "strahl/shading/light.h"
 
 namespace strahl {
@@ -79,6 +80,80 @@ void mesh(Writer& w, const Mesh& mesh, const std::string& file) {
 
 std::string mesh_file(const std::string& stem, int index) { return stem + ".mesh" + std::to_string(index) + ".obj"; }
 
+std::string box_map(const Vec3& a, const Vec3& b, const std::string& what) {
+  return "{type: box, corners: [" + Writer::vec(a, what) + ", " + Writer::vec(b, what) + "]}";
+}
+
+// The solids of scene/solids.h; false for anything else.
+bool solid(Writer& w, const SceneObject& o) {
+  using W = Writer;
+  if (const auto* b = dynamic_cast<const Box*>(&o)) {
+    w.line(2, "- type: box");
+    w.line(4, "corners: [" + W::vec(b->corner_a, "box corner") + ", " + W::vec(b->corner_b, "box corner") + "]");
+  } else if (const auto* c = dynamic_cast<const Cone*>(&o)) {
+    w.line(2, c->is_cylinder ? "- type: cylinder" : "- type: cone");
+    w.line(4, "base: " + W::vec(c->base, "base"));
+    w.line(4, "cap: " + W::vec(c->cap, "cap"));
+    if (c->is_cylinder) {
+      w.line(4, "radius: " + W::num(c->base_radius, "cylinder radius"));
+    } else {
+      w.line(4, "base_radius: " + W::num(c->base_radius, "cone base_radius"));
+      w.line(4, "cap_radius: " + W::num(c->cap_radius, "cone cap_radius"));
+    }
+    w.line(4, "open: " + W::boolean(c->open));
+  } else if (const auto* d = dynamic_cast<const Disk*>(&o)) {
+    w.line(2, "- type: disk");
+    w.line(4, "center: " + W::vec(d->center, "disk center"));
+    w.line(4, "normal: " + W::vec(d->normal, "disk normal"));
+    w.line(4, "radius: " + W::num(d->radius, "disk radius"));
+  } else if (const auto* t = dynamic_cast<const Torus*>(&o)) {
+    w.line(2, "- type: torus");
+    w.line(4, "center: " + W::vec(t->center, "torus center"));
+    w.line(4, "axis: " + W::vec(t->axis, "torus axis"));
+    w.line(4, "major_radius: " + W::num(t->major, "torus major_radius"));
+    w.line(4, "minor_radius: " + W::num(t->minor, "torus minor_radius"));
+  } else if (const auto* q = dynamic_cast<const Quadric*>(&o)) {
+    w.line(2, "- type: quadric");
+    std::string k;
+    for (Real v : q->coefficients) k += (k.empty() ? "" : ", ") + W::num(v, "quadric coefficient");
+    w.line(4, "coefficients: [" + k + "]");
+    if (q->clip) w.line(4, "clipped_by: " + box_map(q->clip->a, q->clip->b, "quadric clip box corner"));
+  } else if (const auto* f = dynamic_cast<const ImplicitSurface*>(&o)) {
+    w.line(2, "- type: implicit");
+    std::string quoted = "\"";  // a YAML double-quoted scalar
+    for (const char ch : f->expression) {
+      if (ch == '"' || ch == '\\') quoted += '\\';
+      if (ch == '\n' || ch == '\t' || ch == '\r') {
+        quoted += ' ';
+        continue;
+      }
+      quoted += ch;
+    }
+    w.line(4, "expression: " + quoted + "\"");
+    if (!f->parameters.empty()) {
+      std::string p;
+      for (const auto& [name, value] : f->parameters)
+        p += (p.empty() ? "" : ", ") + name + ": " + W::num(value, "implicit parameter " + name);
+      w.line(4, "parameters: {" + p + "}");
+    }
+    if (f->bound == kernel::ImplicitBound::Box)
+      w.line(4, "contained_by: " + box_map(f->box_a, f->box_b, "implicit contained_by corner"));
+    else
+      w.line(4, "contained_by: {type: sphere, center: " + W::vec(f->center, "implicit contained_by center") +
+                    ", radius: " + W::num(f->radius, "implicit contained_by radius") + "}");
+    const char* method = f->method == kernel::RootMethod::SphereTrace ? "distance"
+                         : f->method == kernel::RootMethod::March     ? "march"
+                                                                      : "lipschitz";
+    w.line(4, std::string("method: ") + method);
+    w.line(4, "max_gradient: " + W::num(f->max_gradient, "implicit max_gradient"));
+    w.line(4, "accuracy: " + W::num(f->accuracy, "implicit accuracy"));
+    if (f->method == kernel::RootMethod::March && f->step > 0) w.line(4, "step: " + W::num(f->step, "implicit step"));
+  } else {
+    return false;
+  }
+  return true;
+}
+
 void object(Writer& w, const SceneObject& o, const std::string& mesh_stem, int& meshes) {
   using W = Writer;
   if (const auto* s = dynamic_cast<const Sphere*>(&o)) {
@@ -96,7 +171,7 @@ void object(Writer& w, const SceneObject& o, const std::string& mesh_stem, int& 
   } else if (const auto* m = dynamic_cast<const Mesh*>(&o)) {
     w.line(2, "- type: mesh");
     mesh(w, *m, mesh_file(mesh_stem, meshes++));
-  } else {
+  } else if (!solid(w, o)) {
     throw Error(o.loc, "cannot write this kind of object to a scene file");
   }
   w.line(4, "material: " + material_map(o.material));
