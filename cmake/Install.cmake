@@ -37,6 +37,8 @@ file(RELATIVE_PATH STRAHL_PC_PREFIX_FROM_PCDIR /prefix/${CMAKE_INSTALL_LIBDIR}/p
 string(REGEX REPLACE "/$" "" STRAHL_PC_PREFIX_FROM_PCDIR "${STRAHL_PC_PREFIX_FROM_PCDIR}")
 get_target_property(optimise_options strahl_optimise INTERFACE_COMPILE_OPTIONS)
 list(JOIN optimise_options " " STRAHL_PC_CFLAGS)
+# The options are C++-only ($<$<COMPILE_LANGUAGE:CXX>:…>, kept from nvcc): pkg-config gets them bare.
+string(REGEX REPLACE "\\$<\\$<COMPILE_LANGUAGE:CXX>:([^>]*)>" "\\1" STRAHL_PC_CFLAGS "${STRAHL_PC_CFLAGS}")
 set(STRAHL_PC_LIBS_PRIVATE "")
 if(embree_FOUND)
   string(APPEND STRAHL_PC_CFLAGS " -DSTRAHL_HAVE_EMBREE")

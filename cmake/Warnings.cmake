@@ -1,22 +1,23 @@
-# Warnings for every strahl target; -Werror in CI (STRAHL_WERROR=ON).
+# Warnings for every strahl target; -Werror in CI (STRAHL_WERROR=ON). These and the options
+# below are C++ compiler flags: the CUDA translation units (src/strahl/cuda) get their own.
 add_library(strahl_warnings INTERFACE)
-target_compile_options(strahl_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor)
+target_compile_options(strahl_warnings INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor>)
 if(STRAHL_WERROR)
-  target_compile_options(strahl_warnings INTERFACE -Werror)
+  target_compile_options(strahl_warnings INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-Werror>)
 endif()
 
 add_library(strahl_optimise INTERFACE)
 # Nothing reads errno after maths calls; without it sqrt() needs no libm call for negative
 # arguments and loops over shapes vectorise.
-target_compile_options(strahl_optimise INTERFACE -fno-math-errno)
+target_compile_options(strahl_optimise INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-fno-math-errno>)
 # No fused multiply-add contraction: the watertight triangle test (geometry/triangle.h) relies on
 # a·b − c·d being computed the same way, with both products rounded, for the two triangles that
 # share an edge. GCC contracts across statements by default in C++ where the CPU has FMA.
-target_compile_options(strahl_optimise INTERFACE -ffp-contract=off)
+target_compile_options(strahl_optimise INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-ffp-contract=off>)
 if(STRAHL_NATIVE)
-  target_compile_options(strahl_optimise INTERFACE -march=native)
+  target_compile_options(strahl_optimise INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-march=native>)
 endif()
 # GCC 12 reports false -Wrestrict positives inside std::string concatenation (GCC bug 105651).
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
-  target_compile_options(strahl_warnings INTERFACE -Wno-restrict)
+  target_compile_options(strahl_warnings INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-Wno-restrict>)
 endif()

@@ -1,8 +1,12 @@
-// strahl: load a scene (or the lecture's), compile, render on all cores, write the image.
+// strahl: load a scene (or the lecture's), compile, render on all cores (or the GPU: --device),
+// write the image.
 // Exit codes: 0 ok, 1 usage, 2 scene or I/O error, 130 interrupted (SIGINT/SIGTERM/SIGHUP; the
 // image rendered so far is written, or nothing when the signal came before rendering).
 
+#include <fmt/format.h>
 #include <tbb/info.h>
+
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <csignal>
@@ -14,7 +18,9 @@
 #include "outputs.h"
 #include "progress.h"
 #include "setup.h"
+#include "strahl/cuda/cuda_backend.h"
 #include "strahl/image/image_io.h"
+#include "strahl/render/cpu_backend.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene_file.h"
@@ -27,6 +33,9 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
+
+// --device (docs/cli.md, docs/gpu.md): the back end the render job runs on.
+std::string device = "cpu";
 
 int run(const strahl::cli::Options& o) {
   using namespace strahl;
@@ -47,21 +56,44 @@ int run(const strahl::cli::Options& o) {
   check_image_size(output, render_scene.camera.nx, render_scene.camera.ny);  // a JPEG of width 65536
 
   if (cancel->load()) throw Cancelled();  // interrupted while building: nothing rendered, nothing written
-  cli::Progress progress(!o.quiet);
-  RenderStats stats;
-  RenderOptions render_options;
-  render_options.threads = o.threads;
-  render_options.tile_size = o.tile_size;
-  render_options.time_limit = o.time_limit;
-  if (o.checkpoint > 0) {
-    render_options.checkpoint_interval = o.checkpoint;
-    render_options.checkpoint = [&](const Image& partial) { write_image(partial, output, {o.linear}); };
+  // The GPU when asked for and usable; `auto` falls back to the CPU and says so.
+  std::unique_ptr<CudaBackend> gpu;
+  if (device != "cpu") {
+    std::string why;
+    gpu = CudaBackend::create(render_scene, why);
+    if (!gpu && device == "cuda") {
+      strahl::console::err("strahl: error: --device cuda: {}\n", why);
+      return 2;
+    }
+    if (!gpu) strahl::console::err("strahl: --device auto: {}; rendering on the CPU\n", why);
   }
-  render_options.cancel = cancel;
-  const Image image = render(render_scene, render_options, &stats, [&](long done, long total) {
+  cli::Progress progress(!o.quiet);
+  // render() (render/renderer.h) on the back end chosen.
+  JobOptions job_options;
+  job_options.tile_size = o.tile_size;
+  job_options.cancel = cancel;
+  job_options.time_limit = o.time_limit;
+  if (o.checkpoint > 0) {
+    job_options.checkpoint_interval = o.checkpoint;
+    job_options.checkpoint = [&](const Image& partial) { write_image(partial, output, {o.linear}); };
+  }
+  job_options.progress = [&](long done, long total) {
     cli::hold_for_test("render");
     progress.update(done, total);
-  });
+  };
+  RenderJob job(render_scene.view(), render_scene.sampling, std::move(job_options));
+  if (gpu) {
+    job.run(*gpu);
+  } else {
+    CpuBackend cpu(o.threads);
+    job.run(cpu);
+  }
+  const RenderStats stats = job.stats();
+  if (gpu && !gpu->error().empty()) {  // the GPU failed mid-render: nothing written
+    strahl::console::err("strahl: error: --device cuda: {}\n", gpu->error());
+    return 2;
+  }
+  const Image image = job.image();
   if (!stats.cancelled) progress.finish();
   timings.render = stats.seconds;
 
@@ -82,6 +114,17 @@ int run(const strahl::cli::Options& o) {
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
     strahl::console::out("{}", cli::summary(output, image.width(), image.height(), threads, timings,
                                   stats, render_scene));
+    if (gpu) {
+      const CudaStats g = gpu->stats();
+      strahl::console::out(
+          "device      cuda: {}, {:.1f} MiB used ({:.1f} MiB in use on the device), upload {:.3f} s, kernel {:.3f} s "
+          "in {} launches, {:.2f} Mrays/s (kernel time)\n",
+          g.device, double(g.memory_used) / (1 << 20), double(g.memory_in_use) / (1 << 20), g.upload_seconds,
+          g.kernel_seconds, g.launches,
+          g.kernel_seconds > 0 ? double(stats.rays.total()) / g.kernel_seconds * 1e-6 : 0.0);
+    } else {
+      strahl::console::out("device      cpu ({} threads)\n", threads);
+    }
   }
   return 0;
 }
@@ -90,8 +133,19 @@ int run(const strahl::cli::Options& o) {
 
 int main(int argc, char** argv) {
   strahl::console::protect_streams();  // docs/cli.md, "Streams and signals"
-  const strahl::cli::ParseResult parsed = strahl::cli::parse_options(argc, argv);
+  const strahl::cli::ParseResult parsed = strahl::cli::parse_options(argc, argv, "strahl", [](CLI::App& app) {
+    app.add_option("--device", device,
+                   "Where to render: cpu, cuda (an NVIDIA GPU; exit 2 when none is usable) or auto (the GPU when "
+                   "one is usable, else the CPU; default cpu)")
+        ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
+  });
   if (!parsed.options) return parsed.exit_code;
+  // The GPU traverses the BVH (or the naive loop) only.
+  if (device == "cuda" && parsed.options->accel && *parsed.options->accel != "bvh" && *parsed.options->accel != "naive") {
+    strahl::console::err("strahl: error: --device cuda renders with --accel bvh or naive, not {}\n",
+                         *parsed.options->accel);
+    return 1;
+  }
   try {
     return run(*parsed.options);
   } catch (const strahl::Cancelled&) {  // a signal while loading or building

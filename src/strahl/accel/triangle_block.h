@@ -27,7 +27,8 @@
 #include "strahl/accel/primitive.h"
 #include "strahl/geometry/triangle.h"
 
-#if !defined(__CUDACC__) && defined(__AVX__)
+// STRAHL_PORTABLE_KERNELS: the portable path on an AVX host too (tests/portable compares them).
+#if !defined(__CUDACC__) && defined(__AVX__) && !defined(STRAHL_PORTABLE_KERNELS)
 #include <immintrin.h>
 #define STRAHL_TRIANGLE_BLOCK_AVX 1
 #endif

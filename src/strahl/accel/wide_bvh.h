@@ -26,7 +26,9 @@
 #include "strahl/accel/traversal.h"
 #include "strahl/accel/triangle_block.h"
 
-#if !defined(__CUDACC__) && defined(__AVX2__)
+// STRAHL_PORTABLE_KERNELS: the portable path (what the GPU runs) on an AVX2 host too
+// (tests/portable checks the two give the same hits, bit for bit).
+#if !defined(__CUDACC__) && defined(__AVX2__) && !defined(STRAHL_PORTABLE_KERNELS)
 #include <immintrin.h>
 #define STRAHL_WIDE_BVH_AVX 1
 #endif

@@ -1,5 +1,7 @@
 #include "strahl/render/film.h"
 
+#include "strahl/render/film_sample.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -8,12 +10,17 @@ namespace strahl {
 
 namespace {
 
-constexpr double kFixedScale = 268435456.0;  // 2^28 units per 1
-// Larger contributions are clamped so that sums of many stay far from int64 overflow.
-constexpr double kFixedLimit = 1e6;
+constexpr double kFixedScale = kFilmFixedScale;
 
-std::int64_t to_fixed(double v) {
-  return std::llround(std::clamp(v, -kFixedLimit, kFixedLimit) * kFixedScale);
+FilmParams film_params(const FilmLayout& f) {
+  FilmParams p;
+  p.width = f.width();
+  p.height = f.height();
+  p.filter = f.filter();
+  p.local = f.pixel_local();
+  p.stats = f.keeps_stats();
+  p.margin = f.margin();
+  return p;
 }
 
 }  // namespace
@@ -44,52 +51,15 @@ void FilmLayout::prepare(TileWork& t) const {
 }
 
 void FilmLayout::add_sample(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const {
+  // The arithmetic is render/film_sample.h's, which the CUDA kernel runs too.
   const std::size_t own = tile.rect.index(x, row);
-  if (stats_) {
-    PixelStats& st = tile.stats[own];
-    const double lum = luminance(L);
-    st.sum += lum;
-    st.sum_sq += lum * lum;
-    ++st.n;
-  }
-
+  if (stats_) film_add_stats(tile.stats[own], L);
   if (local_) {
-    double* p = &tile.local[own * 4];
-    p[0] += L.x;
-    p[1] += L.y;
-    p[2] += L.z;
-    p[3] += 1.0;
+    film_add_local(&tile.local[own * 4], L);
     return;
   }
-
-  // Pixels (px, py) (py counted from the bottom) whose centre lies within the filter's support.
-  const Real r = filter_.radius;
-  const int y = height_ - 1 - row;
-  Real wx[16], wy[16];
-  const int px0 = std::max(std::max(0, x - margin_), int(std::floor(cs.film_x - Real(0.5) - r)));
-  const int px1 = std::min(std::min(width_ - 1, x + margin_), int(std::ceil(cs.film_x - Real(0.5) + r)));
-  const int py0 = std::max(std::max(0, y - margin_), int(std::floor(cs.film_y - Real(0.5) - r)));
-  const int py1 = std::min(std::min(height_ - 1, y + margin_), int(std::ceil(cs.film_y - Real(0.5) + r)));
-  for (int px = px0; px <= px1; ++px) wx[px - px0] = filter_1d(filter_, cs.film_x - (Real(px) + Real(0.5)));
-  for (int py = py0; py <= py1; ++py) wy[py - py0] = filter_1d(filter_, cs.film_y - (Real(py) + Real(0.5)));
-  for (int py = py0; py <= py1; ++py) {
-    if (wy[py - py0] == 0) continue;
-    const int prow = height_ - 1 - py;
-    for (int px = px0; px <= px1; ++px) {
-      const Real w = wx[px - px0] * wy[py - py0];
-      if (w == 0) continue;
-      std::int64_t* p =
-          &tile.fixed[(std::size_t(prow - tile.brow0) * std::size_t(tile.bw) + std::size_t(px - tile.bx0)) * 4];
-      // The weight quantised first and the values weighted by the quantised weight: a flat
-      // image then resolves to its value up to the rounding of each product.
-      const std::int64_t qw = to_fixed(w);
-      const double fw = double(qw) / kFixedScale;
-      p[0] += to_fixed(fw * L.x);
-      p[1] += to_fixed(fw * L.y);
-      p[2] += to_fixed(fw * L.z);
-      p[3] += qw;
-    }
-  }
+  film_add_wide(film_params(*this), x, row, cs, L, tile.fixed.data(), tile.bx0, tile.brow0, tile.bw,
+                [](std::int64_t* p, std::int64_t v) { *p += v; });
 }
 
 Film::Film(int width, int height, const Filter& filter, bool pixel_stats)

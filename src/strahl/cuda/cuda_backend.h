@@ -1,0 +1,61 @@
+#pragma once
+// The CUDA back end (docs/gpu.md): the render job's tiles rendered on an NVIDIA GPU by the same
+// kernel functions the CPU runs. The scene is uploaded once; each pass's tiles go to the GPU in
+// one launch (one thread per pixel, its samples in sample order, so the film's sums are the same
+// additions as on the CPU) and come back to the job's film. Only the BVH (and the naive loop)
+// run there. Built only where CMake found nvcc; elsewhere create() says strahl was built
+// without CUDA.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "strahl/render/render_job.h"
+
+namespace strahl {
+
+struct RenderScene;
+
+// Whether this strahl was built with the CUDA back end.
+bool cuda_built();
+
+struct CudaStats {
+  std::string device;  // e.g. "NVIDIA H200 (compute capability 9.0, 132 SMs, 140 GiB)"
+  std::size_t memory_used = 0;   // bytes of device memory held: the scene and the last pass
+  std::size_t memory_in_use = 0; // bytes in use on the device (cudaMemGetInfo): the above, the
+                                 // CUDA context, the per-thread stacks the driver reserved
+  std::size_t memory_total = 0;  // the device's memory, bytes
+  double upload_seconds = 0;     // the scene's upload
+  double kernel_seconds = 0;     // every kernel launch (device time, CUDA events)
+  std::uint64_t launches = 0;
+};
+
+class CudaBackend final : public TileBackend {
+ public:
+  // Opens the first CUDA device and uploads `scene`, which must outlive the back end (jobs render
+  // views of it: their camera and settings may differ). nullptr and one line in `error` when
+  // there is no usable GPU (no driver, no device, no kernel image for the chip, out of memory),
+  // when strahl was built without CUDA, or when the scene's accelerator is not the BVH.
+  static std::unique_ptr<CudaBackend> create(const RenderScene& scene, std::string& error);
+  ~CudaBackend() override;
+
+  void render_pass(RenderJob& job) override;
+
+  CudaStats stats() const;
+  // Set when a pass failed on the GPU: the job was cancelled, every tile taken delivered
+  // unchanged. Empty otherwise.
+  const std::string& error() const;
+  // Kernel time of the last pass, seconds.
+  double last_kernel_seconds() const;
+  // Primary rays (one per pixel through its centre, nearest hit): median kernel seconds of one
+  // launch over `frames` launches of `view`'s image; negative and `error` on failure.
+  double primary_seconds(const SceneView& view, int frames, std::string& error);
+
+ private:
+  CudaBackend();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace strahl

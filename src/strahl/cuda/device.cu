@@ -1,0 +1,446 @@
+// The CUDA back end's device side: the scene's arrays in device memory, and the kernel that runs
+// the existing kernel functions (camera, samplers, the BVH traversal's portable path, shapes,
+// materials, the Whitted/distributed integrator, the film's per-sample arithmetic) one thread
+// per pixel. Everything the kernel computes comes from the same headers the CPU compiles; this
+// file adds only the launch, the uploads and the copies.
+
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+#include <unordered_map>
+
+#include "strahl/cuda/device.h"
+#include "strahl/render/intersect_scene.h"
+#include "strahl/render/pixel.h"
+#include "strahl/render/render_scene.h"
+
+namespace strahl::cuda_detail {
+
+
+// The scene's arrays are uploaded (Device::upload) and mapped to their device copies
+// (Impl::device_view) member by member: a kernel reading an array not uploaded would read host
+// memory. So a new member of SceneView, AccelView or PrimitiveSet stops the build here until it
+// is uploaded and mapped below — then update these sizes.
+static_assert(sizeof(SceneView) - sizeof(AccelView) == 424 && sizeof(PrimitiveSet) == 104 &&
+#if defined(STRAHL_HAVE_EMBREE)
+                  sizeof(AccelView) == 360,
+#else
+                  sizeof(AccelView) == 352,
+#endif
+              "SceneView changed: upload and map its new arrays in cuda/device.cu, then update these sizes");
+
+namespace {
+
+constexpr int kBlock = 128;
+
+struct KernelArgs {
+  SceneView view;  // device pointers
+  PixelSampler sampler;
+  FilmParams film;
+  const PassPixel* pixels;
+  double* local;
+  PixelStats* stats;
+  std::uint32_t* taken;
+  const PassTile* tiles;
+  std::int64_t* fixed;
+  std::uint32_t n;
+  const volatile int* stop;
+  unsigned long long* counters;  // camera, shadow, reflection, refraction, invalid
+};
+
+__device__ inline unsigned long long warp_sum(unsigned long long v) {
+  for (int offset = 16; offset > 0; offset >>= 1) v += __shfl_down_sync(0xffffffffu, v, offset);
+  return v;
+}
+
+__global__ void __launch_bounds__(kBlock) render_kernel(const KernelArgs a) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  RayCounters c;
+  if (i < a.n) {
+    const PassPixel p = a.pixels[i];
+    std::uint32_t taken = 0;
+    if (p.count > 0) {
+      const PixelSequence sequence = pixel_sequence(a.view, a.sampler, p.x, p.row);
+      double sums[4] = {0, 0, 0, 0};
+      if (a.film.local)
+        for (int k = 0; k < 4; ++k) sums[k] = a.local[std::size_t(i) * 4 + std::size_t(k)];
+      PixelStats st;
+      if (a.film.stats) st = a.stats[i];
+      const PassTile tile = a.tiles[p.tile];
+      for (std::uint32_t k = p.first; k < p.first + p.count; ++k) {
+        if (*a.stop) break;  // stop between two samples
+        CameraSample cs;
+        const Vec3 L = pixel_sample(a.view, sequence, k, cs, c);
+        if (a.film.stats) film_add_stats(st, L);
+        if (a.film.local)
+          film_add_local(sums, L);
+        else
+          film_add_wide(a.film, p.x, p.row, cs, L, a.fixed + tile.fixed_offset, tile.bx0, tile.brow0, tile.bw,
+                        [](std::int64_t* q, std::int64_t v) {
+                          atomicAdd(reinterpret_cast<unsigned long long*>(q), static_cast<unsigned long long>(v));
+                        });
+        ++taken;
+      }
+      if (a.film.local)
+        for (int k = 0; k < 4; ++k) a.local[std::size_t(i) * 4 + std::size_t(k)] = sums[k];
+      if (a.film.stats) a.stats[i] = st;
+    }
+    a.taken[i] = taken;
+  }
+  // Every thread of the block reaches this point (no early return above).
+  const unsigned long long v[5] = {c.camera, c.shadow, c.reflection, c.refraction, c.invalid_samples};
+  for (int k = 0; k < 5; ++k) {
+    const unsigned long long s = warp_sum(v[k]);
+    if ((threadIdx.x & 31) == 0 && s != 0) atomicAdd(&a.counters[k], s);
+  }
+}
+
+// Primary rays: the nearest hit of one camera ray through each pixel's centre.
+__global__ void __launch_bounds__(kBlock) primary_kernel(const SceneView view, std::uint32_t* out) {
+  const int nx = view.camera.nx, ny = view.camera.ny;
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= std::uint32_t(nx) * std::uint32_t(ny)) return;
+  const int x = int(i % std::uint32_t(nx)), y = int(i / std::uint32_t(nx));
+  const Ray ray = view.camera.generate_ray(Real(x) + Real(0.5), Real(y) + Real(0.5));
+  const Hit h = closest_hit(view, ray, 0, kInfinity);
+  out[i] = h.found() ? (std::uint32_t(h.kind) << 28) ^ h.index : ~0u;
+}
+
+std::string cuda_message(cudaError_t e) { return std::string(cudaGetErrorName(e)) + ": " + cudaGetErrorString(e); }
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A device buffer that frees itself.
+struct Buffer {
+  void* ptr = nullptr;
+  std::size_t bytes = 0;
+  Buffer() = default;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  ~Buffer() {
+    if (ptr) cudaFree(ptr);
+  }
+  // Grows to at least `n` bytes (contents lost).
+  cudaError_t reserve(std::size_t n) {
+    if (n <= bytes) return cudaSuccess;
+    if (ptr) cudaFree(ptr);
+    ptr = nullptr;
+    bytes = 0;
+    const cudaError_t e = cudaMalloc(&ptr, std::max<std::size_t>(n, 256));
+    if (e == cudaSuccess) bytes = std::max<std::size_t>(n, 256);
+    return e;
+  }
+};
+
+}  // namespace
+
+struct Device::Impl {
+  int device = 0;
+  cudaStream_t stream = nullptr, control = nullptr;
+  cudaEvent_t begin = nullptr, end = nullptr;
+  std::vector<std::unique_ptr<Buffer>> scene;    // the uploaded arrays
+  std::unordered_map<const void*, void*> mapped;  // host array → its device copy
+  std::size_t scene_bytes = 0;
+  Buffer pixels, local, stats, taken, tiles, fixed, flag, counters, primary;
+  SceneView uploaded;  // the uploaded scene's view (device pointers)
+
+  ~Impl() {
+    if (begin) cudaEventDestroy(begin);
+    if (end) cudaEventDestroy(end);
+    if (stream) cudaStreamDestroy(stream);
+    if (control) cudaStreamDestroy(control);
+  }
+
+  template <class T>
+  cudaError_t copy_array(const std::vector<T>& host) {
+    if (host.empty()) {
+      if (host.data() != nullptr) mapped[host.data()] = nullptr;  // reserved, never filled
+      return cudaSuccess;
+    }
+    auto b = std::make_unique<Buffer>();
+    cudaError_t e = b->reserve(host.size() * sizeof(T));
+    if (e != cudaSuccess) return e;
+    e = cudaMemcpy(b->ptr, host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice);
+    if (e != cudaSuccess) return e;
+    mapped[host.data()] = b->ptr;
+    scene_bytes += b->bytes;
+    scene.push_back(std::move(b));
+    return cudaSuccess;
+  }
+
+  // The device pointer of a host array uploaded earlier; false when `p` was not uploaded.
+  template <class T>
+  bool map(const T*& p) const {
+    if (p == nullptr) return true;
+    const auto it = mapped.find(static_cast<const void*>(p));
+    if (it == mapped.end()) return false;
+    p = static_cast<const T*>(it->second);
+    return true;
+  }
+
+  bool map_mutable(kernel::ImplicitTally*& p) const {
+    const kernel::ImplicitTally* q = p;
+    if (!map(q)) return false;
+    p = const_cast<kernel::ImplicitTally*>(q);  // a device buffer of its own (the kernel's atomics)
+    return true;
+  }
+
+  // `host` (a job's view of the uploaded scene: its camera may differ) with device pointers.
+  bool device_view(const SceneView& host, SceneView& out) const {
+    out = host;
+    return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) &&
+           map(out.accel.prims.spheres) && map(out.accel.prims.triangles) && map(out.accel.bvh.nodes) &&
+           map(out.accel.bvh.leaves) && map(out.moving_spheres) && map(out.moving_triangles) &&
+           map(out.moving_bvh.nodes) && map(out.moving_bvh.prims) && map(out.materials) && map(out.lights) &&
+           map(out.solids) && map(out.accel.prims.solids) && map(out.accel.prims.shapes.boxes) &&
+           map(out.accel.prims.shapes.cones) && map(out.accel.prims.shapes.disks) && map(out.accel.prims.shapes.tori) &&
+           map(out.accel.prims.shapes.quadrics) && map(out.accel.prims.shapes.implicits) &&
+           map_mutable(out.accel.prims.shapes.tallies) &&
+           out.accel.kdtree.nodes == nullptr && out.accel.octree.nodes == nullptr;
+  }
+};
+
+Device::~Device() = default;
+
+std::unique_ptr<Device> Device::open(std::string& error) {
+  int count = 0;
+  cudaError_t e = cudaGetDeviceCount(&count);
+  if (e == cudaErrorInsufficientDriver || e == cudaErrorNoDevice || e == cudaErrorInitializationError ||
+      e == cudaErrorNotSupported || e == cudaErrorOperatingSystem || e == cudaErrorSystemDriverMismatch ||
+      e == cudaErrorCompatNotSupportedOnDevice) {
+    error = e == cudaErrorNoDevice ? "no CUDA device found (" + cuda_message(e) + ")"
+                                   : "no usable CUDA driver (" + cuda_message(e) + ")";
+    return nullptr;
+  }
+  if (e != cudaSuccess) {
+    error = "CUDA is not usable (" + cuda_message(e) + ")";
+    return nullptr;
+  }
+  if (count == 0) {
+    error = "no CUDA device found";
+    return nullptr;
+  }
+  std::unique_ptr<Device> d(new Device());
+  d->impl_ = std::make_unique<Impl>();
+  cudaDeviceProp prop{};
+  if ((e = cudaGetDeviceProperties(&prop, 0)) != cudaSuccess || (e = cudaSetDevice(0)) != cudaSuccess) {
+    error = "cannot use CUDA device 0 (" + cuda_message(e) + ")";
+    return nullptr;
+  }
+  d->info_.name = prop.name;
+  d->info_.major = prop.major;
+  d->info_.minor = prop.minor;
+  d->info_.multiprocessors = prop.multiProcessorCount;
+  d->info_.memory_total = prop.totalGlobalMem;
+  // Does this build hold code for the chip (sm_90 machine code, compute_90 PTX)?
+  cudaFuncAttributes attr{};
+  if ((e = cudaFuncGetAttributes(&attr, render_kernel)) != cudaSuccess) {
+    error = std::string("this strahl's CUDA kernels do not run on ") + prop.name + " (compute capability " +
+            std::to_string(prop.major) + "." + std::to_string(prop.minor) + "; " + cuda_message(e) + ")";
+    return nullptr;
+  }
+  Impl& m = *d->impl_;
+  if ((e = cudaStreamCreateWithFlags(&m.stream, cudaStreamNonBlocking)) != cudaSuccess ||
+      (e = cudaStreamCreateWithFlags(&m.control, cudaStreamNonBlocking)) != cudaSuccess ||
+      (e = cudaEventCreate(&m.begin)) != cudaSuccess || (e = cudaEventCreate(&m.end)) != cudaSuccess ||
+      (e = m.flag.reserve(sizeof(int))) != cudaSuccess || (e = m.counters.reserve(5 * 8)) != cudaSuccess) {
+    error = "CUDA set-up failed on " + std::string(prop.name) + " (" + cuda_message(e) + ")";
+    return nullptr;
+  }
+  return d;
+}
+
+bool Device::upload(const RenderScene& rs, std::string& error) {
+  Impl& m = *impl_;
+  const auto t0 = std::chrono::steady_clock::now();
+  const SceneView host = rs.view();
+  if (host.accel.kind != AccelKind::Bvh && host.accel.kind != AccelKind::Naive) {
+    error = std::string("--device cuda renders with the BVH (or the naive loop), not the ") +
+            std::string(accel_name(host.accel.kind)) + " (use --accel bvh)";
+    return false;
+  }
+  cudaError_t e = cudaSuccess;
+  const auto ok = [&](cudaError_t r) { return (e = r) == cudaSuccess; };
+  if (!(ok(m.copy_array(rs.spheres)) && ok(m.copy_array(rs.planes)) && ok(m.copy_array(rs.triangles)) &&
+        ok(m.copy_array(rs.vertex_normals)) && ok(m.copy_array(rs.accel.bvh.nodes)) &&
+        ok(m.copy_array(rs.accel.bvh.leaves)) && ok(m.copy_array(rs.moving_spheres)) &&
+        ok(m.copy_array(rs.moving_triangles)) && ok(m.copy_array(rs.moving_bvh.nodes)) &&
+        ok(m.copy_array(rs.moving_bvh.prims)) && ok(m.copy_array(rs.materials)) && ok(m.copy_array(rs.lights)) &&
+        ok(m.copy_array(rs.solids)) && ok(m.copy_array(rs.boxes)) && ok(m.copy_array(rs.cones)) &&
+        ok(m.copy_array(rs.disks)) && ok(m.copy_array(rs.tori)) && ok(m.copy_array(rs.quadrics)) &&
+        ok(m.copy_array(rs.implicits)) && ok(m.copy_array(rs.implicit_tallies)))) {
+    error = (e == cudaErrorMemoryAllocation ? "out of GPU memory uploading the scene (" : "scene upload failed (") +
+            cuda_message(e) + ")";
+    return false;
+  }
+  SceneView probe = host;
+  probe.accel.kdtree = {};
+  probe.accel.octree = {};
+  if (!m.device_view(probe, m.uploaded)) {
+    error = "internal: the scene has an array the CUDA back end does not upload";
+    return false;
+  }
+  // The integrator recurses once per reflected or refracted ray (render/whitted.h): give each
+  // thread a stack for max_depth levels. ptxas (sm_90, nvcc 13.0) reported frames of 13168 bytes
+  // for the kernel, 848 for trace() and 11832 + 6520 for the lighting it calls, each holding
+  // traversal stacks (docs/gpu.md); the base covers the non-recursive part with room to spare.
+  constexpr std::size_t kStackBase = 40960, kStackPerLevel = 1024;
+  const std::size_t stack = kStackBase + kStackPerLevel * std::size_t(host.settings.max_depth + 1);
+  if (!ok(cudaDeviceSetLimit(cudaLimitStackSize, stack))) {
+    error = "cannot reserve the GPU stack for max_depth " + std::to_string(host.settings.max_depth) + " (" +
+            cuda_message(e) + ")";
+    return false;
+  }
+  upload_seconds_ = seconds_since(t0);
+  return true;
+}
+
+bool Device::holds(const SceneView& view) const {
+  SceneView probe = view;
+  probe.accel.kdtree = {};
+  probe.accel.octree = {};
+  SceneView out;
+  return (view.accel.kind == AccelKind::Bvh || view.accel.kind == AccelKind::Naive) && impl_->device_view(probe, out);
+}
+
+bool Device::run(const SceneView& view, const PixelSampler& sampler, const FilmParams& film, PassData& pass,
+                 const std::function<bool()>& stop, RayCounters& counters, std::string& error) {
+  Impl& m = *impl_;
+  KernelArgs a{};
+  SceneView probe = view;
+  probe.accel.kdtree = {};
+  probe.accel.octree = {};
+  if (!m.device_view(probe, a.view)) {
+    error = "internal: the job's scene is not the one uploaded to the GPU";
+    return false;
+  }
+  const std::size_t n = pass.pixels.size();
+  pass.taken.assign(n, 0);
+  if (n == 0) return true;
+  cudaError_t e = cudaSuccess;
+  const auto ok = [&](cudaError_t r) { return (e = r) == cudaSuccess; };
+  const auto up = [&](Buffer& b, const auto& v) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    return ok(b.reserve(v.size() * sizeof(T))) &&
+           (v.empty() || ok(cudaMemcpyAsync(b.ptr, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice, m.stream)));
+  };
+  const auto down = [&](auto& v, const Buffer& b) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    return v.empty() || ok(cudaMemcpyAsync(v.data(), b.ptr, v.size() * sizeof(T), cudaMemcpyDeviceToHost, m.stream));
+  };
+  const int zero = 0, one = 1;
+  unsigned long long sums[5] = {0, 0, 0, 0, 0};
+  if (!(up(m.pixels, pass.pixels) && up(m.local, pass.local) && up(m.stats, pass.stats) && up(m.tiles, pass.tiles) &&
+        up(m.fixed, pass.fixed) && ok(m.taken.reserve(n * sizeof(std::uint32_t))) &&
+        ok(cudaMemcpyAsync(m.flag.ptr, &zero, sizeof zero, cudaMemcpyHostToDevice, m.stream)) &&
+        ok(cudaMemsetAsync(m.counters.ptr, 0, sizeof sums, m.stream)))) {
+    error = (e == cudaErrorMemoryAllocation ? "out of GPU memory for the pass (" : "GPU upload failed (") +
+            cuda_message(e) + ")";
+    return false;
+  }
+  a.sampler = sampler;
+  a.film = film;
+  a.pixels = static_cast<const PassPixel*>(m.pixels.ptr);
+  a.local = static_cast<double*>(m.local.ptr);
+  a.stats = static_cast<PixelStats*>(m.stats.ptr);
+  a.taken = static_cast<std::uint32_t*>(m.taken.ptr);
+  a.tiles = static_cast<const PassTile*>(m.tiles.ptr);
+  a.fixed = static_cast<std::int64_t*>(m.fixed.ptr);
+  a.n = std::uint32_t(n);
+  a.stop = static_cast<const volatile int*>(m.flag.ptr);
+  a.counters = static_cast<unsigned long long*>(m.counters.ptr);
+  const unsigned blocks = unsigned((n + kBlock - 1) / kBlock);
+  cudaEventRecord(m.begin, m.stream);
+  render_kernel<<<blocks, kBlock, 0, m.stream>>>(a);
+  if (!ok(cudaGetLastError())) {
+    error = "kernel launch failed (" + cuda_message(e) + ")";
+    return false;
+  }
+  cudaEventRecord(m.end, m.stream);
+  // Poll the stop request while the kernel runs: the flag reaches the kernel through the control
+  // stream, and each thread reads it before every sample.
+  bool stopped = false;
+  while ((e = cudaEventQuery(m.end)) == cudaErrorNotReady) {
+    if (!stopped && stop && stop()) {
+      stopped = true;
+      cudaMemcpyAsync(m.flag.ptr, &one, sizeof one, cudaMemcpyHostToDevice, m.control);
+      cudaStreamSynchronize(m.control);
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  if (e != cudaSuccess) {
+    error = "the GPU kernel failed (" + cuda_message(e) + ")";
+    return false;
+  }
+  float ms = 0;
+  cudaEventElapsedTime(&ms, m.begin, m.end);
+  last_kernel_seconds_ = double(ms) / 1000;
+  kernel_seconds_ += last_kernel_seconds_;
+  ++launches_;
+  if (!(down(pass.local, m.local) && down(pass.stats, m.stats) && down(pass.taken, m.taken) &&
+        down(pass.fixed, m.fixed) &&
+        ok(cudaMemcpyAsync(sums, m.counters.ptr, sizeof sums, cudaMemcpyDeviceToHost, m.stream)) &&
+        ok(cudaStreamSynchronize(m.stream)))) {
+    error = "copying the pass back from the GPU failed (" + cuda_message(e) + ")";
+    return false;
+  }
+  counters.camera += sums[0];
+  counters.shadow += sums[1];
+  counters.reflection += sums[2];
+  counters.refraction += sums[3];
+  counters.invalid_samples += sums[4];
+  return true;
+}
+
+double Device::primary_benchmark(const SceneView& view, int frames, std::string& error) {
+  Impl& m = *impl_;
+  SceneView dv;
+  SceneView probe = view;
+  probe.accel.kdtree = {};
+  probe.accel.octree = {};
+  if (!m.device_view(probe, dv)) {
+    error = "internal: the benchmark's scene is not the one uploaded to the GPU";
+    return -1;
+  }
+  const std::size_t n = std::size_t(view.camera.nx) * std::size_t(view.camera.ny);
+  cudaError_t e = m.primary.reserve(n * sizeof(std::uint32_t));
+  if (e != cudaSuccess) {
+    error = "out of GPU memory (" + cuda_message(e) + ")";
+    return -1;
+  }
+  const unsigned blocks = unsigned((n + kBlock - 1) / kBlock);
+  std::vector<float> times;
+  for (int f = -1; f < frames; ++f) {  // frame −1: warm-up
+    cudaEventRecord(m.begin, m.stream);
+    primary_kernel<<<blocks, kBlock, 0, m.stream>>>(dv, static_cast<std::uint32_t*>(m.primary.ptr));
+    cudaEventRecord(m.end, m.stream);
+    if ((e = cudaEventSynchronize(m.end)) != cudaSuccess || (e = cudaGetLastError()) != cudaSuccess) {
+      error = "the primary-ray kernel failed (" + cuda_message(e) + ")";
+      return -1;
+    }
+    float ms = 0;
+    cudaEventElapsedTime(&ms, m.begin, m.end);
+    if (f >= 0) times.push_back(ms);
+  }
+  if (times.empty()) return 0;
+  std::sort(times.begin(), times.end());
+  return double(times[times.size() / 2]) / 1000;
+}
+
+std::size_t Device::memory_in_use() const {
+  std::size_t free = 0, total = 0;
+  if (cudaMemGetInfo(&free, &total) != cudaSuccess) return 0;
+  return total - free;
+}
+
+std::size_t Device::memory_used() const {
+  const Impl& m = *impl_;
+  return m.scene_bytes + m.pixels.bytes + m.local.bytes + m.stats.bytes + m.taken.bytes + m.tiles.bytes +
+         m.fixed.bytes + m.flag.bytes + m.counters.bytes + m.primary.bytes;
+}
+
+}  // namespace strahl::cuda_detail

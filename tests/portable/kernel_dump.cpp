@@ -1,0 +1,175 @@
+// Prints what the kernel code answers, bit for bit, on the cross-check scenes: every ray's nearest
+// hit (primitive, t, barycentrics), occlusion and surface crossings through the wide BVH, and
+// every pixel of small renders of the scene files. Compiled twice (tests/CMakeLists.txt): as the
+// CPU builds it (the AVX paths of accel/wide_bvh.h and accel/triangle_block.h where the host has
+// AVX2) and with STRAHL_PORTABLE_KERNELS (their portable scalar paths, which the GPU runs). The
+// test portable_kernels_match runs both and demands identical output.
+//
+// Only inline kernel code is called from here (nearest_hit, occluded, for_each_crossing,
+// render_pixel), so each executable runs the path this file was compiled with: this object comes
+// first on the link line, and its copies of those functions are the ones every caller gets.
+//
+//   strahl_kernel_dump_simd|strahl_kernel_dump_portable <source dir>  > dump.txt
+
+#include <bit>
+#include <cinttypes>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "strahl/accel/accel.h"
+#include "strahl/render/pixel.h"
+#include "strahl/render/render_scene.h"
+#include "strahl/scene/scene.h"
+#include "strahl/scene/scene_file.h"
+
+namespace strahl {
+namespace {
+
+std::uint64_t bits(Real x) { return std::bit_cast<std::uint64_t>(x); }
+
+struct Soup {
+  std::vector<kernel::Sphere> spheres;
+  std::vector<kernel::Triangle> triangles;
+  PrimitiveSet set() const {
+    PrimitiveSet p;
+    p.spheres = spheres.data();
+    p.sphere_count = std::uint32_t(spheres.size());
+    p.triangles = triangles.data();
+    p.triangle_count = std::uint32_t(triangles.size());
+    return p;
+  }
+  void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
+    kernel::Triangle t;
+    t.v0 = a;
+    t.v1 = b;
+    t.v2 = c;
+    triangles.push_back(t);
+  }
+};
+
+// Awkward on purpose: duplicated, needle-thin and axis-aligned triangles on a lattice (shared
+// edges and vertices, triangles in the planes a builder splits at), overlapping spheres.
+Soup awkward_soup(std::uint64_t seed, int count) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> lattice(-8, 8);
+  Soup s;
+  for (int i = 0; i < count; ++i) {
+    const Vec3 p{u(rng) * 4, u(rng) * 4, u(rng) * 4};
+    switch (i % 5) {
+      case 0: s.triangle(p, p + Vec3{u(rng), u(rng), u(rng)} * 0.5, p + Vec3{u(rng), u(rng), u(rng)} * 0.5); break;
+      case 1: {  // axis-aligned, on lattice coordinates
+        const Real z = lattice(rng) * 0.5, x = lattice(rng) * 0.5, y = lattice(rng) * 0.5;
+        s.triangle({x, y, z}, {x + 0.5, y, z}, {x, y + 0.5, z});
+        s.triangle({x + 0.5, y + 0.5, z}, {x, y + 0.5, z}, {x + 0.5, y, z});  // shares the diagonal
+        break;
+      }
+      case 2: s.triangle(p, p + Vec3{1e-7, 0, 0}, p + Vec3{u(rng), u(rng), u(rng)}); break;  // needle
+      case 3: s.triangles.push_back(s.triangles.back()); break;                              // duplicate
+      case 4:
+        if (i % 15 == 4) s.spheres.push_back({p, 0.05 + 0.3 * (u(rng) + 1), 0});
+        break;
+    }
+  }
+  return s;
+}
+
+// Rays from everywhere: random, axis-parallel with ±0 components, at vertices and edge
+// midpoints, starting inside the soup.
+std::vector<Ray> awkward_rays(const Soup& s, std::uint64_t seed, int count) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    Ray r;
+    r.origin = Vec3{u(rng), u(rng), u(rng)} * (i % 2 ? 6.0 : 3.0);
+    Vec3 d{u(rng), u(rng), u(rng)};
+    switch (i % 6) {
+      case 1: d = {i % 4 == 1 ? 0.0 : -0.0, i % 3 ? 1.0 : -1.0, 0.0}; break;
+      case 2: d = {0.0, -0.0, i % 4 == 2 ? 1.0 : -1.0}; break;
+      case 3:
+        if (!s.triangles.empty()) {
+          const kernel::Triangle& t = s.triangles[std::size_t(i) % s.triangles.size()];
+          d = (i % 12 == 3 ? t.v0 : (t.v0 + t.v1) * 0.5) - r.origin;
+        }
+        break;
+      default: break;
+    }
+    if (length(d) == 0) d = {1, 0, 0};
+    r.direction = normalize(d);
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+void dump_queries(const char* name, const AccelView& a, const std::vector<Ray>& rays) {
+  std::printf("# %s: %u primitives, %zu rays\n", name, a.prims.size(), rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const Ray& ray = rays[i];
+    const NearestHit h = nearest_hit(a, ray, 1e-9, kInfinity);
+    std::printf("%zu %u %016" PRIx64 " %016" PRIx64 " %016" PRIx64, i, h.hit.t < kInfinity ? h.prim : ~0u,
+                bits(h.hit.t), bits(h.hit.b1), bits(h.hit.b2));
+    const Real t_far = h.hit.t < kInfinity ? h.hit.t * 1.5 : 20.0;
+    std::printf(" o%d", occluded(a, ray, 1e-9, t_far) ? 1 : 0);
+    auto cross = [&](std::uint32_t prim, int n) {
+      std::printf(" %u:%d", prim, n);
+      return false;
+    };
+    for_each_crossing(a, ray, 1e-9, t_far, cross);
+    std::printf("\n");
+  }
+}
+
+void dump_render(const std::string& path, int width, int height) {
+  Scene scene = load_scene(path);
+  scene.settings.width = width;
+  scene.settings.height = height;
+  scene.settings.accel = AccelKind::Bvh;
+  const RenderScene rs = compile(scene);
+  const SceneView view = rs.view();
+  std::printf("# render %s: %dx%d, %d spp, %s\n", path.substr(path.rfind('/') + 1).c_str(), width, height,
+              effective_spp(rs.sampling.sampler, rs.sampling.spp), view.accel.one_leaf ? "one leaf" : "tree");
+  RayCounters counters;
+  for (int row = 0; row < height; ++row)
+    for (int x = 0; x < width; ++x) {
+      const Vec3 c = render_pixel(view, x, row, rs.sampling, counters);
+      std::printf("%d %d %016" PRIx64 " %016" PRIx64 " %016" PRIx64 "\n", x, row, bits(c.x), bits(c.y), bits(c.z));
+    }
+  std::printf("# rays %" PRIu64 "\n", counters.total());
+}
+
+}  // namespace
+}  // namespace strahl
+
+int main(int argc, char** argv) {
+  using namespace strahl;
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: %s <strahl source dir>\n", argv[0]);
+    return 1;
+  }
+#if defined(STRAHL_WIDE_BVH_AVX) && defined(STRAHL_TRIANGLE_BLOCK_AVX)
+  std::fprintf(stderr, "kernel path: avx\n");
+#elif !defined(STRAHL_WIDE_BVH_AVX) && !defined(STRAHL_TRIANGLE_BLOCK_AVX)
+  std::fprintf(stderr, "kernel path: portable\n");
+#else
+  std::fprintf(stderr, "kernel path: mixed\n");
+#endif
+  const std::string dir = argv[1];
+  try {
+    for (const auto& [seed, count] : {std::pair<std::uint64_t, int>{1, 40}, {2, 600}, {3, 6000}}) {
+      const Soup soup = awkward_soup(seed, count);
+      const Accel accel = build_accel(AccelKind::Bvh, soup.set());
+      const std::string name = "soup " + std::to_string(seed);
+      dump_queries(name.c_str(), accel.view(soup.set()), awkward_rays(soup, seed + 100, 3000));
+    }
+    for (const char* scene : {"lecture.yaml", "lecture-whitted.yaml", "lecture-distributed.yaml", "mesh.yaml",
+                              "glossy.yaml", "motion-blur.yaml"})
+      dump_render(dir + "/scenes/" + scene, 40, 30);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
