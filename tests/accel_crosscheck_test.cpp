@@ -528,6 +528,83 @@ TEST(AccelCrossCheck, EmptyAndSinglePrimitiveScenes) {
   }
 }
 
+// One primitive astronomically larger or smaller than the rest, or far away (docs/scene-format.md,
+// "Units and scale": coordinates up to 1e32, lengths down to 1e-32): every structure, Embree too
+// where built, still gives naive's nearest hit and occlusion answer — for rays aimed at the odd
+// primitive as well as random ones through the ordinary part of the scene.
+TEST(AccelCrossCheck, AstronomicallyLargeSmallAndFarPrimitivesMatchNaive) {
+  // `reach`: rays aimed at the odd primitive start this far from it (0: in the ordinary scene).
+  // A primitive far smaller than its distance from the origin cannot be aimed at from afar (the
+  // direction's rounding alone misses it), so such rays start next to it.
+  struct Odd { const char* what; Vec3 center; Real size; bool sphere; Real reach; };
+  const Odd odds[] = {
+      {"sphere of radius 1e30 below the scene", {0, -1e30 - 2, 0}, 1e30, true, 0},
+      {"sphere of radius 1e15 beside the scene", {1e15 + 3, 0, 0}, 1e15, true, 0},
+      {"sphere of radius 1e-30 at the origin", {3e-30, -2e-30, 1e-30}, 1e-30, true, 1e-29},
+      {"sphere of radius 1e-12 in the scene", {-0.31, 0.2, 0.05}, 1e-12, true, 1e-11},
+      {"sphere of radius 1e22 at 1e30", {1e30, 1e30, -1e30}, 1e22, true, 1e23},
+      {"sphere of radius 1e25 at 1e31", {1e31, 0, 0}, 1e25, true, 1e26},
+      {"triangle of size 1e30", {0, 0, -1e30}, 1e30, false, 0},
+      {"triangle of size 1e-25 at the origin", {1e-25, -1e-25, 0}, 1e-25, false, 1e-24},
+      {"triangle of size 1e23 at 1e31", {-1e31, 2e30, 0}, 1e23, false, 1e24},
+  };
+  std::vector<AccelKind> kinds = accel_kinds();  // naive first, Embree where built
+  ASSERT_EQ(kinds.front(), AccelKind::Naive);
+  for (const Odd& odd : odds) {
+    Random rng(11);
+    Prims s;
+    for (int i = 0; i < 60; ++i) s.sphere(rng.point(-1, 1), rng.log_uniform(1e-2, 0.3));
+    for (int i = 0; i < 120; ++i) random_triangle(s, rng, rng.point(-1, 1), rng.log_uniform(1e-2, 0.5));
+    std::uint32_t odd_prim;
+    if (odd.sphere) {
+      s.spheres.insert(s.spheres.begin(), kernel::Sphere{odd.center, odd.size, 0});
+      odd_prim = 0;
+    } else {
+      s.triangle(odd.center, odd.center + Vec3(odd.size, 0, 0), odd.center + Vec3(0, odd.size, odd.size * 0.5));
+      odd_prim = std::uint32_t(s.spheres.size() + s.triangles.size() - 1);
+    }
+    std::vector<Query> queries;
+    for (int i = 0; i < 4000; ++i) queries.push_back({{rng.point(-3, 3), rng.direction()}, 0, kInfinity});
+    // Rays at the odd primitive (its centre, or a point inside the triangle), half of them
+    // segments ending before it (shadow rays that must not see it).
+    const Vec3 target = odd.sphere ? odd.center : odd.center + Vec3(odd.size * 0.25, odd.size * 0.25, odd.size * 0.125);
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3 from = odd.reach > 0 ? target + rng.direction() * odd.reach : rng.point(-3, 3);
+      const Vec3 d = target - from;
+      const Real m = max_abs_component(d);
+      const Vec3 dir = normalize(d / m);
+      queries.push_back({{from, dir}, 0, i % 2 == 0 ? kInfinity : length(d / m) * m * Real(0.5)});
+    }
+    const PrimitiveSet set = s.set();
+    const Accel naive = build_accel(AccelKind::Naive, set);
+    int hits_on_odd = 0;
+    for (std::size_t k = 1; k < kinds.size(); ++k) {
+      const Accel a = build_accel(kinds[k], set);
+      int disagreements = 0;
+      std::string examples;
+      for (const Query& q : queries) {
+        const NearestHit want = nearest_hit(naive.view(set), q.ray, q.t_min, q.t_max);
+        const NearestHit got = nearest_hit(a.view(set), q.ray, q.t_min, q.t_max);
+        if (k == 1) hits_on_odd += want.prim == odd_prim && want.hit.t < kInfinity;
+        const bool same_hit = got.hit.t == want.hit.t &&
+                              (got.prim == want.prim ||
+                               intersect_primitive(set, got.prim, q.ray, q.t_min, q.t_max).t == want.hit.t);
+        const bool same_occlusion =
+            occluded(a.view(set), q.ray, q.t_min, q.t_max) == occluded(naive.view(set), q.ray, q.t_min, q.t_max);
+        if (same_hit && same_occlusion) continue;
+        if (disagreements++ < 3) {
+          char buf[160];
+          std::snprintf(buf, sizeof buf, "\n  nearest %.17g (prim %u), naive %.17g (prim %u); ", got.hit.t, got.prim,
+                        want.hit.t, want.prim);
+          examples += buf + describe(q);
+        }
+      }
+      EXPECT_EQ(disagreements, 0) << accel_name(kinds[k]) << ", " << odd.what << examples;
+    }
+    EXPECT_GT(hits_on_odd, 100) << odd.what << ": the rays aimed at it must meet it";
+  }
+}
+
 std::size_t lanes_in_use(const std::vector<SpatialLeaf>& blocks) {
   std::size_t n = 0;
   for (const SpatialLeaf& b : blocks)

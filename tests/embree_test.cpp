@@ -28,6 +28,7 @@
 #include "strahl/image/metrics.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
+#include "strahl/render/surface_point.h"
 #include "strahl/scene/scene_file.h"
 
 namespace strahl {
@@ -265,7 +266,7 @@ TEST(Embree, CrossingsStopWhenAsked) {
 }
 
 // A secondary ray leaves a surface from a point pushed off it by only kRayEpsilon (relative),
-// which float cannot represent: Embree must still not hit the surface the ray starts on.
+// (render/surface_point.h), which float cannot represent: Embree must still not hit the surface the ray starts on.
 TEST(Embree, SecondaryRaysDoNotHitTheSurfaceTheyLeave) {
   const Prims p = random_prims(9, 0, 0);  // the octahedron alone: convex and closed
   const PrimitiveSet prims = p.set();
@@ -280,8 +281,10 @@ TEST(Embree, SecondaryRaysDoNotHitTheSurfaceTheyLeave) {
     Vec3 n = kernel::geometric_normal(tri);
     if (dot(n, point - Vec3(0.2, -0.1, 0.3)) < 0) n = -n;  // outwards from the octahedron's centre
     Vec3 d = rng.direction();
-    const Ray out = spawn_ray(point, n, dot(d, n) > 0 ? d : -d);
-    const Ray in = spawn_ray(point, n, dot(d, n) > 0 ? -d : d);
+    // The renderer's offset for a triangle hit (render/surface_point.h): relative to the vertices.
+    const Real offset = kRayEpsilon * vertex_magnitude(tri.v0, tri.v1, tri.v2);
+    const Ray out = spawn_ray(point, n, dot(d, n) > 0 ? d : -d, 0, offset);
+    const Ray in = spawn_ray(point, n, dot(d, n) > 0 ? -d : d, 0, offset);
     EXPECT_EQ(nearest_hit(embree.view(prims), out, 0, kInfinity).hit.t, kInfinity) << "ray " << i;
     EXPECT_FALSE(occluded(embree.view(prims), out, 0, 10)) << "ray " << i;
     const NearestHit e = nearest_hit(embree.view(prims), in, 0, kInfinity);

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "child_process.h"
 #include "strahl/image/image_io.h"
 #include "strahl/util/error.h"
 #include "test_helpers.h"
@@ -51,7 +52,7 @@ TEST(ImageLimits, WrittenImagesReadBackWithTheirSize) {
     int w, h;
   };
   for (const char* name : {"a.png", "a.ppm", "a.pfm", "a.exr", "a.jpg"})
-    for (Size s : {Size{65536, 1}, Size{1, 65536}, Size{65535, 1}}) {
+    for (Size s : {Size{65536, 1}, Size{1, 65536}, Size{65535, 1}, Size{1, 1}, Size{3, 7}, Size{7, 3}}) {
       const bool jpeg = std::string(name) == "a.jpg";
       SCOPED_TRACE(std::string(name) + " " + std::to_string(s.w) + "x" + std::to_string(s.h));
       Image img(s.w, s.h);
@@ -73,6 +74,30 @@ TEST(ImageLimits, WrittenImagesReadBackWithTheirSize) {
       }
       fs::remove(path);
     }
+}
+
+// The same through the command line, for the main image and an AOV: what strahl writes at the
+// largest sizes each format holds (one row or column, cheap to render) reads back at that size.
+TEST(ImageLimits, EveryImageTheCliWritesReadsBackWithItsSize) {
+  test::TempDir dir;
+  struct Case {
+    const char* name;
+    int w, h;
+  };
+  for (const Case& c : {Case{"a.png", 65536, 1}, Case{"a.ppm", 1, 65536}, Case{"a.pfm", 65536, 1},
+                        Case{"a.exr", 1, 65536}, Case{"a.jpg", 65535, 1}, Case{"a.jpeg", 1, 65535}}) {
+    SCOPED_TRACE(c.name);
+    const test::ChildResult r = test::run_child({STRAHL_CLI, "--width", std::to_string(c.w), "--height",
+                                                 std::to_string(c.h), "-q", "--aov", "depth", "-o", c.name},
+                                                dir.path(), 120);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const fs::path& written : {dir / c.name, (dir / c.name).replace_extension(".depth.exr")}) {
+      const Image back = read_image(written);
+      EXPECT_EQ(back.width(), c.w) << written;
+      EXPECT_EQ(back.height(), c.h) << written;
+      fs::remove(written);
+    }
+  }
 }
 
 // A PFM header promising more than the file holds is refused before its memory is taken.

@@ -53,6 +53,7 @@ int run(const strahl::cli::Options& o) {
   t = std::chrono::steady_clock::now();
   const RenderScene render_scene = compile(scene);
   timings.build = seconds_since(t);
+  for (const std::string& w : render_scene.warnings) strahl::console::err("strahl: warning: {}\n", w);
   check_image_size(output, render_scene.camera.nx, render_scene.camera.ny);  // a JPEG of width 65536
 
   if (cancel->load()) throw Cancelled();  // interrupted while building: nothing rendered, nothing written

@@ -1,14 +1,52 @@
 #include "options.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <limits>
 
 #include "strahl/accel/accel.h"
 #include "strahl/sampling/pixel_sampler.h"
+#include "strahl/util/number_syntax.h"
 #include "strahl/version.h"
 
 namespace strahl::cli {
 
 namespace {
+// Number flags read as scene files read numbers (util/number_syntax.h, YAML 1.2's core schema):
+// 010 is 10, 0x10 is 16, 1e3 is 1000 for a whole number; a value out of range is refused with
+// the text the user wrote, never wrapped (--seed -1) or rounded in the message. The transform
+// hands CLI11 the plain decimal it then converts.
+CLI::Validator whole(std::int64_t lo, std::uint64_t hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi](std::string& s) -> std::string {
+        const number::Integer r = number::parse_integer(s, lo, hi);
+        switch (r.status) {
+          case number::Integer::Status::Ok:
+            s = r.value < 0 ? std::to_string(r.value) : std::to_string(r.unsigned_value);
+            return {};
+          case number::Integer::Status::OutOfRange: return number::range_message("value", lo, hi, s);
+          default: return "value must be a whole number (got '" + s + "')";
+        }
+      },
+      "INT in " + range);
+}
+// A finite real in [lo, hi] (lo excluded when `open_lo`: "positive").
+CLI::Validator real(double lo, double hi, bool open_lo) {
+  const std::string range = (open_lo ? "(" : "[") + number::shortest(lo) + ", " + number::shortest(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, open_lo, range](std::string& s) -> std::string {
+        const number::Real r = number::parse_real(s);
+        if (r.status != number::Real::Status::Ok) return "value must be a number (got '" + s + "')";
+        if (!std::isfinite(r.value) || r.value < lo || (open_lo && r.value == lo) || r.value > hi)
+          return "value must lie in " + range + " (got " + s + ")";
+        s = number::shortest(r.value);
+        return {};
+      },
+      "NUMBER in " + range);
+}
+constexpr double kForever = 1e9;  // seconds: the largest time limit or checkpoint interval (31 years)
+
 std::vector<std::string> accel_list() {
   std::vector<std::string> names;
   for (AccelKind k : accel_kinds()) names.emplace_back(accel_name(k));  // with "embree" where built
@@ -18,27 +56,28 @@ std::vector<std::string> accel_list() {
 void add_sampling_options(CLI::App& app, Options& o) {
   app.add_option("--spp", o.spp,
                  "Samples per pixel (adaptive: the maximum); grid and stratified round it to a square n×n")
-      ->check(CLI::Range(1, kMaxSpp));
+      ->transform(whole(1, kMaxSpp));
   app.add_option("--sampler", o.sampler, std::string("Pixel sampler: ") + kSamplerNames + " (default grid)")
       ->check(CLI::IsMember({"grid", "stratified", "random", "sobol", "adaptive"}));
-  app.add_option("--seed", o.seed, "Seed of the random numbers (default 0)");
+  app.add_option("--seed", o.seed, "Seed of the random numbers, 0 to 18446744073709551615 (default 0)")
+      ->transform(whole(0, std::numeric_limits<std::uint64_t>::max()));
   app.add_option("--filter", o.filter, std::string("Reconstruction filter: ") + kFilterNames + " (default box)")
       ->check(CLI::IsMember({"box", "tent", "gaussian", "mitchell"}));
   app.add_option("--filter-radius", o.filter_radius, "Filter radius in pixels, 0.5 to 4 (default 0.5)")
-      ->check(CLI::Range(0.5, 4.0));
+      ->transform(real(0.5, 4.0, false));
   app.add_option("--adaptive-min", o.adaptive_min, "Adaptive: samples every pixel gets first (default 16)")
-      ->check(CLI::Range(1, kMaxSpp));
+      ->transform(whole(1, kMaxSpp));
   app.add_option("--adaptive-threshold", o.adaptive_threshold,
                  "Adaptive: relative standard error at which a pixel stops (default 0.02)")
-      ->check(CLI::PositiveNumber);
+      ->transform(real(0, 1e6, true));
   app.add_option("--aov", o.aov, "Also write these per-pixel outputs as <output>.<name>.exr: depth, normal, albedo, id")
       ->delimiter(',')
       ->check(CLI::IsMember({"depth", "normal", "albedo", "id"}));
   app.add_option("--time-limit", o.time_limit,
                  "Render progressively and stop after this many seconds with the image so far")
-      ->check(CLI::PositiveNumber);
+      ->transform(real(0, kForever, true));
   app.add_option("--checkpoint", o.checkpoint, "Rewrite the output image every this many seconds while rendering")
-      ->check(CLI::PositiveNumber);
+      ->transform(real(0, kForever, true));
 }
 }  // namespace
 
@@ -51,17 +90,17 @@ ParseResult parse_options(int argc, char** argv, const char* program, const std:
   app.add_option("-o,--output", o.output,
                  "Output image; the format follows the extension: .png .jpg/.jpeg .ppm (8-bit sRGB), .pfm .exr (linear "
                  "float). Default: <scene>.png");
-  app.add_option("--width", o.width, "Image width in pixels (overrides the scene)")->check(CLI::Range(1, 65536));
-  app.add_option("--height", o.height, "Image height in pixels (overrides the scene)")->check(CLI::Range(1, 65536));
+  app.add_option("--width", o.width, "Image width in pixels (overrides the scene)")->transform(whole(1, 65536));
+  app.add_option("--height", o.height, "Image height in pixels (overrides the scene)")->transform(whole(1, 65536));
   app.add_option("--max-depth", o.max_depth, "Maximum recursion depth; camera rays are depth 1 (default 8)")
-      ->check(CLI::Range(1, 64));
+      ->transform(whole(1, 64));
   app.add_option("--supersample", o.supersample, "N×N regular samples per pixel, box filter (default 1)")
-      ->check(CLI::Range(1, 64));
+      ->transform(whole(1, 64));
   add_sampling_options(app, o);
   app.add_option("--accel", o.accel, "Acceleration structure: " + accel_names() + " (default bvh)")
       ->check(CLI::IsMember(accel_list()));
-  app.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
-  app.add_option("--tile-size", o.tile_size, "Tile side in pixels (default 32)")->check(CLI::Range(1, 4096));
+  app.add_option("--threads", o.threads, "Worker threads (default: all cores)")->transform(whole(1, 4096));
+  app.add_option("--tile-size", o.tile_size, "Tile side in pixels (default 32)")->transform(whole(1, 4096));
   app.add_flag("--linear", o.linear, "Store linear values in 8-bit images instead of sRGB (as POV-Ray's File_Gamma=1.0)");
   app.add_flag("-q,--quiet", o.quiet, "No progress and no summary");
   if (more) more(app);

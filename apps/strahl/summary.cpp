@@ -14,8 +14,12 @@ std::string summary(const std::string& output, int width, int height, int thread
   out += fmt::format("image       {} ({}x{}, {} {} spp, {} filter r={}, {} threads)\n", output, width, height,
                      sampler_name(sm.sampler), sm.spp, filter_name(sm.filter.kind), sm.filter.radius, threads);
   const AccelBuildStats& a = scene.accel.stats;
-  out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} solids, {} lights\n", scene.spheres.size(),
-                     scene.planes.size(), scene.triangles.size(), scene.solids.size(), scene.lights.size());
+  // Moving shapes count with the others (and are named, as the accelerator line leaves them out).
+  const std::size_t moving = scene.moving_spheres.size() + scene.moving_triangles.size();
+  out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} solids, {} lights{}\n",
+                     scene.spheres.size() + scene.moving_spheres.size(), scene.planes.size(),
+                     scene.triangles.size() + scene.moving_triangles.size(), scene.solids.size(), scene.lights.size(),
+                     moving > 0 ? fmt::format(" ({} of the shapes moving)", moving) : std::string());
   // Embree reports no node count or depth.
   const std::string nodes =
       a.nodes > 0 ? fmt::format("{} nodes, {} leaves, depth {}, ", a.nodes, a.leaves, a.max_depth) : std::string();

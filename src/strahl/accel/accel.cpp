@@ -1,6 +1,10 @@
 #include "strahl/accel/accel.h"
 
+#include "strahl/accel/embree_range.h"
+#include "strahl/util/number_syntax.h"
+
 #include <chrono>
+#include <cmath>
 #include <utility>
 
 namespace strahl {
@@ -41,6 +45,19 @@ std::vector<AccelKind> accel_kinds() {
   return kinds;
 }
 
+std::string embree_misfit(const PrimitiveSet& prims) {
+  for (std::uint32_t i = 0; i < prims.size(); ++i) {
+    const Bounds b = primitive_bounds(prims, i);
+    const Real at = std::fmax(max_abs_component(b.lo), max_abs_component(b.hi));
+    const Real size = max_component(b.hi - b.lo);
+    if (at > kEmbreeMaxCoordinate || size < kEmbreeMinSize || size < kEmbreeMinRelativeSize * at)
+      return "a primitive of size " + number::shortest(size) + " at " + number::shortest(at) +
+             " (Embree computes in float: primitives from 1e-10 to 1e15 units within ±1e15, none smaller than 1e-5 "
+             "of its distance from the origin)";
+  }
+  return {};
+}
+
 Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
   Accel a;
   a.kind = kind;
@@ -55,9 +72,10 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
     case AccelKind::KdTree: a.kdtree = build_kdtree(prims, &a.stats); break;
     case AccelKind::Octree: a.octree = build_octree(prims, &a.stats); break;
 #if defined(STRAHL_HAVE_EMBREE)
-    // Solids have no Embree user geometry yet: such scenes get the BVH, whose answers are the same.
+    // Solids have no Embree user geometry yet, and Embree computes in float (embree_range.h):
+    // such scenes get the BVH, whose answers are the same as naive's.
     case AccelKind::Embree:
-      if (prims.solid_count > 0) {
+      if (prims.solid_count > 0 || !embree_misfit(prims).empty()) {
         a.kind = AccelKind::Bvh;
         a.bvh = build_wide_bvh(prims, &a.stats);
       } else {

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "strahl/accel/accel.h"
+#include "strahl/accel/embree_range.h"
 
 namespace strahl {
 
@@ -72,6 +73,17 @@ void check(RTCDevice device, const char* what) {
 }
 
 // ---- queries ----
+
+// A ray Embree would refuse (an origin beyond ±1.8e18 fails its ray.valid()) or misjudge in float:
+// the naive loop answers it instead (accel/embree_range.h). Hits on planes far out make such rays.
+namespace {
+bool beyond_float(const Ray& ray) { return !(max_abs_component(ray.origin) <= kEmbreeMaxCoordinate); }
+AccelView naive(const AccelView& a) {
+  AccelView v = a;
+  v.kind = AccelKind::Naive;
+  return v;
+}
+}  // namespace
 
 // What the callbacks (sphere intersection, triangle filter) need besides the float ray Embree
 // hands them: the original double ray, the primitives and the double interval. Embree passes
@@ -327,6 +339,7 @@ EmbreeAccel build_embree(const PrimitiveSet& prims, AccelBuildStats* stats_out) 
 // ---- queries ----
 
 NearestHit embree_nearest_hit(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+  if (beyond_float(ray)) return nearest_hit(naive(a), ray, t_min, t_max);
   NearestHit result;
   QueryContext ctx;
   init_context(ctx, a, ray, t_min, t_max);
@@ -348,6 +361,7 @@ NearestHit embree_nearest_hit(const AccelView& a, const Ray& ray, Real t_min, Re
 }
 
 bool embree_occluded(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
+  if (beyond_float(ray)) return occluded(naive(a), ray, t_min, t_max);
   QueryContext ctx;
   init_context(ctx, a, ray, t_min, t_max);
   RTCRay r;
@@ -358,6 +372,10 @@ bool embree_occluded(const AccelView& a, const Ray& ray, Real t_min, Real t_max)
 
 void embree_for_each_crossing(const AccelView& a, const Ray& ray, Real t_min, Real t_max, EmbreeCrossFn cross,
                               void* state) {
+  if (beyond_float(ray)) {
+    auto visit = [&](std::uint32_t prim, int n) { return cross(state, prim, n); };
+    return for_each_crossing(naive(a), ray, t_min, t_max, visit);
+  }
   // Each round finds the nearest crossing past the previous one: triangles past the float t
   // just reported (the next float up), spheres past the double root just reported.
   QueryContext ctx;

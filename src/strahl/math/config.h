@@ -37,7 +37,11 @@ using Real = double;
 inline constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 inline constexpr Real kPi = Real(3.14159265358979323846);
 
-// Offset of secondary-ray origins from a surface, relative to the hit point's magnitude.
+// Offset of secondary-ray origins from a surface, relative to the magnitudes the hit point was
+// computed from (its coordinates and the primitive's: render/surface_point.h), never absolute,
+// so that a scene renders the same at any scale.
 inline constexpr Real kRayEpsilon = Real(1e-9);
+// ... plus this fraction of the path that led to the hit (|origin| + t: the rounding of o + t·d).
+inline constexpr Real kRayPathEpsilon = Real(1e-12);
 
 }  // namespace strahl

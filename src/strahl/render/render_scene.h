@@ -2,6 +2,7 @@
 // The immutable, render-ready scene: flat arrays of shapes by kind, materials and lights.
 // Produced by compile() from a Scene; kernels read it through view().
 
+#include <string>
 #include <vector>
 
 #include "strahl/render/scene_view.h"
@@ -38,6 +39,9 @@ struct RenderScene {
   TraceSettings settings;
   int supersample = 1;  // N×N regular samples per pixel (what `sampling` holds when no spp is given)
   SamplingSettings sampling;  // pixel sampler, spp (made square for grid/stratified), filter, seed
+  // One line each, "file:line:column: what", for the user: things that render but are likely
+  // not what was meant (a light facing away from everything, an ignored second YAML document).
+  std::vector<std::string> warnings;
 
   kernel::SolidArrays shapes() const {
     return {boxes.data(), cones.data(), disks.data(), tori.data(), quadrics.data(), implicits.data(),

@@ -1,6 +1,8 @@
 #pragma once
 // Everything shading needs about the nearest hit, derived once from the Hit record.
 
+#include <cmath>
+
 #include "strahl/geometry/hit.h"
 #include "strahl/render/moving_shapes.h"
 #include "strahl/render/scene_view.h"
@@ -14,18 +16,37 @@ struct SurfacePoint {
   Vec3 texcoord;         // plane (u, v, 0) or the point itself, for procedural textures
   std::uint32_t material = 0;
   Real time = 0;         // the ray's time (motion blur): secondary rays keep it
+  Real offset = 0;       // how far secondary rays start off the surface (a bound on p's error)
 };
+
+// Largest coordinate magnitude of a triangle's vertices.
+STRAHL_HOST_DEVICE inline Real vertex_magnitude(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Real ab = std::fmax(max_abs_component(a), max_abs_component(b));
+  return std::fmax(ab, max_abs_component(c));
+}
+
+// The offset of secondary rays from a hit point p: it must exceed the rounding error of p and
+// of the next intersection test with the same primitive, both of which scale with the magnitudes
+// involved — p's coordinates, the primitive's (`magnitude`: |centre| + radius, the vertices, |d|)
+// and the path o + t·d that found p — and with nothing absolute, so that scaling a scene by any
+// factor in the supported range (docs/scene-format.md, "Units and scale") scales the offsets too.
+STRAHL_HOST_DEVICE inline Real ray_offset(const Ray& ray, Real t, const Vec3& p, Real magnitude) {
+  return kRayEpsilon * std::fmax(max_abs_component(p), magnitude) +
+         kRayPathEpsilon * (max_abs_component(ray.origin) + t);
+}
 
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& s, const Ray& ray, const Hit& hit) {
   SurfacePoint sp;
   sp.p = ray.at(hit.t);
   sp.time = ray.time;
+  sp.offset = ray_offset(ray, hit.t, sp.p, 0);  // kinds that know their own magnitude refine it
   switch (hit.kind) {
     case ShapeKind::Sphere: {
       const kernel::Sphere& sphere = s.spheres[hit.index];
       sp.geometric_normal = sp.normal = kernel::normal_at(sphere, sp.p);
       sp.texcoord = sp.p;
       sp.material = sphere.material;
+      sp.offset = ray_offset(ray, hit.t, sp.p, max_abs_component(sphere.center) + sphere.radius);
       break;
     }
     case ShapeKind::Plane: {
@@ -33,6 +54,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
       sp.geometric_normal = sp.normal = plane.normal;
       sp.texcoord = Vec3(dot(sp.p, plane.tangent), dot(sp.p, plane.bitangent), 0);
       sp.material = plane.material;
+      sp.offset = ray_offset(ray, hit.t, sp.p, std::fabs(plane.distance));
       break;
     }
     case ShapeKind::Triangle: {
@@ -48,19 +70,24 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
       }
       sp.texcoord = sp.p;
       sp.material = tri.material;
+      sp.offset = ray_offset(ray, hit.t, sp.p, vertex_magnitude(tri.v0, tri.v1, tri.v2));
       break;
     }
     case ShapeKind::MovingSphere: {
       const kernel::MovingSphere& ms = s.moving_spheres[hit.index];
-      sp.geometric_normal = sp.normal = kernel::normal_at(kernel::at_time(ms, shutter_fraction(s, ray.time)), sp.p);
+      const kernel::Sphere sphere = kernel::at_time(ms, shutter_fraction(s, ray.time));
+      sp.geometric_normal = sp.normal = kernel::normal_at(sphere, sp.p);
       sp.texcoord = sp.p;
       sp.material = ms.material;
+      sp.offset = ray_offset(ray, hit.t, sp.p, max_abs_component(sphere.center) + sphere.radius);
       break;
     }
     case ShapeKind::MovingTriangle: {
       const kernel::MovingTriangle& mt = s.moving_triangles[hit.index];
       const Real u = shutter_fraction(s, ray.time);
-      sp.geometric_normal = sp.normal = kernel::geometric_normal(kernel::at_time(mt, u));
+      const kernel::TriangleAtTime tri = kernel::at_time(mt, u);
+      sp.geometric_normal = sp.normal = kernel::geometric_normal(tri);
+      sp.offset = ray_offset(ray, hit.t, sp.p, vertex_magnitude(tri.a, tri.b, tri.c));
       if (mt.normals >= 0) {
         const kernel::VertexNormals& a = s.vertex_normals[mt.normals];
         const kernel::VertexNormals& b = s.vertex_normals[mt.normals + 1];
@@ -84,6 +111,15 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
     case ShapeKind::None: break;
   }
   return sp;
+}
+
+}  // namespace strahl
+
+namespace strahl {
+
+// A secondary ray leaving the surface point (ray.h's spawn_ray with the point's own offset).
+STRAHL_HOST_DEVICE inline Ray spawn_ray(const SurfacePoint& sp, const Vec3& direction, Real time) {
+  return spawn_ray(sp.p, sp.geometric_normal, direction, time, sp.offset);
 }
 
 }  // namespace strahl

@@ -54,7 +54,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Vec3 shade_from(const SceneView& s, const
   const Real n_dot_l = dot(n, to_light);
   if (n_dot_l <= 0) return Vec3(0);  // light behind the surface
   ++counters.shadow;
-  const Ray shadow_ray = spawn_ray(sp.p, sp.geometric_normal, to_light, sp.time);
+  const Ray shadow_ray = spawn_ray(sp, to_light, sp.time);
   const Vec3 tr = transmittance(s, shadow_ray, distance);
   if (is_black(tr)) return Vec3(0);  // in shadow: ambient only
   const Vec3 h = normalize(to_light + view);
@@ -171,13 +171,13 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int dep
     ++counters.reflection;
     Vec3 dir = reflect(ray.direction, n);
     if (m.roughness > 0) dir = glossy_direction(dir, sp.geometric_normal, m.roughness, rng.next2());
-    const Ray r = spawn_ray(sp.p, sp.geometric_normal, dir, ray.time);
+    const Ray r = spawn_ray(sp, dir, ray.time);
     color += trace(s, r, depth + 1, weight * kr, media, counters, rng, budget) * kr;
   }
   if (kt > 0 && kt * weight >= s.settings.min_weight && spend(budget, counters)) {
     ++counters.refraction;
     if (m.roughness > 0) refracted_dir = glossy_direction(refracted_dir, sp.geometric_normal, m.roughness, rng.next2());
-    const Ray r = spawn_ray(sp.p, sp.geometric_normal, refracted_dir, ray.time);
+    const Ray r = spawn_ray(sp, refracted_dir, ray.time);
     const Vec3 tint = m.filter ? m.color : Vec3(1);
     color += trace(s, r, depth + 1, weight * kt, next_media, counters, rng, budget) * tint * kt;
   }

@@ -2,9 +2,11 @@
 #include <cmath>
 #include <utility>
 
+#include "strahl/accel/embree_range.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/camera_build.h"
 #include "strahl/scene/scene.h"
+#include "strahl/scene/scene_warnings.h"
 #include "strahl/scene/validate.h"
 #include "strahl/util/cancel.h"
 
@@ -22,22 +24,26 @@ void plane_frame(const Vec3& n, Vec3& tangent, Vec3& bitangent) {
 }  // namespace
 
 Camera build_camera(const CameraDescription& c, int nx, int ny) {
-  validate::finite(c.position, c.loc, "camera position");
-  validate::finite(c.look_at, c.loc, "camera look_at");
+  validate::coordinates(c.position, c.loc, "camera position");
+  validate::coordinates(c.look_at, c.loc, "camera look_at");
   validate::non_zero(c.up, c.loc, "camera up");
   const Vec3 view = c.look_at - c.position;
-  if (length_squared(view) == 0) throw Error(c.loc, "camera position and look_at coincide");
-  if (length_squared(cross(normalize(view), normalize(c.up))) < Real(1e-12))
+  if (max_abs_component(view) == 0) throw Error(c.loc, "camera position and look_at coincide");
+  validate::length(validate::norm(view), c.loc, "camera distance from position to look_at");
+  if (length_squared(cross(validate::direction(view), validate::direction(c.up))) < Real(1e-12))
     throw Error(c.loc, "camera up is parallel to the viewing direction");
   validate::non_negative(c.aperture, c.loc, "camera aperture");
+  if (c.aperture > 0) validate::length(c.aperture, c.loc, "camera aperture");
   validate::non_negative(c.focus_distance, c.loc, "camera focus_distance");
+  if (c.focus_distance > 0) validate::length(c.focus_distance, c.loc, "camera focus_distance");
+  if (c.has_focus_point) validate::coordinates(c.focus_point, c.loc, "camera focus_point");
   validate::finite(c.focus_point, c.loc, "camera focus_point");
   validate::finite(c.shutter_open, c.loc, "shutter open");
   validate::finite(c.shutter_close, c.loc, "shutter close");
   if (c.shutter_close < c.shutter_open) throw Error(c.loc, "shutter close must not come before shutter open");
   Camera cam;
   cam.eye = c.position;
-  cam.basis = Frame::look_at(c.position, c.look_at, c.up);
+  cam.basis = Frame::look_at(c.position, c.look_at, validate::direction(c.up));
   cam.nx = nx;
   cam.ny = ny;
   cam.lens_radius = c.aperture;
@@ -101,8 +107,10 @@ Mat3 moved_linear(const Motion& m, int key) {
 }  // namespace
 
 void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
-  validate::finite(center, loc, "sphere center");
+  validate::coordinates(center, loc, "sphere center");
   validate::positive(radius, loc, "sphere radius");
+  validate::length(radius, loc, "sphere radius");
+  validate::resolvable(radius, max_abs_component(center), loc, "sphere radius");
   if (motion.moving()) {
     validate_motion(motion, loc);
     // Keyframes transform the sphere in world space: its centre moves, and its radius scales
@@ -115,7 +123,12 @@ void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::u
           throw Error(loc, std::string(kNonUniformSphereScale));
         radius_at[key] = radius * std::fabs(s.x);
         validate::positive(radius_at[key], loc, "sphere radius after the motion scale");
+        validate::length(radius_at[key], loc, "sphere radius after the motion scale");
       }
+    }
+    for (int key = 0; key < 2; ++key) {
+      validate::coordinates(moved(motion, out, center, key), loc, "moving sphere center");
+      validate::resolvable(radius_at[key], max_abs_component(moved(motion, out, center, key)), loc, "sphere radius");
     }
     out.moving_spheres.push_back({moved(motion, out, center, 0), moved(motion, out, center, 1), radius_at[0],
                                   radius_at[1], material_index});
@@ -129,15 +142,25 @@ void Plane::compile_into(RenderScene& out, std::uint32_t material_index, std::ui
   validate::non_zero(normal, loc, "plane normal");
   validate::finite(distance, loc, "plane distance");
   kernel::Plane p;
-  const Real len = length(normal);
-  p.normal = normal / len;
+  const Real len = validate::norm(normal);  // without under- or overflow of N·N
+  p.normal = validate::direction(normal);
   p.distance = distance / len;
+  validate::coordinate(p.distance, loc, "plane distance");
   plane_frame(p.normal, p.tangent, p.bitangent);
   p.material = material_index;
   out.planes.push_back(p);
 }
 
 namespace {
+// A mesh vertex where the mesh's transform (and motion) puts it: within the scale limits. Checked
+// after the transform, so that a mesh scale of 1e300 is named, not an infinity or a lost mesh.
+void mesh_coordinates(const Vec3& p, const FileLoc& loc) {
+  const Real m = max_abs_component(p);
+  if (!(m <= validate::kMaxCoordinate))  // also inf and nan
+    throw Error(loc, "mesh vertex lands at a coordinate of " + validate::str(m) +
+                         " after the mesh's scale/rotate/translate, beyond ±1e32 " + validate::kScaleLimits);
+}
+
 // Appends the triangle unless it is degenerate; returns whether it did.
 bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t material,
                    std::int32_t normals, std::uint32_t object_id, const Vec3* keyed = nullptr) {
@@ -160,16 +183,24 @@ bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c
 }  // namespace
 
 void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
-  validate::finite(v0, loc, "triangle vertex");
-  validate::finite(v1, loc, "triangle vertex");
-  validate::finite(v2, loc, "triangle vertex");
+  validate::coordinates(v0, loc, "triangle vertex");
+  validate::coordinates(v1, loc, "triangle vertex");
+  validate::coordinates(v2, loc, "triangle vertex");
   validate_motion(motion, loc);
+  const Real longest = std::fmax(validate::norm(v1 - v0), std::fmax(validate::norm(v2 - v1), validate::norm(v0 - v2)));
+  if (longest > 0) {
+    validate::length(longest, loc, "triangle's longest edge");
+    validate::resolvable(longest, std::fmax(max_abs_component(v0), std::fmax(max_abs_component(v1), max_abs_component(v2))),
+                         loc, "triangle's longest edge");
+  }
   Vec3 keyed[6];
   for (int key = 0; key < 2; ++key) {
     keyed[3 * key] = moved(motion, out, v0, key);
     keyed[3 * key + 1] = moved(motion, out, v1, key);
     keyed[3 * key + 2] = moved(motion, out, v2, key);
   }
+  if (motion.moving())
+    for (const Vec3& v : keyed) validate::coordinates(v, loc, "moving triangle vertex");
   if (!push_triangle(out, v0, v1, v2, material_index, -1, object_id, motion.moving() ? keyed : nullptr))
     throw Error(loc, "degenerate triangle (its vertices are collinear)");
 }
@@ -192,14 +223,18 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   for (std::size_t i = 0; i < positions.size(); ++i) {
     validate::finite(data.positions[i], loc, "mesh vertex");
     positions[i] = m * data.positions[i] + transform.translate;
+    mesh_coordinates(positions[i], loc);
   }
   if (motion.moving()) {
     for (int key = 0; key < 2; ++key) {
       keyed_positions[key].resize(positions.size());
       for (std::size_t i = 0; i < positions.size(); ++i)
+      {
         keyed_positions[key][i] = motion.kind == Motion::Kind::Keyframes
                                       ? m * moved(motion, out, data.positions[i], key) + transform.translate
                                       : moved(motion, out, positions[i], key);
+        mesh_coordinates(keyed_positions[key][i], loc);
+      }
     }
   }
   // A mirroring transform (negative determinant) would turn the faces inside out: swap two
@@ -269,19 +304,23 @@ static SamplingSettings compile_sampling(const RenderSettings& s) {
 
 namespace {
 void validate_area_light(Light& light, const FileLoc& loc) {
-  validate::finite(light.position, loc, light.kind == LightKind::Rect ? "light corner" : "light center");
+  validate::coordinates(light.position, loc, light.kind == LightKind::Rect ? "light corner" : "light center");
   validate::int_range(light.samples, 1, 64, loc, "light samples");
   if (light.kind == LightKind::Rect) {
     validate::non_zero(light.edge_u, loc, "light edge_u");
     validate::non_zero(light.edge_v, loc, "light edge_v");
-    const Real c = dot(normalize(light.edge_u), normalize(light.edge_v));
+    validate::length(validate::norm(light.edge_u), loc, "light edge_u");
+    validate::length(validate::norm(light.edge_v), loc, "light edge_v");
+    const Real c = dot(validate::direction(light.edge_u), validate::direction(light.edge_v));
     if (std::fabs(c) > Real(1e-6)) throw Error(loc, "rect light edges must be perpendicular");
-    light.normal = normalize(cross(light.edge_u, light.edge_v));
+    light.normal = normalize(cross(validate::direction(light.edge_u), validate::direction(light.edge_v)));
   } else {
     validate::positive(light.radius, loc, "light radius");
+    validate::length(light.radius, loc, "light radius");
+    validate::resolvable(light.radius, max_abs_component(light.position), loc, "light radius");
     if (light.kind == LightKind::Disk) {
       validate::non_zero(light.normal, loc, "light normal");
-      light.normal = normalize(light.normal);
+      light.normal = validate::direction(light.normal);
     }
   }
 }
@@ -330,18 +369,23 @@ RenderScene compile(const Scene& scene) {
     const FileLoc& loc = scene.light_locs()[i];
     validate::non_negative(light.radiance, loc, "light colour × intensity");
     if (light.kind == LightKind::Point) {
-      validate::finite(light.position, loc, "light position");
+      validate::coordinates(light.position, loc, "light position");
     } else if (light.kind == LightKind::Directional) {
       validate::non_zero(light.direction, loc, "light direction");
-      light.direction = normalize(light.direction);
+      light.direction = validate::direction(light.direction);
     } else {
       validate_area_light(light, loc);
     }
     out.lights.push_back(light);
   }
+  out.warnings = scene.warnings;
+  add_light_warnings(scene, out);
   check_cancelled("build");
   out.accel = build_accel(s.accel, out.primitives());
   check_cancelled("build");
+  if (s.accel == AccelKind::Embree && out.accel.kind != AccelKind::Embree && !embree_misfit(out.primitives()).empty())
+    out.warnings.push_back(s.loc.str() + (s.loc.file.empty() ? "" : ": ") + "accel embree cannot hold this scene, " +
+                           embree_misfit(out.primitives()) + "; rendering with bvh instead");
   if (!out.moving_spheres.empty() || !out.moving_triangles.empty()) {
     std::vector<Bounds> boxes;
     boxes.reserve(out.moving_spheres.size() + out.moving_triangles.size());

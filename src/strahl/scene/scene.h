@@ -239,6 +239,9 @@ class Scene {
 
   CameraDescription camera;
   RenderSettings settings;
+  // What the loader noticed but accepted, one line each ("file:line:column: what"); compile()
+  // passes them on in RenderScene::warnings with its own.
+  std::vector<std::string> warnings;
 
  private:
   std::vector<std::unique_ptr<SceneObject>> objects_;

@@ -9,6 +9,7 @@
 #include <charconv>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string_view>
@@ -21,6 +22,7 @@
 #include "strahl/scene/yaml_limits.h"
 #include "strahl/shading/area_light.h"
 #include "strahl/util/cancel.h"
+#include "strahl/util/number_syntax.h"
 #include "strahl/util/system_error.h"
 
 namespace strahl {
@@ -130,35 +132,47 @@ class Reader {
     if (!n.IsScalar()) fail(n, what + " must be a single value");
     return n.Scalar();
   }
+  // Numbers follow YAML 1.2's core schema (util/number_syntax.h, docs/scene-format.md "Numbers"):
+  // a quoted scalar or one tagged !!str is text, not a number, as YAML says.
+  void plain(const YAML::Node& n, const std::string& what, const char* kind) const {
+    const std::string& tag = n.Tag();
+    if (tag == "!" || tag == "tag:yaml.org,2002:str")
+      fail(n, what + " must be " + kind + ", not the quoted text \"" + n.Scalar() + "\" (write it without quotes)");
+  }
   Real number(const YAML::Node& n, const std::string& what) const {
     if (!n.IsScalar()) fail(n, what + " must be a number");
-    double v = 0;
-    if (!YAML::convert<double>::decode(n, v)) fail(n, what + " must be a number (got '" + n.Scalar() + "')");
-    if (!std::isfinite(v)) fail(n, what + " must be a finite number");
-    return v;
+    plain(n, what, "a number");
+    const number::Real r = number::parse_real(n.Scalar());
+    if (r.status == number::Real::Status::NotANumber) fail(n, what + " must be a number (got '" + n.Scalar() + "')");
+    if (r.status == number::Real::Status::TooLarge)
+      fail(n, what + " must be a finite number (" + n.Scalar() + " is beyond the largest double, about 1.8e308)");
+    if (!std::isfinite(r.value)) fail(n, what + " must be a finite number");
+    return r.value;
   }
-  int integer(const YAML::Node& n, const std::string& what, long lo, long hi) const {
+  // A whole number in [lo, hi]: decimal (leading zeros too: 010 is 10), 0o octal, 0x hex, or a
+  // real of whole value (1e3); never wrapped or clamped.
+  std::uint64_t whole(const YAML::Node& n, const std::string& what, std::int64_t lo, std::uint64_t hi) const {
     if (!n.IsScalar()) fail(n, what + " must be a whole number");
-    long long v = 0;
-    if (!YAML::convert<long long>::decode(n, v)) fail(n, what + " must be a whole number (got '" + n.Scalar() + "')");
-    validate::int_range(static_cast<long>(std::clamp<long long>(v, -(1ll << 40), 1ll << 40)), lo, hi, loc(n), what);
-    return static_cast<int>(v);
+    plain(n, what, "a whole number");
+    const number::Integer r = number::parse_integer(n.Scalar(), lo, hi);
+    switch (r.status) {
+      case number::Integer::Status::Ok: return r.unsigned_value;
+      case number::Integer::Status::NotANumber: fail(n, what + " must be a whole number (got '" + n.Scalar() + "')");
+      case number::Integer::Status::NotWhole: fail(n, what + " must be a whole number (got '" + n.Scalar() + "')");
+      case number::Integer::Status::OutOfRange: fail(n, number::range_message(what, lo, hi, n.Scalar()));
+    }
+    return 0;
   }
-  // The sampler's seed: any 64-bit unsigned number, as --seed takes.
-  std::uint64_t seed(const YAML::Node& n) const {
-    if (!n.IsScalar()) fail(n, "seed must be a whole number");
-    const std::string& text = n.Scalar();
-    std::uint64_t v = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (text.empty() || ec == std::errc::invalid_argument || end != text.data() + text.size())
-      fail(n, "seed must be a whole number (got '" + text + "')");
-    if (ec == std::errc::result_out_of_range) fail(n, "seed must lie in [0, 18446744073709551615] (got " + text + ")");
-    return v;
+  int integer(const YAML::Node& n, const std::string& what, int lo, int hi) const {
+    return static_cast<int>(whole(n, what, lo, std::uint64_t(hi)));  // lo ≥ 0 for every setting
   }
+  // YAML 1.2 core booleans only: true/True/TRUE, false/False/FALSE (not 1.1's yes, on, y).
   bool boolean(const YAML::Node& n, const std::string& what) const {
-    bool v = false;
-    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) fail(n, what + " must be true or false");
-    return v;
+    const std::string s = n.IsScalar() ? n.Scalar() : std::string();
+    const bool quoted = n.IsScalar() && (n.Tag() == "!" || n.Tag() == "tag:yaml.org,2002:str");
+    if (!quoted && (s == "true" || s == "True" || s == "TRUE")) return true;
+    if (!quoted && (s == "false" || s == "False" || s == "FALSE")) return false;
+    fail(n, what + " must be true or false" + (n.IsScalar() ? " (got '" + s + "')" : std::string()));
   }
   Vec3 vec3(const YAML::Node& n, const std::string& what) const {
     if (!n.IsSequence() || n.size() != 3) fail(n, what + " must be a list of three numbers [x, y, z]");
@@ -188,7 +202,7 @@ class Reader {
   Real ior(const YAML::Node& n) const {
     Real v = 0;
     if (n.IsScalar() && named_ior(n.Scalar(), v)) return v;
-    if (n.IsScalar() && !YAML::convert<double>::decode(n, v))
+    if (n.IsScalar() && number::parse_real(n.Scalar()).status == number::Real::Status::NotANumber && n.Tag() == "?")
       fail(n, "unknown ior '" + n.Scalar() + "' (a number or one of vacuum, air, water, ice, acrylic, glass, diamond)");
     return positive(n, "ior");
   }
@@ -223,7 +237,7 @@ class Reader {
       s.sampler = *kind;
     }
     if (const auto v = n["spp"]) s.spp = integer(v, "spp", 1, kMaxSpp);
-    if (const auto v = n["seed"]) s.seed = seed(v);
+    if (const auto v = n["seed"]) s.seed = whole(v, "seed", 0, std::numeric_limits<std::uint64_t>::max());
     if (const auto v = n["filter"]) {
       const std::optional<FilterKind> kind = filter_from_name(scalar(v, "filter"));
       if (!kind) fail(v, "unknown filter '" + v.Scalar() + "' (" + kFilterNames + ")");
@@ -286,9 +300,11 @@ class Reader {
       c.shutter_close = number(v[1], "shutter close");
       if (c.shutter_close < c.shutter_open) fail(v, "shutter close must not come before shutter open");
     }
+    // Directions without squaring (validate::direction): tiny or huge values are no reason to
+    // call the camera's up parallel; compile() checks the scale limits at this same node.
     const Vec3 view = c.look_at - c.position;
-    if (length_squared(view) == 0) fail(n, "camera position and look_at coincide");
-    if (length_squared(cross(normalize(view), normalize(c.up))) < 1e-12)
+    if (max_abs_component(view) == 0) fail(n, "camera position and look_at coincide");
+    if (length_squared(cross(validate::direction(view), validate::direction(c.up))) < 1e-12)
       fail(n, "camera up is parallel to the viewing direction");
     if (c.has_focus_point && !(dot(c.focus_point - c.position, view) > 0))
       fail(n["focus_point"], "focus_point must lie in front of the camera");
@@ -367,7 +383,7 @@ class Reader {
       const Vec3 u = vec3(eu, "edge_u"), v = vec3(ev, "edge_v");
       validate::non_zero(u, loc(eu), "edge_u");
       validate::non_zero(v, loc(ev), "edge_v");
-      if (std::fabs(dot(normalize(u), normalize(v))) > 1e-6) fail(ev, "rect light edges must be perpendicular");
+      if (std::fabs(dot(validate::direction(u), validate::direction(v))) > 1e-6) fail(ev, "rect light edges must be perpendicular");
       l = rect_light(vec3(required(n, "corner", what), "light corner"), u, v, Vec3(1), samples);
     } else if (type == "disk") {
       const YAML::Node nn = required(n, "normal", what);
@@ -671,6 +687,39 @@ SplitText split_objects(const std::string& text, const YamlOutline& outline) {
 
 }  // namespace
 
+namespace {
+// Where a second YAML document begins: a `---` line (or a `...` end marker followed by more)
+// after the first document's content; line 0 when there is none. Comments and blank lines are
+// no content, and a `---` before any content only opens the first document.
+FileLoc second_document(const std::string& text, const std::string& name) {
+  bool content = false, ended = false;
+  int line = 0;
+  for (std::size_t start = 0; start < text.size();) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view l(text.data() + start, end - start);
+    ++line;
+    start = end + 1;
+    const auto marker = [&](std::string_view m) {
+      return l.substr(0, 3) == m && (l.size() == 3 || l[3] == ' ' || l[3] == '\t' || l[3] == '\r');
+    };
+    if (marker("---")) {
+      if (content || ended) return FileLoc{name, line, 1};
+      continue;
+    }
+    if (marker("...")) {
+      ended = content;
+      continue;
+    }
+    const std::size_t first = l.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos || l[first] == '#') continue;
+    if (ended) return FileLoc{name, line, 1};
+    if (l[0] != '%') content = true;  // (a %YAML directive precedes a document's ---)
+  }
+  return FileLoc{name, 0, 0};
+}
+}  // namespace
+
 Scene parse_scene(const std::string& text, const std::string& name, const fs::path& base_dir) {
   // yaml-cpp reads a NUL byte as the end of the text: a binary or UTF-16 file would be half read.
   if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
@@ -690,7 +739,12 @@ Scene parse_scene(const std::string& text, const std::string& name, const fs::pa
     throw Error(FileLoc{name, e.mark.line + 1, e.mark.column + 1}, "syntax error: " + e.msg);
   }
   split.rest = std::string();
-  return Reader(name, base_dir).read(root, split.objects);
+  Scene scene = Reader(name, base_dir).read(root, split.objects);
+  // A scene is one document; what follows a second `---` would be silently dropped.
+  if (const FileLoc second = second_document(text, name); second.line > 0)
+    scene.warnings.push_back(second.str() +
+                             ": a second YAML document starts here (after ---); only the first is read, the rest is ignored");
+  return scene;
 }
 
 Scene load_scene(const fs::path& path) {

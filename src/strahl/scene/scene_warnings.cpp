@@ -1,0 +1,100 @@
+#include "strahl/scene/scene_warnings.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "strahl/scene/validate.h"
+#include "strahl/shading/area_light.h"
+
+namespace strahl {
+
+namespace {
+
+// The box around every bounded shape, moving ones over their whole path.
+Bounds bounded_shapes(const RenderScene& s) {
+  Bounds b;
+  const PrimitiveSet prims = s.primitives();
+  for (std::uint32_t i = 0; i < prims.sphere_count + prims.triangle_count; ++i) {
+    const Bounds p = primitive_bounds(prims, i);
+    b.extend(p.lo);
+    b.extend(p.hi);
+  }
+  for (const kernel::MovingSphere& m : s.moving_spheres) {
+    const Bounds p = kernel::swept_bounds(m);
+    b.extend(p.lo);
+    b.extend(p.hi);
+  }
+  for (const kernel::MovingTriangle& m : s.moving_triangles) {
+    const Bounds p = kernel::swept_bounds(m);
+    b.extend(p.lo);
+    b.extend(p.hi);
+  }
+  return b;
+}
+
+// Does some object reach into the open half-space in front of the plane through p with normal n?
+bool anything_in_front(const RenderScene& s, const Bounds& shapes, const Vec3& p, const Vec3& n) {
+  if (!shapes.empty()) {
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 c((corner & 1) ? shapes.hi.x : shapes.lo.x, (corner & 2) ? shapes.hi.y : shapes.lo.y,
+                   (corner & 4) ? shapes.hi.z : shapes.lo.z);
+      if (dot(c - p, n) > 0) return true;
+    }
+  }
+  for (const kernel::Plane& plane : s.planes) {
+    // A plane not parallel to the light's reaches both sides; a parallel one lies on one side.
+    if (length_squared(cross(plane.normal, n)) > Real(1e-12)) return true;
+    if (dot(plane.normal, n) * (plane.distance - dot(plane.normal, p)) > 0) return true;
+  }
+  return false;
+}
+
+// Distance from p to the box (0 inside it or when there is no box).
+Real distance_to(const Bounds& b, const Vec3& p) {
+  if (b.empty()) return 0;
+  const Vec3 d(std::fmax(Real(0), std::fmax(b.lo.x - p.x, p.x - b.hi.x)),
+               std::fmax(Real(0), std::fmax(b.lo.y - p.y, p.y - b.hi.y)),
+               std::fmax(Real(0), std::fmax(b.lo.z - p.z, p.z - b.hi.z)));
+  const Real m = max_abs_component(d);
+  return m > 0 ? length(d / m) * m : 0;
+}
+
+// The most a light can add to a pixel (white = 1, before the material's factors): a point or
+// directional light its radiance; an area light at most its radiance L (a surface it covers
+// entirely), and no more than L·A⊥/(π·D²) at distance D from the nearest bounded shape.
+Real brightest(const Light& l, const Bounds& shapes) {
+  const Real peak = std::fmax(l.radiance.x, std::fmax(l.radiance.y, l.radiance.z));
+  if (!l.is_area()) return peak;
+  const Real d = distance_to(shapes, l.position);
+  if (!(d > 0)) return peak;
+  const Real projected = l.kind == LightKind::Sphere ? kPi * l.radius * l.radius : area_light_area(l);
+  const Real r = d / std::sqrt(projected / kPi);  // distance in units of the light's size
+  return std::fmin(peak, peak / (r * r));
+}
+
+std::string where(const FileLoc& loc) { return loc.file.empty() ? std::string() : loc.str() + ": "; }
+
+}  // namespace
+
+void add_light_warnings(const Scene& scene, RenderScene& out) {
+  const Bounds shapes = bounded_shapes(out);
+  for (std::size_t i = 0; i < out.lights.size() && i < scene.light_locs().size(); ++i) {
+    const Light& l = out.lights[i];
+    const std::string at = where(scene.light_locs()[i]);
+    const char* name = l.kind == LightKind::Rect ? "rect light" : l.kind == LightKind::Disk ? "disk light" : nullptr;
+    if (name != nullptr && !anything_in_front(out, shapes, l.position, l.normal)) {
+      out.warnings.push_back(at + "the " + name + " emits towards (" + validate::str(l.normal.x) + ", " +
+                             validate::str(l.normal.y) + ", " + validate::str(l.normal.z) +
+                             "), away from every object: it lights nothing" +
+                             (l.kind == LightKind::Rect ? " (swap edge_u and edge_v to turn it round)"
+                                                        : " (turn its normal round)"));
+      continue;
+    }
+    const Real most = brightest(l, shapes);
+    if (most < kFaintLight)
+      out.warnings.push_back(at + "the light adds at most " + validate::str(most) +
+                             " to any pixel (white is 1): too faint or too small to show");
+  }
+}
+
+}  // namespace strahl
