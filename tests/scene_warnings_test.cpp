@@ -97,7 +97,7 @@ TEST(SceneWarnings, ReachTheUserAsOneLineEachAndTheRenderGoesOn) {
   EXPECT_NE(warnings[0].find("w.yaml:10:1: a second YAML document starts here"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[1].find("w.yaml:5:5: the rect light emits towards (0, 1, 0)"), std::string::npos) << warnings[1];
   // The summary counts the moving sphere with the others.
-  EXPECT_NE(r.out.find("scene       2 spheres, 0 planes, 1 triangles, 2 lights (1 of the shapes moving)"),
+  EXPECT_NE(r.out.find("scene       2 spheres, 0 planes, 1 triangles, 0 solids, 2 lights (1 of the shapes moving)"),
             std::string::npos)
       << r.out;
 }
