@@ -13,8 +13,9 @@ std::string cluster_summary(const mpi::ClusterStats& s) {
       out += fmt::format("  rank {:<4}  LOST; {} tiles arrived from it before\n", r.rank, r.tiles);
       continue;
     }
-    out += fmt::format("  rank {:<4}  {} threads, {} tiles, busy {:.3f} s, idle {:.3f} s, communication {:.3f} s\n",
-                       r.rank, r.threads, r.tiles, r.busy, r.idle, r.comm);
+    out += fmt::format("  rank {:<4}  {} threads, {} tiles, busy {:.3f} s, idle {:.3f} s, communication {:.3f} s", r.rank,
+                       r.threads, r.tiles, r.busy, r.idle, r.comm);
+    out += r.rank == 0 ? "\n" : fmt::format(", up to {} tiles in flight\n", r.most_in_flight);
   }
   const std::vector<int> lost = s.lost_ranks();
   if (!lost.empty()) {

@@ -79,7 +79,7 @@ int worker(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   } catch (const std::exception& e) {
     error = e.what();
   }
-  if (!mpi::report_scene(comm, hash, error, 600) || !rs) return cancel->load() ? 130 : 2;  // rank 0 says why
+  if (!mpi::report_scene(comm, hash, error, 600, threads_of(o)) || !rs) return cancel->load() ? 130 : 2;  // rank 0 says why
   mpi::WorkerOptions w;
   w.threads = threads_of(o);
   w.timeout = m.timeout;
@@ -110,7 +110,8 @@ int master(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   } catch (const std::exception& e) {
     error = e.what();
   }
-  const std::string problem = mpi::agree_on_scene(comm, hash, error, 600);
+  std::vector<int> worker_threads;
+  const std::string problem = mpi::agree_on_scene(comm, hash, error, 600, &worker_threads);
   if (!problem.empty() && cancel->load()) {  // loading stopped by a signal (util/cancel.h)
     console::err("strahl-mpi: interrupted before rendering; nothing written\n");
     return 130;
@@ -130,6 +131,7 @@ int master(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   mpi::MasterOptions mo;
   mo.threads = threads_of(o);
   mo.prefetch = m.prefetch;
+  mo.worker_threads = worker_threads;
   mo.timeout = m.timeout;
   mo.tile_log = tile_log;
   mo.warn = [](const std::string& what) { console::err("strahl-mpi: warning: {}\n", what); };
@@ -198,7 +200,7 @@ int main(int argc, char** argv) {
     app.add_flag("--resume", m.resume, "Continue an interrupted render from <output>.journal: only missing tiles are rendered");
     app.add_option("--mpi-timeout", m.timeout, "Seconds without a word from a rank before it counts as lost (default 30)")
         ->check(CLI::Range(0.1, 86400.0));
-    app.add_option("--prefetch", m.prefetch, "Tiles in flight per worker (default 3)")->check(CLI::Range(1, 64));
+    app.add_option("--prefetch", m.prefetch, "Tiles in flight per render thread of a worker (default 3)")->check(CLI::Range(1, 64));
     app.add_option("--tile-log", m.tile_log, "Write one line per tile: pass index rank cpu_seconds request_bytes result_bytes samples");
   });
   std::fflush(stdout);

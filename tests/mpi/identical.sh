@@ -34,4 +34,19 @@ check mitchell-3   3 1 8  lecture-whitted.yaml --sampler stratified --spp 4 --fi
 check aov-2        2 2 16 lecture-whitted.yaml --aov depth,normal,albedo,id
 check motion-4     4 2 8  motion-blur.yaml --sampler sobol --spp 4
 check dof-3        3 1 8  depth-of-field.yaml --sampler sobol --spp 4
+
+# A worker with T render threads gets prefetch × T tiles in flight (3 × T by default), not 3: with
+# 3 its other threads would idle. The summary says how many it held at once.
+if mpirun_strahl 2 "$SRC/scenes/lecture.yaml" --width 160 --height 90 --tile-size 8 --threads 3 \
+  -o "$WORK/inflight.png" > "$WORK/inflight.txt" 2>&1; then
+  grep -q "^  rank 1 .* up to 9 tiles in flight" "$WORK/inflight.txt" ||
+    fail "a 3-thread worker did not get 9 tiles in flight: $(grep '^  rank 1' "$WORK/inflight.txt")"
+  mpirun_strahl 2 "$SRC/scenes/lecture.yaml" --width 160 --height 90 --tile-size 8 --threads 3 --prefetch 2 \
+    -o "$WORK/inflight2.png" > "$WORK/inflight.txt" 2>&1
+  grep -q "^  rank 1 .* up to 6 tiles in flight" "$WORK/inflight.txt" ||
+    fail "--prefetch 2 with 3 threads: not 6 tiles in flight: $(grep '^  rank 1' "$WORK/inflight.txt")"
+  echo "ok: tiles in flight follow the worker's threads"
+else
+  fail "in-flight run failed: $(tail -3 "$WORK/inflight.txt")"
+fi
 finish

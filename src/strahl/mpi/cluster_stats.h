@@ -13,6 +13,7 @@ struct RankStats {
   double busy = 0;  // seconds its render threads spent rendering, per thread
   double idle = 0;  // seconds of the render it was not rendering, per thread
   double comm = 0;  // seconds its MPI thread spent inside MPI calls
+  int most_in_flight = 0;  // a worker: the most tiles it held at once (prefetch × threads when tiles were plenty)
   bool lost = false;
 };
 

@@ -2,6 +2,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <atomic>
 #include <thread>
 
@@ -29,6 +30,7 @@ Master::Master(Comm& comm, MasterOptions options) : comm_(comm), options_(std::m
   for (int r = 1; r < comm_.size(); ++r) {
     Worker w;
     w.rank = r;
+    if (std::size_t(r) < options_.worker_threads.size()) w.threads = std::max(1, options_.worker_threads[std::size_t(r)]);
     workers_.push_back(std::move(w));
   }
 }
@@ -164,12 +166,13 @@ void Master::render_pass(RenderJob& job) {
     for (Worker& w : workers_) {
       if (w.lost) continue;
       ++live;
-      while (!stopping && int(w.in_flight.size()) < options_.prefetch) {
+      while (!stopping && int(w.in_flight.size()) < options_.prefetch * w.threads) {
         std::optional<TileWork> t = take(job);
         if (!t) break;
         const int index = t->index;
         if (w.in_flight.empty()) w.last_heard = Clock::now();  // its clock starts with its first tile
         w.in_flight.emplace(index, std::move(*t));
+        w.most_in_flight = std::max(w.most_in_flight, int(w.in_flight.size()));
         if (!comm_.send(w.rank, kTask, encode_tile(w.in_flight.at(index), TilePart::Request))) {
           lose(w, "a send failed");
           break;
@@ -269,6 +272,7 @@ ClusterStats Master::finish(double render_seconds) {
     RankStats r;
     r.rank = w.rank;
     r.tiles = w.tiles;
+    r.most_in_flight = w.most_in_flight;
     const auto it = stats_messages_.find(w.rank);
     if (!w.lost && it != stats_messages_.end()) {
       try {

@@ -24,7 +24,8 @@ namespace strahl::mpi {
 
 struct MasterOptions {
   int threads = 1;         // rank 0's own render threads (0: none)
-  int prefetch = 3;        // tiles in flight per worker
+  int prefetch = 3;        // tiles in flight per render thread of a worker
+  std::vector<int> worker_threads;  // render threads per rank (index = rank; agree_on_scene); 1 where absent
   double timeout = 30;     // seconds without a word from a worker holding tiles: lost
   double stop_grace = 5;   // after a stop, seconds to wait for the workers' partial tiles
   std::FILE* tile_log = nullptr;  // one line per tile: pass index rank cpu_s request_B result_B samples
@@ -47,9 +48,11 @@ class Master final : public TileBackend {
   struct Worker {
     int rank = 0;
     bool lost = false;
+    int threads = 1;  // its render threads: it gets prefetch × threads tiles in flight
     std::map<int, TileWork> in_flight;  // tile index → the request sent
     std::chrono::steady_clock::time_point last_heard{};
     std::uint64_t tiles = 0;
+    int most_in_flight = 0;
   };
 
   std::optional<TileWork> take(RenderJob& job);

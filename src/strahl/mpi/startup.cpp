@@ -1,5 +1,6 @@
 #include "strahl/mpi/startup.h"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 #include <vector>
@@ -18,8 +19,10 @@ std::string hex(std::uint64_t v) {
 }
 }  // namespace
 
-std::string agree_on_scene(Comm& comm, std::uint64_t own_hash, const std::string& own_error, double timeout) {
+std::string agree_on_scene(Comm& comm, std::uint64_t own_hash, const std::string& own_error, double timeout,
+                           std::vector<int>* threads) {
   std::string problem = own_error.empty() ? "" : "rank 0: " + own_error;
+  if (threads) threads->assign(std::size_t(comm.size()), 1);
   std::vector<bool> heard(std::size_t(comm.size()), false);
   int missing = comm.size() - 1;
   const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
@@ -36,6 +39,7 @@ std::string agree_on_scene(Comm& comm, std::uint64_t own_hash, const std::string
       std::size_t at = 0;
       const std::uint64_t hash = get_u64(m->bytes, at);
       const std::string error = get_string(m->bytes, at);
+      if (threads && at < m->bytes.size()) (*threads)[std::size_t(m->from)] = int(std::clamp<std::uint64_t>(get_u64(m->bytes, at), 1, 4096));
       if (!error.empty())
         problem = "rank " + std::to_string(m->from) + ": " + error;
       else if (hash != own_hash)
@@ -52,10 +56,11 @@ std::string agree_on_scene(Comm& comm, std::uint64_t own_hash, const std::string
   return problem;
 }
 
-bool report_scene(Comm& comm, std::uint64_t hash, const std::string& error, double timeout) {
+bool report_scene(Comm& comm, std::uint64_t hash, const std::string& error, double timeout, int threads) {
   std::vector<std::uint8_t> hello;
   put_u64(hello, hash);
   put_string(hello, error);
+  put_u64(hello, std::uint64_t(std::max(1, threads)));
   comm.send(0, kHello, std::move(hello));
   const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
   while (Clock::now() < end) {
