@@ -9,5 +9,6 @@
 #include "strahl/scene/scene.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
+#include "strahl/scene/csg.h"
 #include "strahl/scene/solids.h"
 #include "strahl/version.h"

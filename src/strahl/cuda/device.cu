@@ -23,11 +23,11 @@ namespace strahl::cuda_detail {
 // (Impl::device_view) member by member: a kernel reading an array not uploaded would read host
 // memory. So a new member of SceneView, AccelView or PrimitiveSet stops the build here until it
 // is uploaded and mapped below — then update these sizes.
-static_assert(sizeof(SceneView) - sizeof(AccelView) == 424 && sizeof(PrimitiveSet) == 104 &&
+static_assert(sizeof(SceneView) - sizeof(AccelView) == 424 && sizeof(PrimitiveSet) == 136 &&
 #if defined(STRAHL_HAVE_EMBREE)
-                  sizeof(AccelView) == 360,
+                  sizeof(AccelView) == 392,
 #else
-                  sizeof(AccelView) == 352,
+                  sizeof(AccelView) == 384,
 #endif
               "SceneView changed: upload and map its new arrays in cuda/device.cu, then update these sizes");
 
@@ -199,7 +199,9 @@ struct Device::Impl {
            map(out.solids) && map(out.accel.prims.solids) && map(out.accel.prims.shapes.boxes) &&
            map(out.accel.prims.shapes.cones) && map(out.accel.prims.shapes.disks) && map(out.accel.prims.shapes.tori) &&
            map(out.accel.prims.shapes.quadrics) && map(out.accel.prims.shapes.implicits) &&
-           map_mutable(out.accel.prims.shapes.tallies) &&
+           map_mutable(out.accel.prims.shapes.tallies) && map(out.accel.prims.shapes.spheres) &&
+           map(out.accel.prims.shapes.csgs) && map(out.accel.prims.shapes.csg_code) &&
+           map(out.accel.prims.shapes.csg_leaves) &&
            out.accel.kdtree.nodes == nullptr && out.accel.octree.nodes == nullptr;
   }
 };
@@ -272,7 +274,9 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
         ok(m.copy_array(rs.moving_bvh.prims)) && ok(m.copy_array(rs.materials)) && ok(m.copy_array(rs.lights)) &&
         ok(m.copy_array(rs.solids)) && ok(m.copy_array(rs.boxes)) && ok(m.copy_array(rs.cones)) &&
         ok(m.copy_array(rs.disks)) && ok(m.copy_array(rs.tori)) && ok(m.copy_array(rs.quadrics)) &&
-        ok(m.copy_array(rs.implicits)) && ok(m.copy_array(rs.implicit_tallies)))) {
+        ok(m.copy_array(rs.implicits)) && ok(m.copy_array(rs.implicit_tallies)) &&
+        ok(m.copy_array(rs.solid_spheres)) && ok(m.copy_array(rs.csgs)) && ok(m.copy_array(rs.csg_code)) &&
+        ok(m.copy_array(rs.csg_leaves)))) {
     error = (e == cudaErrorMemoryAllocation ? "out of GPU memory uploading the scene (" : "scene upload failed (") +
             cuda_message(e) + ")";
     return false;

@@ -1,175 +1,19 @@
 #pragma once
-// The solids (box, cylinder/cone, disk, torus, quadric, implicit) as one kind of primitive: a
-// small handle (kind, index into the array of that kind, material) and functions that dispatch
-// on the kind with a switch — bounds, nearest hit, crossings for shadow rays, the entry/exit
-// crossings along a ray and the inside test (what CSG combines). Kernel code: plain data, no
-// virtual calls, no allocation.
-//
-// Implicit surfaces note the steepest gradient their root finding met (for the end-of-render
-// warning) in an ImplicitTally per object, raised with an atomic maximum.
+// The solids as the acceleration structures and the renderer see them: nearest hit, crossings
+// for shadow rays, normal and inside test of any solid handle, a leaf shape
+// (geometry/solid_leaf.h) or a CSG tree (geometry/csg.h), dispatched by kind.
 
-#include <atomic>
-#include <cstdint>
-#include <cstring>
-
-#include "strahl/geometry/box.h"
-#include "strahl/geometry/cone.h"
-#include "strahl/geometry/disk.h"
-#include "strahl/geometry/implicit.h"
-#include "strahl/geometry/quadric.h"
-#include "strahl/geometry/torus.h"
-#include "strahl/math/bounds.h"
+#include "strahl/geometry/csg.h"
 
 namespace strahl::kernel {
-
-enum class SolidKind : std::uint8_t { Box, Cone, Disk, Torus, Quadric, Implicit };
-
-struct Solid {
-  SolidKind kind = SolidKind::Box;
-  std::uint32_t index = 0;     // into the array of its kind
-  std::uint32_t material = 0;
-};
-
-// What the root finding of one implicit surface met over a whole render (all threads).
-struct ImplicitTally {
-  std::uint64_t max_gradient_bits = 0;  // a non-negative double's bits: ordered as integers
-  std::uint64_t exhausted = 0;
-};
-
-STRAHL_HOST_DEVICE inline void tally(ImplicitTally& t, const ImplicitStats& s) {
-  if (s.max_gradient > 0) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &s.max_gradient, sizeof bits);
-#if defined(__CUDA_ARCH__)
-    atomicMax(reinterpret_cast<unsigned long long*>(&t.max_gradient_bits), (unsigned long long)bits);
-#else
-    std::atomic_ref<std::uint64_t> m(t.max_gradient_bits);
-    std::uint64_t seen = m.load(std::memory_order_relaxed);
-    while (bits > seen && !m.compare_exchange_weak(seen, bits, std::memory_order_relaxed)) {
-    }
-#endif
-  }
-  if (s.exhausted > 0) {
-#if defined(__CUDA_ARCH__)
-    atomicAdd(reinterpret_cast<unsigned long long*>(&t.exhausted), (unsigned long long)s.exhausted);
-#else
-    std::atomic_ref<std::uint64_t>(t.exhausted).fetch_add(s.exhausted, std::memory_order_relaxed);
-#endif
-  }
-}
-
-inline Real max_gradient_of(const ImplicitTally& t) {
-  Real g;
-  std::memcpy(&g, &t.max_gradient_bits, sizeof g);
-  return g;
-}
-
-// The arrays the handles index.
-struct SolidArrays {
-  const Box* boxes = nullptr;
-  const Cone* cones = nullptr;
-  const Disk* disks = nullptr;
-  const Torus* tori = nullptr;
-  const Quadric* quadrics = nullptr;
-  const Implicit* implicits = nullptr;
-  ImplicitTally* tallies = nullptr;  // one per implicit
-};
-
-// Whether the solid has an inside (its crossings alternate between entering and leaving).
-STRAHL_HOST_DEVICE inline bool closed(const SolidArrays& a, const Solid& s) {
-  switch (s.kind) {
-    case SolidKind::Cone: return !a.cones[s.index].open;
-    case SolidKind::Disk: return false;
-    case SolidKind::Quadric: return !a.quadrics[s.index].clipped;
-    default: return true;
-  }
-}
-
-// Bounds (host: building the structures). An unclipped quadric has none (infinite).
-inline Bounds bounds(const SolidArrays& a, const Solid& s) {
-  Bounds b;
-  switch (s.kind) {
-    case SolidKind::Box: b.extend(a.boxes[s.index].lo); b.extend(a.boxes[s.index].hi); break;
-    case SolidKind::Cone: {
-      const Cone& c = a.cones[s.index];
-      const Vec3 cap = c.base + c.axis * c.height;
-      // A disk of radius r around axis w extends r·√(1 − w_i²) along axis i.
-      const Vec3 w = c.axis;
-      const Vec3 e(std::sqrt(std::fmax(0.0, 1 - w.x * w.x)), std::sqrt(std::fmax(0.0, 1 - w.y * w.y)),
-                   std::sqrt(std::fmax(0.0, 1 - w.z * w.z)));
-      b.extend(c.base - e * c.base_radius);
-      b.extend(c.base + e * c.base_radius);
-      b.extend(cap - e * c.cap_radius);
-      b.extend(cap + e * c.cap_radius);
-      break;
-    }
-    case SolidKind::Disk: {
-      const Disk& d = a.disks[s.index];
-      const Vec3 w = d.normal;
-      const Vec3 e(std::sqrt(std::fmax(0.0, 1 - w.x * w.x)), std::sqrt(std::fmax(0.0, 1 - w.y * w.y)),
-                   std::sqrt(std::fmax(0.0, 1 - w.z * w.z)));
-      b.extend(d.center - e * d.radius);
-      b.extend(d.center + e * d.radius);
-      break;
-    }
-    case SolidKind::Torus: {
-      const Torus& t = a.tori[s.index];
-      const Vec3 w = t.axis;
-      const Vec3 e(std::sqrt(std::fmax(0.0, 1 - w.x * w.x)), std::sqrt(std::fmax(0.0, 1 - w.y * w.y)),
-                   std::sqrt(std::fmax(0.0, 1 - w.z * w.z)));
-      b.extend(t.center - e * t.major - Vec3(t.minor));
-      b.extend(t.center + e * t.major + Vec3(t.minor));
-      break;
-    }
-    case SolidKind::Quadric: {
-      const Quadric& q = a.quadrics[s.index];
-      if (q.clipped) {
-        b.extend(q.lo);
-        b.extend(q.hi);
-      } else {
-        b.extend(Vec3(-kInfinity));
-        b.extend(Vec3(kInfinity));
-      }
-      break;
-    }
-    case SolidKind::Implicit: {
-      const Implicit& m = a.implicits[s.index];
-      if (m.bound == ImplicitBound::Sphere) {
-        b.extend(m.center - Vec3(m.radius));
-        b.extend(m.center + Vec3(m.radius));
-      } else {
-        b.extend(m.lo);
-        b.extend(m.hi);
-      }
-      break;
-    }
-  }
-  return b;
-}
 
 // Every crossing of the surface in (t_min, t_max), front to back: calls visit(const
 // SolidCrossing&), which returns true to stop.
 template <class Visit>
 STRAHL_HOST_DEVICE inline void for_each_solid_crossing(const SolidArrays& a, const Solid& s, const Ray& ray,
                                                        Real t_min, Real t_max, Visit&& visit) {
-  CrossingList list;
-  switch (s.kind) {
-    case SolidKind::Box: line_crossings(a.boxes[s.index], ray, list); break;
-    case SolidKind::Cone: line_crossings(a.cones[s.index], ray, list); break;
-    case SolidKind::Disk: line_crossings(a.disks[s.index], ray, list); break;
-    case SolidKind::Torus: line_crossings(a.tori[s.index], ray, list); break;
-    case SolidKind::Quadric: line_crossings(a.quadrics[s.index], ray, list); break;
-    case SolidKind::Implicit: {
-      ImplicitStats stats;
-      for_each_implicit_crossing(a.implicits[s.index], ray, t_min, t_max, stats, [&](const ImplicitCrossing& c) {
-        return visit(SolidCrossing{c.t, std::uint8_t(c.on_bound ? 1 : 0), c.entering});
-      });
-      if (a.tallies != nullptr) tally(a.tallies[s.index], stats);
-      return;
-    }
-  }
-  for (int i = 0; i < list.n; ++i)
-    if (list.c[i].t > t_min && list.c[i].t < t_max && visit(list.c[i])) return;
+  if (s.kind == SolidKind::Csg) for_each_csg_crossing(a, a.csgs[s.index], ray, t_min, t_max, visit);
+  else for_each_leaf_crossing(a, s, ray, t_min, t_max, visit);
 }
 
 // The nearest crossing in (t_min, t_max); t = kInfinity when none. Kept out of line: the
@@ -197,29 +41,15 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE inline int crossings(const SolidArrays& a, co
 
 // Outward unit normal at a surface point of part `part`.
 STRAHL_HOST_DEVICE inline Vec3 normal_at(const SolidArrays& a, const Solid& s, int part, const Vec3& p) {
-  switch (s.kind) {
-    case SolidKind::Box: return normal_at(a.boxes[s.index], part);
-    case SolidKind::Cone: return normal_at(a.cones[s.index], part, p);
-    case SolidKind::Disk: return a.disks[s.index].normal;
-    case SolidKind::Torus: return normal_at(a.tori[s.index], p);
-    case SolidKind::Quadric: return normal_at(a.quadrics[s.index], p);
-    case SolidKind::Implicit: return normal_at(a.implicits[s.index], p, part == 1);
-  }
-  return Vec3(0, 1, 0);
+  if (s.kind == SolidKind::Csg) return csg_normal_at(a, a.csgs[s.index], std::uint32_t(part), p);
+  return leaf_normal_at(a, s, part, p);
 }
 
 // Is p inside the solid? (false for open surfaces: disks, open cones, clipped quadrics are not
 // solids; a clipped quadric answers for its clipped region.)
 STRAHL_HOST_DEVICE inline bool inside(const SolidArrays& a, const Solid& s, const Vec3& p) {
-  switch (s.kind) {
-    case SolidKind::Box: return inside(a.boxes[s.index], p);
-    case SolidKind::Cone: return !a.cones[s.index].open && inside(a.cones[s.index], p);
-    case SolidKind::Disk: return false;
-    case SolidKind::Torus: return inside(a.tori[s.index], p);
-    case SolidKind::Quadric: return inside(a.quadrics[s.index], p);
-    case SolidKind::Implicit: return inside(a.implicits[s.index], p);
-  }
-  return false;
+  if (s.kind == SolidKind::Csg) return csg_inside(a, a.csgs[s.index], p);
+  return leaf_inside(a, s, p);
 }
 
 }  // namespace strahl::kernel

@@ -12,7 +12,7 @@ namespace strahl::kernel {
 
 struct SolidCrossing {
   Real t = kInfinity;
-  std::uint8_t part = 0;  // which piece of the surface (for the normal); kind-specific
+  std::uint32_t part = 0;  // which piece of the surface (for the normal); kind-specific (CSG: geometry/csg.h)
   bool entering = false;  // from outside the solid to inside along the ray
 };
 
@@ -24,7 +24,7 @@ struct CrossingList {
   int n = 0;
 
   STRAHL_HOST_DEVICE void add(Real t, int part, bool entering) {
-    if (n < kMaxLineCrossings && t == t) c[n++] = {t, std::uint8_t(part), entering};
+    if (n < kMaxLineCrossings && t == t) c[n++] = {t, std::uint32_t(part), entering};
   }
   // Sorts by t (insertion sort: at most four) and, for a closed solid, drops a crossing that
   // repeats the previous one's direction (a ray through a rim met by the side and by the cap at

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "strahl/math/ray.h"
+#include "strahl/geometry/solid_crossing.h"
 
 namespace strahl::kernel {
 
@@ -53,5 +53,21 @@ STRAHL_HOST_DEVICE inline int crossings(const Sphere& s, const Ray& ray, Real t_
 
 // Outward unit normal at a surface point: (p − c)/R, as in the lecture.
 STRAHL_HOST_DEVICE inline Vec3 normal_at(const Sphere& s, const Vec3& p) { return (p - s.center) / s.radius; }
+
+// Both crossings with the whole line, for CSG (the sphere as an operand): the chord from the
+// point of the line nearest the centre (ShiftedRay), exact at any distance from the origin.
+STRAHL_HOST_DEVICE inline void line_crossings(const Sphere& s, const Ray& ray, CrossingList& out) {
+  const ShiftedRay r = shifted_ray(ray, s.center);
+  const Vec3 o = r.origin - s.center;
+  const Real disc = s.radius * s.radius - dot(o, o);
+  if (!(disc >= 0)) return;
+  const Real half = std::sqrt(disc);
+  out.add(r.t(-half), 0, true);
+  out.add(r.t(half), 0, false);
+}
+
+STRAHL_HOST_DEVICE inline bool inside(const Sphere& s, const Vec3& p) {
+  return length_squared(p - s.center) < s.radius * s.radius;
+}
 
 }  // namespace strahl::kernel

@@ -29,6 +29,12 @@ struct RenderScene {
   std::vector<kernel::Implicit> implicits;
   mutable std::vector<kernel::ImplicitTally> implicit_tallies;
   std::vector<FileLoc> implicit_locs;  // for the end-of-render warning
+  // CSG trees (geometry/csg.h): each a range of csg_code and of csg_leaves (handles into the
+  // arrays above, and into solid_spheres: spheres that are CSG operands).
+  std::vector<kernel::Sphere> solid_spheres;
+  std::vector<kernel::Csg> csgs;
+  std::vector<kernel::CsgInstruction> csg_code;
+  std::vector<kernel::Solid> csg_leaves;
   Accel accel;  // built by compile() over spheres, triangles and the bounded solids
   std::vector<kernel::MovingSphere> moving_spheres;
   std::vector<kernel::MovingTriangle> moving_triangles;
@@ -44,8 +50,9 @@ struct RenderScene {
   std::vector<std::string> warnings;
 
   kernel::SolidArrays shapes() const {
-    return {boxes.data(), cones.data(), disks.data(), tori.data(), quadrics.data(), implicits.data(),
-            implicit_tallies.data()};
+    return {boxes.data(),        cones.data(),        disks.data(), tori.data(),     quadrics.data(),
+            implicits.data(),    implicit_tallies.data(), solid_spheres.data(), csgs.data(), csg_code.data(),
+            csg_leaves.data()};
   }
 
   PrimitiveSet primitives() const {

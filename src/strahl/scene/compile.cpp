@@ -355,8 +355,14 @@ RenderScene compile(const Scene& scene) {
     out.materials.push_back(object->material);
     object->compile_into(out, material_index, object_id++);
   }
-  // Bounded solids first (they enter the acceleration structure), unclipped quadrics after.
+  // Bounded solids first (they enter the acceleration structure), unclipped quadrics and CSG
+  // trees without bounds (an inverse, a union with such a quadric) after.
   const auto unbounded = [&](const kernel::Solid& k) {
+    if (k.kind == kernel::SolidKind::Csg) {
+      const kernel::Csg& g = out.csgs[k.index];
+      return !(std::isfinite(g.lo.x) && std::isfinite(g.lo.y) && std::isfinite(g.lo.z) && std::isfinite(g.hi.x) &&
+               std::isfinite(g.hi.y) && std::isfinite(g.hi.z));
+    }
     return k.kind == kernel::SolidKind::Quadric && !out.quadrics[k.index].clipped;
   };
   std::stable_partition(out.solids.begin(), out.solids.end(), [&](const kernel::Solid& k) { return !unbounded(k); });
@@ -378,7 +384,7 @@ RenderScene compile(const Scene& scene) {
     }
     out.lights.push_back(light);
   }
-  out.warnings = scene.warnings;
+  out.warnings.insert(out.warnings.begin(), scene.warnings.begin(), scene.warnings.end());  // before compile()'s own
   add_light_warnings(scene, out);
   check_cancelled("build");
   out.accel = build_accel(s.accel, out.primitives());

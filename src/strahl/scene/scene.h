@@ -234,6 +234,12 @@ class Scene {
   }
 
   const std::vector<std::unique_ptr<SceneObject>>& objects() const { return objects_; }
+  // Takes the last object added back out (the YAML loader reads a CSG's operands so).
+  std::unique_ptr<SceneObject> take_last() {
+    std::unique_ptr<SceneObject> o = std::move(objects_.back());
+    objects_.pop_back();
+    return o;
+  }
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<FileLoc>& light_locs() const { return light_locs_; }
 

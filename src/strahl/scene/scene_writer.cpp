@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "strahl/image/output_file.h"
+#include "strahl/scene/csg.h"
 #include "strahl/scene/solids.h"
 #include "strahl/shading/light.h"
 
@@ -154,12 +155,34 @@ bool solid(Writer& w, const SceneObject& o) {
   return true;
 }
 
+void sphere(Writer& w, const Sphere& s) {
+  w.line(2, "- type: sphere");
+  w.line(4, "center: " + Writer::vec(s.center, "sphere center"));
+  w.line(4, "radius: " + Writer::num(s.radius, "sphere radius"));
+}
+
+// A CSG node (scene/csg.h): its type and its objects, each written as at the top level (without
+// a material: the outermost node's applies) and indented under `objects:`.
+void csg(Writer& w, const Csg& c) {
+  w.line(2, std::string("- type: ") + csg_operation_name(c.operation));
+  w.line(4, "objects:");
+  for (const auto& child : c.children) {
+    Writer sub;
+    if (const auto* n = dynamic_cast<const Csg*>(child.get())) csg(sub, *n);
+    else if (const auto* s = dynamic_cast<const Sphere*>(child.get())) sphere(sub, *s);
+    else if (!solid(sub, *child)) throw Error(child->loc, "cannot write this kind of object as an object of a CSG");
+    std::size_t start = 0;
+    for (std::size_t end; (end = sub.text.find('\n', start)) != std::string::npos; start = end + 1)
+      w.line(4, sub.text.substr(start, end - start));
+  }
+}
+
 void object(Writer& w, const SceneObject& o, const std::string& mesh_stem, int& meshes) {
   using W = Writer;
   if (const auto* s = dynamic_cast<const Sphere*>(&o)) {
-    w.line(2, "- type: sphere");
-    w.line(4, "center: " + W::vec(s->center, "sphere center"));
-    w.line(4, "radius: " + W::num(s->radius, "sphere radius"));
+    sphere(w, *s);
+  } else if (const auto* c = dynamic_cast<const Csg*>(&o)) {
+    csg(w, *c);
   } else if (const auto* p = dynamic_cast<const Plane*>(&o)) {
     w.line(2, "- type: plane");
     w.line(4, "normal: " + W::vec(p->normal, "plane normal"));

@@ -47,6 +47,7 @@ class LimitChecker : public YAML::EventHandler {
   struct Container {
     bool map;
     bool long_allowed;
+    bool csg_objects = false;  // a CSG node's `objects`: up to kMaxCsgList
     std::size_t entries = 0;  // for a map: keys and values
     std::string key;          // the last key of a map (scalars only)
   };
@@ -73,10 +74,13 @@ class LimitChecker : public YAML::EventHandler {
       if (!c.long_allowed && c.entries > 2 * kMaxShortMap)
         fail(mark, "a map of more than " + std::to_string(kMaxShortMap) +
                        " keys; no map in a scene file holds that many (only the top-level 'materials')");
-    } else if (!c.long_allowed && c.entries > kMaxShortList) {
+    } else if (c.csg_objects && c.entries > kMaxCsgList) {
+      fail(mark, "a CSG node's objects list of more than " + std::to_string(kMaxCsgList) +
+                     " elements (a CSG tree holds at most 256 solids)");
+    } else if (!c.long_allowed && !c.csg_objects && c.entries > kMaxShortList) {
       fail(mark, "a list of more than " + std::to_string(kMaxShortList) +
                      " elements; no list in a scene file holds that many (only the top-level 'objects' and "
-                     "'lights'; put large geometry in a mesh file)");
+                     "'lights', and a CSG's 'objects'; put large geometry in a mesh file)");
     }
   }
 
@@ -93,7 +97,10 @@ class LimitChecker : public YAML::EventHandler {
         objects_depth_ = stack_.size() + 1;
       }
     }
-    stack_.push_back({map, long_allowed, 0, {}});
+    // So may a CSG node's 'objects', up to kMaxCsgList (scene/csg.h).
+    const bool csg_objects = !map && stack_.size() > 1 && stack_.back().map && stack_.back().entries % 2 == 0 &&
+                             stack_.back().key == "objects";
+    stack_.push_back({map, long_allowed, csg_objects, 0, {}});
   }
 
   void close() {

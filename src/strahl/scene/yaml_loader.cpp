@@ -19,6 +19,7 @@
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
+#include "strahl/scene/yaml_csg.h"
 #include "strahl/scene/yaml_limits.h"
 #include "strahl/shading/area_light.h"
 #include "strahl/util/cancel.h"
@@ -483,12 +484,29 @@ class Reader {
       added = &scene.add(Mesh(std::move(data), m, t));
     } else if (SceneObject* solid = this->solid(type, n, scene)) {
       added = solid;
+    } else if (is_csg_type(type)) {
+      added = &scene.add(csg(n, type));
     } else {
       fail(n["type"], "unknown object type '" + type +
-                          "' (sphere, plane, triangle, mesh, box, cylinder, cone, disk, torus, quadric or implicit)");
+                          "' (sphere, plane, triangle, mesh, box, cylinder, cone, disk, torus, quadric, implicit, "
+                          "union, intersection, difference, merge or inverse)");
     }
     added->loc = loc(n);
     if (const auto m = n["motion"]) added->motion = motion(m);
+  }
+
+  // A CSG node (scene/yaml_csg.cpp); its solid operands are read here as objects of their own.
+  Csg csg(const YAML::Node& n, const std::string& type) const {
+    CsgReader r;
+    r.loc = [this](const YAML::Node& x) { return loc(x); };
+    r.keys = [this](const YAML::Node& x, Keys allowed, const std::string& what) { keys(x, allowed, what); };
+    r.material = [this](const YAML::Node& x) { return object_material(x); };
+    r.solid = [this](const YAML::Node& x) {
+      Scene operand;
+      object(x, operand);
+      return operand.take_last();
+    };
+    return read_csg(n, type, r);
   }
 
   // [[x, y, z], [x, y, z]]: two opposite corners.

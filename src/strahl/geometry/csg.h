@@ -1,0 +1,238 @@
+#pragma once
+// Constructive solid geometry over crossing intervals. Every operand answers, along a ray's range
+// (t_min, t_max), whether the range starts inside it and its surface crossings front to back, each
+// with the side it leaves the ray on ("inside after", SolidCrossing::entering): a list. The tree's
+// postfix program (geometry/csg_program.h) combines lists on a fixed-size stack, so it runs
+// unchanged on a GPU: no allocation, no recursion, no virtual calls.
+//
+// Which surfaces a node keeps (POV-Ray's rules, on crossings):
+//   union         every crossing of every operand (inner surfaces stay visible);
+//   merge         a crossing where the union's side changes (no inner surfaces);
+//   intersection  a crossing where the side of "inside all" changes, and an operand's inner
+//                 surface (a union's) where the other operand is inside;
+//   inverse       every crossing, sides swapped, its normal flipped;
+//   difference    A ∩ inverse(B) (compiled so): B's surface inside A, normal flipped.
+// Coincident surfaces: crossings at exactly the same t are taken as one group, the sides of the
+// operands before and after the group decide, and at most one crossing stands for a change of
+// side. So A − A and A ∩ B with A, B touching are empty, A ∩ A = A, and two boxes sharing a
+// face merge without a crossing there: no sparkles from a coin toss of rounding. (Surfaces that
+// coincide only up to rounding are ordinary separate crossings, as in POV-Ray.)
+//
+// A list holds at most kMaxCsgCrossings crossings. When one would overflow (an implicit surface
+// with many crossings, a union of many operands along one ray) it keeps those before the first
+// crossing it cannot hold and says so in `valid_until`; the caller evaluates the tree again
+// from there (for_each_csg_crossing), at most kMaxCsgRounds times per query.
+//
+// A crossing's part: leaf index << 16 | kCsgFlip if the normal is flipped | the leaf's own part.
+
+#include <cmath>
+#include <cstdint>
+
+#include "strahl/geometry/solid_leaf.h"
+
+namespace strahl::kernel {
+
+inline constexpr int kMaxCsgCrossings = 32;
+inline constexpr int kMaxCsgRounds = 64;
+inline constexpr std::uint32_t kCsgFlip = 0x8000;
+
+STRAHL_HOST_DEVICE inline std::uint32_t csg_part(std::uint32_t leaf, std::uint32_t part) {
+  return (leaf << 16) | (part & 0x7fff);
+}
+
+struct CsgList {
+  SolidCrossing c[kMaxCsgCrossings];
+  int n = 0;
+  bool start_inside = false;
+  Real valid_until = kInfinity;  // the list is complete for t < valid_until
+
+  // Appends a crossing (t not below the last); false when the list is full: it then ends before t.
+  STRAHL_HOST_DEVICE bool add(Real t, std::uint32_t part, bool inside_after) {
+    if (!(t < valid_until)) return false;
+    if (n == kMaxCsgCrossings) {
+      valid_until = t;
+      while (n > 0 && c[n - 1].t >= t) --n;
+      return false;
+    }
+    c[n++] = {t, part, inside_after};
+    return true;
+  }
+};
+
+// A leaf's list over (t_min, t_max). Crossings that repeat the current side (a tangent ray, a
+// root finder's double report) are dropped, so sides alternate.
+STRAHL_HOST_DEVICE inline void csg_leaf_list(const SolidArrays& a, const Solid& s, std::uint32_t leaf, const Ray& ray,
+                                             Real t_min, Real t_max, CsgList& out) {
+  out.n = 0;
+  out.valid_until = kInfinity;
+  bool side = false;
+  if (s.kind == SolidKind::Implicit) {
+    bool known = false;
+    for_each_leaf_crossing(a, s, ray, t_min, t_max, [&](const SolidCrossing& c) {
+      if (!known) {
+        known = true;
+        side = out.start_inside = !c.entering;
+      }
+      if (c.entering == side) return false;
+      side = c.entering;
+      return !out.add(c.t, csg_part(leaf, c.part), side);
+    });
+    // No crossing in the range: all of it on one side (outside, past a bounded solid's far end).
+    if (!known) out.start_inside = std::isfinite(t_max) && leaf_inside(a, s, ray.at((t_min + t_max) / 2));
+    return;
+  }
+  CrossingList list;
+  leaf_line_crossings(a, s, ray, list);
+  // The side at t_min: after the last crossing up to it, else before the first after it.
+  int i = 0;
+  while (i < list.n && !(list.c[i].t > t_min)) ++i;
+  if (i > 0) side = list.c[i - 1].entering;
+  else if (list.n > 0) side = !list.c[0].entering;
+  else if (s.kind == SolidKind::Quadric) side = leaf_inside(a, s, ray.at(std::isfinite(t_min) ? t_min : 0));  // unbounded
+  out.start_inside = side;
+  for (; i < list.n && list.c[i].t < t_max; ++i) {
+    if (list.c[i].entering == side) continue;
+    side = list.c[i].entering;
+    if (!out.add(list.c[i].t, csg_part(leaf, list.c[i].part), side)) return;
+  }
+}
+
+STRAHL_HOST_DEVICE inline bool csg_apply(CsgOp op, bool a, bool b) {
+  return op == CsgOp::Intersection ? (a && b) : (a || b);
+}
+
+STRAHL_HOST_DEVICE inline void csg_invert(CsgList& l) {
+  l.start_inside = !l.start_inside;
+  for (int k = 0; k < l.n; ++k) {
+    l.c[k].entering = !l.c[k].entering;
+    l.c[k].part ^= kCsgFlip;
+  }
+}
+
+// r = op(a, b) (Union, Intersection or Merge), by the rules at the top of this file.
+STRAHL_HOST_DEVICE inline void csg_combine(CsgOp op, const CsgList& a, const CsgList& b, CsgList& r) {
+  r.n = 0;
+  r.valid_until = a.valid_until < b.valid_until ? a.valid_until : b.valid_until;
+  bool sa = a.start_inside, sb = b.start_inside;
+  bool side = csg_apply(op, sa, sb);
+  r.start_inside = side;
+  int ia = 0, ib = 0;
+  for (;;) {
+    const Real ta = ia < a.n ? a.c[ia].t : kInfinity, tb = ib < b.n ? b.c[ib].t : kInfinity;
+    const Real t = ta < tb ? ta : tb;
+    if (!(t < r.valid_until)) break;
+    // The group of crossings at exactly t, from either operand.
+    const int a0 = ia, b0 = ib;
+    const bool sa0 = sa, sb0 = sb;
+    while (ia < a.n && a.c[ia].t == t) sa = a.c[ia++].entering;
+    while (ib < b.n && b.c[ib].t == t) sb = b.c[ib++].entering;
+    const bool next = csg_apply(op, sa, sb);
+    bool ok = true;
+    if (op == CsgOp::Union) {
+      for (int k = a0; k < ia && ok; ++k) ok = r.add(t, a.c[k].part, next);
+      for (int k = b0; k < ib && ok; ++k) ok = r.add(t, b.c[k].part, next);
+    } else if (next != side) {
+      // One crossing stands for the change: the last of an operand whose side changed, A's first.
+      const SolidCrossing& c = sa != sa0 ? a.c[ia - 1] : b.c[ib - 1];
+      ok = r.add(t, c.part, next);
+    } else if (op == CsgOp::Intersection && side) {
+      // Inside both before and after: an operand's inner surfaces (its side unchanged) stay.
+      if (sa == sa0)
+        for (int k = a0; k < ia && ok; ++k) ok = r.add(t, a.c[k].part, next);
+      if (sb == sb0)
+        for (int k = b0; k < ib && ok; ++k) ok = r.add(t, b.c[k].part, next);
+    }
+    side = next;
+    if (!ok) break;
+  }
+}
+
+STRAHL_HOST_DEVICE inline void csg_copy(const CsgList& from, CsgList& to) {
+  to.n = from.n;
+  to.start_inside = from.start_inside;
+  to.valid_until = from.valid_until;
+  for (int k = 0; k < from.n; ++k) to.c[k] = from.c[k];
+}
+
+// Runs the tree's program over (t_min, t_max); the result is stack[0].
+struct CsgStack {
+  CsgList list[kMaxCsgStack + 1];  // the last one is the combining step's scratch
+};
+
+STRAHL_HOST_DEVICE inline void csg_evaluate(const SolidArrays& a, const Csg& g, const Ray& ray, Real t_min, Real t_max,
+                                            CsgStack& st) {
+  int sp = 0;
+  for (std::uint32_t i = 0; i < g.instruction_count; ++i) {
+    const CsgInstruction& in = a.csg_code[g.first_instruction + i];
+    switch (in.op) {
+      case CsgOp::Leaf:
+        if (sp < kMaxCsgStack) csg_leaf_list(a, a.csg_leaves[g.first_leaf + in.leaf], in.leaf, ray, t_min, t_max, st.list[sp++]);
+        break;
+      case CsgOp::Inverse:
+        if (sp >= 1) csg_invert(st.list[sp - 1]);
+        break;
+      default:
+        if (sp >= 2) {
+          csg_combine(in.op, st.list[sp - 2], st.list[sp - 1], st.list[kMaxCsgStack]);
+          csg_copy(st.list[kMaxCsgStack], st.list[sp - 2]);
+          --sp;
+        }
+        break;
+    }
+  }
+  if (sp == 0) st.list[0] = CsgList{};  // (the compiler never emits such a program)
+}
+
+// Every crossing of the tree's surface in (t_min, t_max), front to back: calls visit(const
+// SolidCrossing&), which returns true to stop.
+template <class Visit>
+STRAHL_HOST_DEVICE inline void for_each_csg_crossing(const SolidArrays& a, const Csg& g, const Ray& ray, Real t_min,
+                                                     Real t_max, Visit&& visit) {
+  CsgStack st;
+  Real lo = t_min;
+  for (int round = 0; round < kMaxCsgRounds; ++round) {
+    csg_evaluate(a, g, ray, lo, t_max, st);
+    const CsgList& r = st.list[0];
+    for (int k = 0; k < r.n; ++k)
+      if (r.c[k].t > lo && r.c[k].t < t_max && visit(r.c[k])) return;
+    if (!(r.valid_until < t_max)) return;
+    // Again from just before the first crossing the lists could not hold.
+    const Real next = std::nextafter(r.valid_until, -kInfinity);
+    if (!(next > lo)) return;  // no progress: more coincident crossings than a list holds
+    lo = next;
+  }
+}
+
+// Inside the tree: its program over the leaves' inside tests.
+STRAHL_HOST_DEVICE inline bool csg_inside(const SolidArrays& a, const Csg& g, const Vec3& p) {
+  bool st[kMaxCsgStack];
+  int sp = 0;
+  for (std::uint32_t i = 0; i < g.instruction_count; ++i) {
+    const CsgInstruction& in = a.csg_code[g.first_instruction + i];
+    switch (in.op) {
+      case CsgOp::Leaf:
+        if (sp < kMaxCsgStack) st[sp++] = leaf_inside(a, a.csg_leaves[g.first_leaf + in.leaf], p);
+        break;
+      case CsgOp::Inverse:
+        if (sp >= 1) st[sp - 1] = !st[sp - 1];
+        break;
+      default:
+        if (sp >= 2) {
+          st[sp - 2] = csg_apply(in.op, st[sp - 2], st[sp - 1]);
+          --sp;
+        }
+        break;
+    }
+  }
+  return sp > 0 && st[0];
+}
+
+// The outward normal of the tree at a crossing's part: its leaf's, flipped where the leaf is
+// subtracted or inverted.
+STRAHL_HOST_DEVICE inline Vec3 csg_normal_at(const SolidArrays& a, const Csg& g, std::uint32_t part, const Vec3& p) {
+  const Solid& leaf = a.csg_leaves[g.first_leaf + (part >> 16)];
+  const Vec3 n = leaf_normal_at(a, leaf, int(part & 0x7fff), p);
+  return (part & kCsgFlip) ? -n : n;
+}
+
+}  // namespace strahl::kernel

@@ -1,0 +1,32 @@
+#pragma once
+// A CSG tree as kernel data: a postfix program over its leaves (geometry/csg.h runs it).
+// The scene's union, intersection, difference, merge and inverse nodes become binary steps:
+// union(A, B, C) is A B Union C Union; difference(A, B) is A B Inverse Intersection.
+
+#include <cstdint>
+
+#include "strahl/math/vec3.h"
+
+namespace strahl::kernel {
+
+enum class CsgOp : std::uint8_t { Leaf, Inverse, Union, Intersection, Merge };
+
+struct CsgInstruction {
+  CsgOp op = CsgOp::Leaf;
+  std::uint8_t pad = 0;
+  std::uint16_t leaf = 0;  // Leaf: which of the tree's leaves
+};
+
+// Limits (docs/scene-format.md, "CSG"): the program's evaluation stack (one crossing list per
+// entry) and the leaves one tree may have (a leaf's index is kept in 16 bits of a crossing's part).
+inline constexpr int kMaxCsgStack = 8;
+inline constexpr int kMaxCsgLeaves = 256;
+inline constexpr int kMaxCsgInstructions = 2 * kMaxCsgLeaves + kMaxCsgLeaves;  // leaves, steps, inverses
+
+struct Csg {
+  std::uint32_t first_instruction = 0, instruction_count = 0;
+  std::uint32_t first_leaf = 0, leaf_count = 0;
+  Vec3 lo, hi;  // bounds (infinite for an unbounded tree)
+};
+
+}  // namespace strahl::kernel

@@ -1,0 +1,409 @@
+// CSG (geometry/csg.h) against closed forms and cross-checks: a ray through a box minus a sphere
+// meets exactly the faces and chord the formulas give, with the sphere's normal flipped; the lens
+// of two spheres; A − A is empty; A ∪ B's nearest hit is the nearer of the two; intersection(A, B)
+// equals difference(A, inverse(B)) and inverse(inverse(A)) equals A ray for ray; inside() equals
+// the operator applied to the operands' membership at random points; every crossing's side agrees
+// with inside() between crossings; merge drops inner surfaces that union keeps; lists that
+// overflow are evaluated again from where they stopped; and the scene file's errors.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "strahl/geometry/solid.h"
+#include "strahl/render/intersect_scene.h"
+#include "strahl/render/render_scene.h"
+#include "strahl/render/surface_point.h"
+#include "strahl/scene/scene_file.h"
+#include "test_random.h"
+
+namespace strahl {
+namespace {
+
+using kernel::SolidCrossing;
+
+const char* kHeader =
+    "camera: {position: [0, 1, 6], look_at: [0, 0, 0], fov: 40}\n"
+    "render: {width: 32, height: 24}\n"
+    "lights:\n  - {type: point, position: [2, 3, 2]}\n"
+    "objects:\n";
+
+RenderScene scene_of(const std::string& objects) {
+  return compile(parse_scene(std::string(kHeader) + objects, "csg.yaml", "."));
+}
+
+std::vector<SolidCrossing> crossings_of(const RenderScene& rs, std::size_t solid, const Ray& ray, Real t_min = 0,
+                                        Real t_max = kInfinity) {
+  std::vector<SolidCrossing> out;
+  kernel::for_each_solid_crossing(rs.shapes(), rs.solids.at(solid), ray, t_min, t_max, [&](const SolidCrossing& c) {
+    out.push_back(c);
+    return false;
+  });
+  return out;
+}
+
+Vec3 normal_of(const RenderScene& rs, std::size_t solid, const Ray& ray, const SolidCrossing& c) {
+  return kernel::normal_at(rs.shapes(), rs.solids.at(solid), int(c.part), ray.at(c.t));
+}
+
+constexpr const char* kBox = "{type: box, corners: [[-1, -1, -1], [1, 1, 1]]}";
+constexpr const char* kBall = "{type: sphere, center: [0, 0, 0], radius: 1.2}";
+
+TEST(Csg, BoxMinusSphereHitsWhereTheFormulasSay) {
+  const RenderScene rs = scene_of(std::string("  - {type: difference, objects: [") + kBox + ", " + kBall + "]}\n");
+  ASSERT_EQ(rs.solids.size(), 1u);
+  ASSERT_EQ(rs.solids[0].kind, kernel::SolidKind::Csg);
+  // Along x at height 0.8: the box face at x = −1 (outside the ball: 1 + 0.64 > 1.44), then the
+  // ball's chord x = ±√(1.44 − 0.64) = ±√0.8 cut out, then the far face.
+  const Ray ray(Vec3(-5, 0.8, 0), Vec3(1, 0, 0));
+  const std::vector<SolidCrossing> c = crossings_of(rs, 0, ray);
+  ASSERT_EQ(c.size(), 4u);
+  const Real h = std::sqrt(Real(0.8));
+  EXPECT_DOUBLE_EQ(c[0].t, 4);
+  EXPECT_NEAR(c[1].t, 5 - h, 1e-14);
+  EXPECT_NEAR(c[2].t, 5 + h, 1e-14);
+  EXPECT_DOUBLE_EQ(c[3].t, 6);
+  EXPECT_TRUE(c[0].entering);
+  EXPECT_FALSE(c[1].entering);
+  EXPECT_TRUE(c[2].entering);
+  EXPECT_FALSE(c[3].entering);
+  // Normals point out of the solid: the box's faces as they are, the ball's flipped (inwards to
+  // its centre, which is outside the difference).
+  EXPECT_EQ(normal_of(rs, 0, ray, c[0]), Vec3(-1, 0, 0));
+  const Vec3 n1 = normal_of(rs, 0, ray, c[1]), n2 = normal_of(rs, 0, ray, c[2]);
+  EXPECT_NEAR(n1.x, h / 1.2, 1e-14);
+  EXPECT_NEAR(n1.y, -0.8 / 1.2, 1e-14);
+  EXPECT_NEAR(n2.x, -h / 1.2, 1e-14);
+  EXPECT_NEAR(n2.y, -0.8 / 1.2, 1e-14);
+  EXPECT_EQ(normal_of(rs, 0, ray, c[3]), Vec3(1, 0, 0));
+  // The renderer's view: the nearest hit and, from inside the solid, the ball's surface facing
+  // the ray (a refracted ray leaves through the cut-out's wall, not through the box's far face).
+  const SceneView v = rs.view();
+  const Hit hit = closest_hit(v, ray, 0, kInfinity);
+  EXPECT_DOUBLE_EQ(hit.t, 4);
+  const Ray inner(Vec3(-0.95, 0.8, 0), Vec3(1, 0, 0));
+  const Hit out = closest_hit(v, inner, 0, kInfinity);
+  EXPECT_NEAR(out.t, 0.95 - h, 1e-14);
+  const SurfacePoint sp = surface_at(v, inner, out);
+  EXPECT_GT(dot(sp.geometric_normal, inner.direction), 0);  // leaving the solid: normal along the ray
+  // Through the middle the ball removes everything; through the corners it removes nothing.
+  EXPECT_TRUE(crossings_of(rs, 0, Ray(Vec3(-5, 0, 0), Vec3(1, 0, 0))).empty());
+  const std::vector<SolidCrossing> corner = crossings_of(rs, 0, Ray(Vec3(-5, 0.95, 0.95), Vec3(1, 0, 0)));
+  ASSERT_EQ(corner.size(), 2u);
+  EXPECT_DOUBLE_EQ(corner[0].t, 4);
+  EXPECT_DOUBLE_EQ(corner[1].t, 6);
+  // A shadow ray through the transparent cut box crosses its four surfaces.
+  EXPECT_EQ(kernel::crossings(rs.shapes(), rs.solids[0], ray, 0, 10), 4);
+}
+
+TEST(Csg, LensOfTwoSpheresHasTheAnalyticEntryAndExit) {
+  // Unit spheres at x = ±0.5: the lens spans x in [−0.5, 0.5] on the axis; off the axis at
+  // height y the entry is at x = 0.5 − √(1 − y²) (the right sphere's left side) and the exit
+  // mirrored.
+  const RenderScene rs = scene_of(
+      "  - {type: intersection, objects: [{type: sphere, center: [-0.5, 0, 0], radius: 1}, "
+      "{type: sphere, center: [0.5, 0, 0], radius: 1}]}\n");
+  for (Real y : {0.0, 0.3, 0.6, 0.86}) {
+    const Ray ray(Vec3(-3, y, 0), Vec3(1, 0, 0));
+    const std::vector<SolidCrossing> c = crossings_of(rs, 0, ray);
+    ASSERT_EQ(c.size(), 2u) << y;
+    const Real x = 0.5 - std::sqrt(1 - y * y);
+    EXPECT_NEAR(c[0].t, 3 + x, 1e-14) << y;
+    EXPECT_NEAR(c[1].t, 3 - x, 1e-14) << y;
+    // Entry on the right sphere, its normal pointing away from (0.5, 0, 0).
+    const Vec3 n = normal_of(rs, 0, ray, c[0]);
+    EXPECT_NEAR(n.x, (x - 0.5), 1e-14);
+  }
+  EXPECT_TRUE(crossings_of(rs, 0, Ray(Vec3(-3, 0.87, 0), Vec3(1, 0, 0))).empty());  // above √0.75
+}
+
+// Random rays through the unit-ish region: origins on a sphere of radius 4 towards random points
+// near the middle, and some starting inside.
+std::vector<Ray> random_rays(std::uint64_t seed, int n) {
+  test::Random rng(seed);
+  std::vector<Ray> rays;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 o = i % 4 == 0 ? rng.point(-1.2, 1.2) : rng.direction() * 4;
+    const Vec3 target = rng.point(-1, 1);
+    rays.emplace_back(o, normalize(target - o));
+  }
+  return rays;
+}
+
+// The operands used below, as YAML: a box, a ball, a torus, a cylinder, a cone and an implicit
+// sphere, overlapping one another around the origin.
+// A solid alone as a CSG of one operand (a top-level sphere would not be a solid).
+std::string solo(const std::string& a) { return "{type: union, objects: [" + a + "]}"; }
+
+const std::vector<std::string> kOperands = {
+    "{type: box, corners: [[-0.8, -0.6, -0.7], [0.6, 0.9, 0.5]]}",
+    "{type: sphere, center: [0.3, 0.2, -0.1], radius: 0.9}",
+    "{type: torus, center: [0, 0.1, 0], major_radius: 0.7, minor_radius: 0.3, axis: [0.3, 1, 0.2]}",
+    "{type: cylinder, base: [-1, -0.2, 0], cap: [1, 0.3, 0.1], radius: 0.45}",
+    "{type: cone, base: [0, -1, 0], base_radius: 0.8, cap: [0.1, 0.9, 0.2], cap_radius: 0.1}",
+    "{type: implicit, expression: 'sqrt(x^2 + y^2 + z^2) - 0.75', contained_by: {type: sphere, center: [0, 0, 0], "
+    "radius: 1}, method: distance, max_gradient: 1, accuracy: 2e-6}",
+};
+
+void expect_same_crossings(const std::vector<SolidCrossing>& a, const std::vector<SolidCrossing>& b, Real tol,
+                           const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_NEAR(a[k].t, b[k].t, tol) << what << " crossing " << k;
+    EXPECT_EQ(a[k].entering, b[k].entering) << what << " crossing " << k;
+  }
+}
+
+TEST(Csg, DifferenceOfIdenticalSolidsIsEmpty) {
+  for (const std::string& a : kOperands) {
+    const RenderScene rs = scene_of("  - {type: difference, objects: [" + a + ", " + a + "]}\n");
+    for (const Ray& ray : random_rays(5, 2000)) ASSERT_TRUE(crossings_of(rs, 0, ray).empty()) << a;
+    // … and A ∩ A = A ∪ A's outline = merge(A, A) = A.
+    const RenderScene same = scene_of("  - {type: intersection, objects: [" + a + ", " + a + "]}\n  - " + solo(a) +
+                                      "\n  - {type: merge, objects: [" + a + ", " + a + "]}\n");
+    ASSERT_EQ(same.solids.size(), 3u) << a;
+    for (const Ray& ray : random_rays(6, 500)) {
+      const std::vector<SolidCrossing> one = crossings_of(same, 1, ray);
+      expect_same_crossings(crossings_of(same, 0, ray), one, 0, "A ∩ A vs A: " + a);
+      expect_same_crossings(crossings_of(same, 2, ray), one, 0, "merge(A, A) vs A: " + a);
+    }
+  }
+}
+
+TEST(Csg, UnionHitIsTheNearerOperand) {
+  for (std::size_t i = 0; i < kOperands.size(); ++i) {
+    const std::string& a = kOperands[i];
+    const std::string& b = kOperands[(i + 1) % kOperands.size()];
+    const RenderScene rs =
+        scene_of("  - {type: union, objects: [" + a + ", " + b + "]}\n  - " + solo(a) + "\n  - " + solo(b) + "\n");
+    int hits = 0;
+    for (const Ray& ray : random_rays(7 + i, 3000)) {
+      const SolidCrossing u = kernel::intersect(rs.shapes(), rs.solids[0], ray, 0, kInfinity);
+      const SolidCrossing ha = kernel::intersect(rs.shapes(), rs.solids[1], ray, 0, kInfinity);
+      const SolidCrossing hb = kernel::intersect(rs.shapes(), rs.solids[2], ray, 0, kInfinity);
+      ASSERT_EQ(u.t, std::fmin(ha.t, hb.t)) << a << " ∪ " << b;
+      hits += u.t < kInfinity;
+      // Union keeps every surface: as many crossings as both operands have.
+      ASSERT_EQ(kernel::crossings(rs.shapes(), rs.solids[0], ray, 0, kInfinity),
+                kernel::crossings(rs.shapes(), rs.solids[1], ray, 0, kInfinity) +
+                    kernel::crossings(rs.shapes(), rs.solids[2], ray, 0, kInfinity));
+    }
+    EXPECT_GT(hits, 1000);
+  }
+}
+
+TEST(Csg, DeMorganCrossChecksRayForRay) {
+  for (std::size_t i = 0; i < kOperands.size(); ++i) {
+    const std::string& a = kOperands[i];
+    const std::string& b = kOperands[(i + 2) % kOperands.size()];
+    const RenderScene rs = scene_of("  - {type: intersection, objects: [" + a + ", " + b + "]}\n" +
+                                    "  - {type: difference, objects: [" + a + ", {type: inverse, objects: [" + b +
+                                    "]}]}\n" + "  - {type: inverse, objects: [{type: inverse, objects: [" + a +
+                                    "]}]}\n  - " + solo(a) + "\n" +
+                                    // A − B = inverse(inverse(A) ∪ B) as sets (merge: no inner surfaces)
+                                    "  - {type: difference, objects: [" + a + ", " + b + "]}\n" +
+                                    "  - {type: inverse, objects: [{type: merge, objects: [{type: inverse, objects: [" +
+                                    a + "]}, " + b + "]}]}\n");
+    // Inverses are unbounded and go after the bounded solids: A ∩ B, A − inverse(B), A, A − B,
+    // inverse(inverse(A)), inverse(inverse(A) ∪ B).
+    ASSERT_EQ(rs.bounded_solid_count, 4u);
+    int crossings = 0;
+    for (const Ray& ray : random_rays(11 + i, 2000)) {
+      const std::vector<SolidCrossing> x = crossings_of(rs, 0, ray);
+      crossings += int(x.size());
+      expect_same_crossings(x, crossings_of(rs, 1, ray), 0, "A ∩ B vs A − inverse(B)");
+      expect_same_crossings(crossings_of(rs, 4, ray), crossings_of(rs, 2, ray), 0, "inverse(inverse(A)) vs A");
+      expect_same_crossings(crossings_of(rs, 3, ray), crossings_of(rs, 5, ray), 0, "A − B vs inverse(inverse(A) ∪ B)");
+      // Normals agree too (the flip follows the inverse).
+      const std::vector<SolidCrossing> y = crossings_of(rs, 1, ray);
+      for (std::size_t k = 0; k < x.size() && k < y.size(); ++k)
+        ASSERT_EQ(normal_of(rs, 0, ray, x[k]), normal_of(rs, 1, ray, y[k]));
+    }
+    EXPECT_GT(crossings, 200) << a << " ∩ " << b;
+  }
+}
+
+TEST(Csg, InsideIsTheOperatorOverTheOperands) {
+  test::Random rng(3);
+  const std::string a = kOperands[0], b = kOperands[1], c = kOperands[2];
+  const RenderScene rs = scene_of("  - " + solo(a) + "\n  - " + solo(b) + "\n  - " + solo(c) + "\n" +
+                                  "  - {type: union, objects: [" + a + ", " + b + ", " + c + "]}\n" +
+                                  "  - {type: intersection, objects: [" + a + ", " + b + ", " + c + "]}\n" +
+                                  "  - {type: difference, objects: [" + a + ", " + b + ", " + c + "]}\n" +
+                                  "  - {type: merge, objects: [" + a + ", " + b + ", " + c + "]}\n" +
+                                  "  - {type: inverse, objects: [" + a + "]}\n" +
+                                  "  - {type: difference, objects: [{type: union, objects: [" + a + ", " + c +
+                                  "]}, {type: intersection, objects: [" + b + ", " + c + "]}]}\n");
+  // The inverse is unbounded: it comes last; the others keep their order.
+  ASSERT_EQ(rs.solids.size(), 9u);
+  EXPECT_EQ(rs.bounded_solid_count, 8u);
+  const std::size_t leaf[3] = {0, 1, 2}, U = 3, I = 4, D = 5, M = 6, X = 7, N = 8;
+  int in = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const Vec3 p = rng.point(-1.3, 1.3);
+    const auto at = [&](std::size_t s) { return kernel::inside(rs.shapes(), rs.solids[s], p); };
+    const bool ia = at(leaf[0]), ib = at(leaf[1]), ic = at(leaf[2]);
+    ASSERT_EQ(at(U), ia || ib || ic);
+    ASSERT_EQ(at(I), ia && ib && ic);
+    ASSERT_EQ(at(D), ia && !ib && !ic);
+    ASSERT_EQ(at(M), ia || ib || ic);
+    ASSERT_EQ(at(N), !ia);
+    ASSERT_EQ(at(X), (ia || ic) && !(ib && ic));
+    in += at(D);
+  }
+  EXPECT_GT(in, 1000);
+}
+
+// Between consecutive crossings, the side the crossing list says equals inside() at the midpoint.
+TEST(Csg, CrossingSidesAgreeWithInside) {
+  const std::string a = kOperands[0], b = kOperands[1], c = kOperands[2], d = kOperands[3];
+  const RenderScene rs = scene_of(
+      "  - {type: difference, objects: [{type: merge, objects: [" + a + ", " + d + "]}, {type: intersection, objects: [" +
+      b + ", " + c + "]}]}\n  - {type: intersection, objects: [" + b + ", {type: inverse, objects: [" + c + "]}, " + d +
+      "]}\n");
+  for (std::size_t s = 0; s < 2; ++s) {
+    int checked = 0;
+    for (const Ray& ray : random_rays(21 + s, 3000)) {
+      const std::vector<SolidCrossing> x = crossings_of(rs, s, ray);
+      for (std::size_t k = 0; k + 1 < x.size(); ++k) {
+        if (x[k + 1].t - x[k].t < 1e-6) continue;
+        ASSERT_EQ(x[k].entering, kernel::inside(rs.shapes(), rs.solids[s], ray.at((x[k].t + x[k + 1].t) / 2)));
+        ++checked;
+      }
+      if (!x.empty()) {
+        ASSERT_NE(x.front().entering, kernel::inside(rs.shapes(), rs.solids[s], ray.at(x.front().t * 0.5)));
+        ASSERT_FALSE(x.back().entering);  // bounded: the ray ends outside
+      }
+    }
+    EXPECT_GT(checked, 500);
+  }
+}
+
+TEST(Csg, MergeDropsTheInnerSurfacesUnionKeeps) {
+  const std::string two = "[{type: sphere, center: [-0.5, 0, 0], radius: 1}, {type: sphere, center: [0.5, 0, 0], radius: 1}]";
+  const RenderScene rs = scene_of("  - {type: union, objects: " + two + "}\n  - {type: merge, objects: " + two + "}\n");
+  const Ray ray(Vec3(-3, 0, 0), Vec3(1, 0, 0));
+  const std::vector<SolidCrossing> u = crossings_of(rs, 0, ray), m = crossings_of(rs, 1, ray);
+  ASSERT_EQ(u.size(), 4u);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_DOUBLE_EQ(m[0].t, 1.5);
+  EXPECT_DOUBLE_EQ(m[1].t, 4.5);
+  EXPECT_DOUBLE_EQ(u[1].t, 2.5);  // the right sphere's near side, inside the left one
+  EXPECT_DOUBLE_EQ(u[2].t, 3.5);
+  // Two boxes sharing a face merge without a surface there.
+  const RenderScene boxes = scene_of(
+      "  - {type: merge, objects: [{type: box, corners: [[-1, -1, -1], [0, 1, 1]]}, {type: box, corners: [[0, -1, -1], "
+      "[1, 1, 1]]}]}\n");
+  EXPECT_EQ(crossings_of(boxes, 0, Ray(Vec3(-3, 0.1, 0.2), Vec3(1, 0, 0))).size(), 2u);
+}
+
+// More crossings than one list holds (kernel::kMaxCsgCrossings): the tree is evaluated again
+// from where its lists stopped, and every crossing is found, in order.
+TEST(Csg, LongListsAreEvaluatedInRounds) {
+  std::string beads;
+  const int n = 3 * kernel::kMaxCsgCrossings;
+  for (int i = 0; i < n; ++i)
+    beads += std::string(i ? ", " : "") + "{type: sphere, center: [" + std::to_string(i) + ", 0, 0], radius: 0.25}";
+  const RenderScene rs = scene_of("  - {type: union, objects: [" + beads + "]}\n" +
+                                  "  - {type: intersection, objects: [{type: union, objects: [" + beads +
+                                  "]}, {type: box, corners: [[-1, -1, -1], [" + std::to_string(n) + ", 0.1, 1]]}]}\n");
+  const Ray ray(Vec3(-5, 0, 0), Vec3(1, 0, 0));
+  for (std::size_t s = 0; s < 2; ++s) {
+    const std::vector<SolidCrossing> c = crossings_of(rs, s, ray);
+    ASSERT_EQ(int(c.size()), 2 * n) << s;
+    for (int i = 0; i < n; ++i) {
+      EXPECT_NEAR(c[2 * i].t, 5 + i - 0.25, 1e-12);
+      EXPECT_NEAR(c[2 * i + 1].t, 5 + i + 0.25, 1e-12);
+    }
+  }
+  // From inside the 40th bead: its far side first.
+  const Ray inner(Vec3(40.1, 0, 0), Vec3(1, 0, 0));
+  EXPECT_NEAR(kernel::intersect(rs.shapes(), rs.solids[0], inner, 0, kInfinity).t, 0.15, 1e-12);
+}
+
+TEST(Csg, AcceleratorsAgreeOnCsgScenes) {
+  std::string objects;
+  for (int i = 0; i < 4; ++i) {
+    const std::string off = "[" + std::to_string(i * 2.5 - 4) + ", 0, 0]";
+    objects += "  - {type: difference, objects: [{type: box, corners: [[" + std::to_string(i * 2.5 - 5) +
+               ", -1, -1], [" + std::to_string(i * 2.5 - 3) + ", 1, 1]]}, {type: sphere, center: " + off +
+               ", radius: 1.25}]}\n";
+  }
+  objects += "  - {type: merge, objects: [" + kOperands[1] + ", " + kOperands[2] + ", " + kOperands[3] + "]}\n";
+  objects += "  - {type: sphere, center: [0, 2, 0], radius: 0.5}\n";
+  const std::string scene = std::string(kHeader) + objects;
+  std::vector<Hit> want;
+  const std::vector<Ray> rays = random_rays(31, 4000);
+  for (const char* accel : {"naive", "bvh", "kdtree", "octree"}) {
+    Scene sc = parse_scene(scene, "accel.yaml", ".");
+    sc.settings.accel = accel_from_name(accel).value();
+    const RenderScene rs = compile(sc);
+    const SceneView v = rs.view();
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const Ray r(rays[i].origin * 2, rays[i].direction);
+      const Hit h = closest_hit(v, r, 0, kInfinity);
+      if (want.size() < rays.size()) {
+        want.push_back(h);
+        continue;
+      }
+      ASSERT_EQ(h.t, want[i].t) << accel << " ray " << i;
+      ASSERT_EQ(h.index, want[i].index) << accel << " ray " << i;
+      ASSERT_EQ(h.b1, want[i].b1) << accel << " ray " << i;
+    }
+  }
+}
+
+std::string error_of(const std::string& objects) {
+  try {
+    scene_of(objects);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Csg, BadInputNamesTheNode) {
+  EXPECT_EQ(error_of("  - {type: union, objects: []}\n"), "csg.yaml:6:28: empty union: it needs at least one object");
+  EXPECT_EQ(error_of("  - {type: merge}\n"), "csg.yaml:6:5: merge needs 'objects' (the solids it combines)");
+  EXPECT_NE(error_of("  - {type: inverse, objects: [" + std::string(kBox) + ", " + kBall + "]}\n")
+                .find("csg.yaml:6:30: inverse takes exactly one object (got 2)"),
+            std::string::npos);
+  EXPECT_NE(error_of("  - {type: union, objects: [{type: disk, center: [0, 0, 0], normal: [0, 1, 0], radius: 1}]}\n")
+                .find("csg.yaml:6:36: 'disk' cannot be an object of union"),
+            std::string::npos);
+  EXPECT_NE(error_of("  - {type: union, objects: [{type: cylinder, base: [0, 0, 0], cap: [0, 1, 0], radius: 1, open: "
+                     "true}]}\n")
+                .find("csg.yaml:6:29: an open cylinder or cone has no inside"),
+            std::string::npos);
+  EXPECT_NE(error_of("  - {type: union, objects: [{type: box, corners: [[0, 0, 0], [1, 1, 1]], material: {color: [1, 0, "
+                     "0]}}]}\n")
+                .find("csg.yaml:6:84: an object of a CSG takes the CSG's material"),
+            std::string::npos);
+  // Nested eight deep: refused at the eighth node.
+  std::string deep = std::string(kBox);
+  for (int i = 0; i < 8; ++i) deep = "{type: union, objects: [" + deep + "]}";
+  EXPECT_EQ(error_of("  - " + deep + "\n"),
+            "csg.yaml:6:173: union is nested too deeply: CSG nodes may be nested at most 7 levels deep");
+  std::string ok = std::string(kBox);
+  for (int i = 0; i < 7; ++i) ok = "{type: union, objects: [" + ok + "]}";
+  EXPECT_EQ(error_of("  - " + ok + "\n"), "(no error)");
+  // Operands are checked as at the top level.
+  EXPECT_NE(error_of("  - {type: union, objects: [{type: sphere, center: [0, 0, 0], radius: -1}]}\n")
+                .find("csg.yaml:6:71: sphere radius must be positive"),
+            std::string::npos);
+}
+
+TEST(Csg, DisjointIntersectionWarnsAndRendersNothing) {
+  const RenderScene rs = scene_of(
+      "  - {type: intersection, objects: [{type: sphere, center: [-3, 0, 0], radius: 1}, {type: sphere, center: [3, "
+      "0, 0], radius: 1}]}\n  - {type: sphere, center: [0, 0, 0], radius: 1}\n");
+  EXPECT_TRUE(rs.solids.empty());
+  ASSERT_FALSE(rs.warnings.empty());
+  EXPECT_NE(rs.warnings.back().find("csg.yaml:6:5: intersection is empty"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace strahl
