@@ -23,11 +23,11 @@ namespace strahl::cuda_detail {
 // (Impl::device_view) member by member: a kernel reading an array not uploaded would read host
 // memory. So a new member of SceneView, AccelView or PrimitiveSet stops the build here until it
 // is uploaded and mapped below — then update these sizes.
-static_assert(sizeof(SceneView) - sizeof(AccelView) == 424 && sizeof(PrimitiveSet) == 136 &&
+static_assert(sizeof(SceneView) - sizeof(AccelView) == 424 && sizeof(PrimitiveSet) == 144 &&
 #if defined(STRAHL_HAVE_EMBREE)
-                  sizeof(AccelView) == 392,
+                  sizeof(AccelView) == 400,
 #else
-                  sizeof(AccelView) == 384,
+                  sizeof(AccelView) == 392,
 #endif
               "SceneView changed: upload and map its new arrays in cuda/device.cu, then update these sizes");
 
@@ -201,7 +201,7 @@ struct Device::Impl {
            map(out.accel.prims.shapes.quadrics) && map(out.accel.prims.shapes.implicits) &&
            map_mutable(out.accel.prims.shapes.tallies) && map(out.accel.prims.shapes.spheres) &&
            map(out.accel.prims.shapes.csgs) && map(out.accel.prims.shapes.csg_code) &&
-           map(out.accel.prims.shapes.csg_leaves) &&
+           map(out.accel.prims.shapes.csg_leaves) && map(out.accel.prims.shapes.placed) &&
            out.accel.kdtree.nodes == nullptr && out.accel.octree.nodes == nullptr;
   }
 };
@@ -276,7 +276,7 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
         ok(m.copy_array(rs.disks)) && ok(m.copy_array(rs.tori)) && ok(m.copy_array(rs.quadrics)) &&
         ok(m.copy_array(rs.implicits)) && ok(m.copy_array(rs.implicit_tallies)) &&
         ok(m.copy_array(rs.solid_spheres)) && ok(m.copy_array(rs.csgs)) && ok(m.copy_array(rs.csg_code)) &&
-        ok(m.copy_array(rs.csg_leaves)))) {
+        ok(m.copy_array(rs.csg_leaves)) && ok(m.copy_array(rs.placed)))) {
     error = (e == cudaErrorMemoryAllocation ? "out of GPU memory uploading the scene (" : "scene upload failed (") +
             cuda_message(e) + ")";
     return false;

@@ -66,7 +66,8 @@ STRAHL_HOST_DEVICE inline void csg_leaf_list(const SolidArrays& a, const Solid& 
   out.n = 0;
   out.valid_until = kInfinity;
   bool side = false;
-  if (s.kind == SolidKind::Implicit) {
+  const SolidKind kind = shape_kind(a, s);
+  if (kind == SolidKind::Implicit) {
     bool known = false;
     for_each_leaf_crossing(a, s, ray, t_min, t_max, [&](const SolidCrossing& c) {
       if (!known) {
@@ -88,7 +89,7 @@ STRAHL_HOST_DEVICE inline void csg_leaf_list(const SolidArrays& a, const Solid& 
   while (i < list.n && !(list.c[i].t > t_min)) ++i;
   if (i > 0) side = list.c[i - 1].entering;
   else if (list.n > 0) side = !list.c[0].entering;
-  else if (s.kind == SolidKind::Quadric) side = leaf_inside(a, s, ray.at(std::isfinite(t_min) ? t_min : 0));  // unbounded
+  else if (kind == SolidKind::Quadric) side = leaf_inside(a, s, ray.at(std::isfinite(t_min) ? t_min : 0));  // unbounded
   out.start_inside = side;
   for (; i < list.n && list.c[i].t < t_max; ++i) {
     if (list.c[i].entering == side) continue;

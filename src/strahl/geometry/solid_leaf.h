@@ -18,6 +18,7 @@
 #include "strahl/geometry/cone.h"
 #include "strahl/geometry/disk.h"
 #include "strahl/geometry/implicit.h"
+#include "strahl/geometry/placement.h"
 #include "strahl/geometry/quadric.h"
 #include "strahl/geometry/sphere.h"
 #include "strahl/geometry/torus.h"
@@ -25,9 +26,10 @@
 
 namespace strahl::kernel {
 
-// Sphere: a sphere as a CSG operand (top-level spheres have their own primitive ids);
-// Csg: a CSG tree (geometry/csg.h) over other solids, its "leaves".
-enum class SolidKind : std::uint8_t { Box, Cone, Disk, Torus, Quadric, Implicit, Sphere, Csg };
+// Sphere: a sphere as a CSG operand or with a transform (plain top-level spheres have their own
+// primitive ids); Csg: a CSG tree (geometry/csg.h) over other solids, its "leaves"; Placed: a
+// shape of one of the other kinds but Csg, with a transform (geometry/placement.h).
+enum class SolidKind : std::uint8_t { Box, Cone, Disk, Torus, Quadric, Implicit, Sphere, Csg, Placed };
 
 struct Solid {
   SolidKind kind = SolidKind::Box;
@@ -69,6 +71,8 @@ inline Real max_gradient_of(const ImplicitTally& t) {
   return g;
 }
 
+struct PlacedSolid;
+
 // The arrays the handles index.
 struct SolidArrays {
   const Box* boxes = nullptr;
@@ -82,10 +86,24 @@ struct SolidArrays {
   const Csg* csgs = nullptr;
   const CsgInstruction* csg_code = nullptr;  // every tree's program, one after the other
   const Solid* csg_leaves = nullptr;         // every tree's leaves, one after the other
+  const PlacedSolid* placed = nullptr;
 };
 
+// A shape with a transform; bounds in world space (the transformed object bounds' box).
+struct PlacedSolid {
+  Placement to_object;
+  Solid shape;  // in object space; never Csg or Placed
+  Vec3 lo, hi;
+};
+
+// The kind of shape a handle stands for (a placed one's own).
+STRAHL_HOST_DEVICE inline SolidKind shape_kind(const SolidArrays& a, const Solid& s) {
+  return s.kind == SolidKind::Placed ? a.placed[s.index].shape.kind : s.kind;
+}
+
 // Whether the solid has an inside (its crossings alternate between entering and leaving).
-STRAHL_HOST_DEVICE inline bool closed(const SolidArrays& a, const Solid& s) {
+STRAHL_HOST_DEVICE inline bool closed(const SolidArrays& a, const Solid& handle) {
+  const Solid& s = handle.kind == SolidKind::Placed ? a.placed[handle.index].shape : handle;
   switch (s.kind) {
     case SolidKind::Cone: return !a.cones[s.index].open;
     case SolidKind::Disk: return false;
@@ -148,6 +166,7 @@ inline Bounds bounds(const SolidArrays& a, const Solid& s) {
       break;
     }
     case SolidKind::Csg: b.lo = a.csgs[s.index].lo; b.hi = a.csgs[s.index].hi; break;
+    case SolidKind::Placed: b.lo = a.placed[s.index].lo; b.hi = a.placed[s.index].hi; break;
     case SolidKind::Implicit: {
       const Implicit& m = a.implicits[s.index];
       if (m.bound == ImplicitBound::Sphere) {
@@ -163,10 +182,10 @@ inline Bounds bounds(const SolidArrays& a, const Solid& s) {
   return b;
 }
 
-// The crossings of a leaf's surface with the whole line, sorted (every leaf kind but Implicit,
+// The crossings of a shape's surface with the whole line, sorted (every shape kind but Implicit,
 // whose root finding works over a range: for_each_leaf_crossing).
-STRAHL_HOST_DEVICE inline void leaf_line_crossings(const SolidArrays& a, const Solid& s, const Ray& ray,
-                                                   CrossingList& list) {
+STRAHL_HOST_DEVICE inline void shape_line_crossings(const SolidArrays& a, const Solid& s, const Ray& ray,
+                                                    CrossingList& list) {
   switch (s.kind) {
     case SolidKind::Box: line_crossings(a.boxes[s.index], ray, list); break;
     case SolidKind::Cone: line_crossings(a.cones[s.index], ray, list); break;
@@ -175,15 +194,30 @@ STRAHL_HOST_DEVICE inline void leaf_line_crossings(const SolidArrays& a, const S
     case SolidKind::Quadric: line_crossings(a.quadrics[s.index], ray, list); break;
     case SolidKind::Sphere: line_crossings(a.spheres[s.index], ray, list); break;
     case SolidKind::Implicit:
-    case SolidKind::Csg: break;
+    case SolidKind::Csg:
+    case SolidKind::Placed: break;
+  }
+}
+
+// The same for any leaf (a placed shape: in its object space, where t is the same).
+STRAHL_HOST_DEVICE inline void leaf_line_crossings(const SolidArrays& a, const Solid& s, const Ray& ray,
+                                                   CrossingList& list) {
+  if (s.kind == SolidKind::Placed) {
+    const PlacedSolid& x = a.placed[s.index];
+    shape_line_crossings(a, x.shape, object_ray(x.to_object, ray), list);
+  } else {
+    shape_line_crossings(a, s, ray, list);
   }
 }
 
 // Every crossing of a leaf's surface in (t_min, t_max), front to back: calls visit(const
 // SolidCrossing&), which returns true to stop.
 template <class Visit>
-STRAHL_HOST_DEVICE inline void for_each_leaf_crossing(const SolidArrays& a, const Solid& s, const Ray& ray,
-                                                       Real t_min, Real t_max, Visit&& visit) {
+STRAHL_HOST_DEVICE inline void for_each_leaf_crossing(const SolidArrays& a, const Solid& leaf, const Ray& world_ray,
+                                                      Real t_min, Real t_max, Visit&& visit) {
+  const bool placed = leaf.kind == SolidKind::Placed;
+  const Solid& s = placed ? a.placed[leaf.index].shape : leaf;
+  const Ray ray = placed ? object_ray(a.placed[leaf.index].to_object, world_ray) : world_ray;
   if (s.kind == SolidKind::Implicit) {
     ImplicitStats stats;
     for_each_implicit_crossing(a.implicits[s.index], ray, t_min, t_max, stats, [&](const ImplicitCrossing& c) {
@@ -193,13 +227,13 @@ STRAHL_HOST_DEVICE inline void for_each_leaf_crossing(const SolidArrays& a, cons
     return;
   }
   CrossingList list;
-  leaf_line_crossings(a, s, ray, list);
+  shape_line_crossings(a, s, ray, list);
   for (int i = 0; i < list.n; ++i)
     if (list.c[i].t > t_min && list.c[i].t < t_max && visit(list.c[i])) return;
 }
 
 // Outward unit normal at a surface point of part `part`.
-STRAHL_HOST_DEVICE inline Vec3 leaf_normal_at(const SolidArrays& a, const Solid& s, int part, const Vec3& p) {
+STRAHL_HOST_DEVICE inline Vec3 shape_normal_at(const SolidArrays& a, const Solid& s, int part, const Vec3& p) {
   switch (s.kind) {
     case SolidKind::Box: return normal_at(a.boxes[s.index], part);
     case SolidKind::Cone: return normal_at(a.cones[s.index], part, p);
@@ -208,14 +242,15 @@ STRAHL_HOST_DEVICE inline Vec3 leaf_normal_at(const SolidArrays& a, const Solid&
     case SolidKind::Quadric: return normal_at(a.quadrics[s.index], p);
     case SolidKind::Implicit: return normal_at(a.implicits[s.index], p, part == 1);
     case SolidKind::Sphere: return normal_at(a.spheres[s.index], p);
-    case SolidKind::Csg: break;
+    case SolidKind::Csg:
+    case SolidKind::Placed: break;
   }
   return Vec3(0, 1, 0);
 }
 
 // Is p inside the solid? (false for open surfaces: disks, open cones, clipped quadrics are not
 // solids; a clipped quadric answers for its clipped region.)
-STRAHL_HOST_DEVICE inline bool leaf_inside(const SolidArrays& a, const Solid& s, const Vec3& p) {
+STRAHL_HOST_DEVICE inline bool shape_inside(const SolidArrays& a, const Solid& s, const Vec3& p) {
   switch (s.kind) {
     case SolidKind::Box: return inside(a.boxes[s.index], p);
     case SolidKind::Cone: return !a.cones[s.index].open && inside(a.cones[s.index], p);
@@ -224,9 +259,23 @@ STRAHL_HOST_DEVICE inline bool leaf_inside(const SolidArrays& a, const Solid& s,
     case SolidKind::Quadric: return inside(a.quadrics[s.index], p);
     case SolidKind::Implicit: return inside(a.implicits[s.index], p);
     case SolidKind::Sphere: return inside(a.spheres[s.index], p);
-    case SolidKind::Csg: break;
+    case SolidKind::Csg:
+    case SolidKind::Placed: break;
   }
   return false;
+}
+
+// Any leaf's normal and inside test: a placed shape's in its object space, the normal brought
+// back by the inverse transpose.
+STRAHL_HOST_DEVICE inline Vec3 leaf_normal_at(const SolidArrays& a, const Solid& s, int part, const Vec3& p) {
+  if (s.kind != SolidKind::Placed) return shape_normal_at(a, s, part, p);
+  const PlacedSolid& x = a.placed[s.index];
+  return world_normal(x.to_object, shape_normal_at(a, x.shape, part, object_point(x.to_object, p)));
+}
+STRAHL_HOST_DEVICE inline bool leaf_inside(const SolidArrays& a, const Solid& s, const Vec3& p) {
+  if (s.kind != SolidKind::Placed) return shape_inside(a, s, p);
+  const PlacedSolid& x = a.placed[s.index];
+  return shape_inside(a, x.shape, object_point(x.to_object, p));
 }
 
 }  // namespace strahl::kernel

@@ -35,6 +35,7 @@ struct RenderScene {
   std::vector<kernel::Csg> csgs;
   std::vector<kernel::CsgInstruction> csg_code;
   std::vector<kernel::Solid> csg_leaves;
+  std::vector<kernel::PlacedSolid> placed;  // solids with a transform (geometry/placement.h)
   Accel accel;  // built by compile() over spheres, triangles and the bounded solids
   std::vector<kernel::MovingSphere> moving_spheres;
   std::vector<kernel::MovingTriangle> moving_triangles;
@@ -52,7 +53,7 @@ struct RenderScene {
   kernel::SolidArrays shapes() const {
     return {boxes.data(),        cones.data(),        disks.data(), tori.data(),     quadrics.data(),
             implicits.data(),    implicit_tallies.data(), solid_spheres.data(), csgs.data(), csg_code.data(),
-            csg_leaves.data()};
+            csg_leaves.data(),   placed.data()};
   }
 
   PrimitiveSet primitives() const {

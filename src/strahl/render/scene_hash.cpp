@@ -49,12 +49,12 @@ static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && siz
 static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof(kernel::Cone) == 80 &&
                   sizeof(kernel::Disk) == 56 && sizeof(kernel::Torus) == 64 && sizeof(kernel::Quadric) == 136 &&
                   sizeof(kernel::Implicit) == 1168 && sizeof(kernel::Csg) == 64 &&
-                  sizeof(kernel::CsgInstruction) == 4,
+                  sizeof(kernel::CsgInstruction) == 4 && sizeof(kernel::PlacedSolid) == 160,
               "a solid's struct changed: hash its new fields in scene_hash.cpp and update the size here");
 // A new array in the render-ready scene must be hashed too (with Embree: its scene handle).
 // (Not `warnings`: messages for the user, they change no pixel.)
 #if defined(STRAHL_HAVE_EMBREE)
-static_assert(sizeof(RenderScene) == 1408, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+static_assert(sizeof(RenderScene) == 1432, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
 #endif
 
 void hash(Hasher& h, const Material& m) {
@@ -224,6 +224,13 @@ void hash(Hasher& h, const kernel::Csg& x) {
   h.add(x.lo);
   h.add(x.hi);
 }
+void hash(Hasher& h, const kernel::PlacedSolid& x) {
+  for (const Vec3& r : x.to_object.row) h.add(r);
+  h.add(x.to_object.translate);
+  hash(h, x.shape);
+  h.add(x.lo);
+  h.add(x.hi);
+}
 void hash(Hasher& h, const kernel::CsgInstruction& x) {
   h.add(x.op);
   h.add(x.leaf);
@@ -251,6 +258,7 @@ std::uint64_t scene_hash(const RenderScene& s) {
   h.add_all(s.csgs);
   h.add_all(s.csg_code);
   h.add_all(s.csg_leaves);
+  h.add_all(s.placed);
   h.add_all(s.materials);
   h.add_all(s.lights);
   hash(h, s.camera);

@@ -6,6 +6,7 @@
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/camera_build.h"
 #include "strahl/scene/scene.h"
+#include "strahl/scene/place_solid.h"
 #include "strahl/scene/scene_warnings.h"
 #include "strahl/scene/validate.h"
 #include "strahl/util/cancel.h"
@@ -106,7 +107,29 @@ Mat3 moved_linear(const Motion& m, int key) {
 
 }  // namespace
 
-void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
+void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
+  if (placed()) {
+    const Vec3 s = placement.scale;
+    if (std::fabs(s.x) == std::fabs(s.y) && std::fabs(s.x) == std::fabs(s.z)) {
+      // Still a sphere: its centre moved, its radius scaled.
+      Sphere moved_sphere = *this;
+      moved_sphere.placement = Transform{};
+      moved_sphere.center = placement.linear() * center + placement.translate;
+      moved_sphere.radius = radius * std::fabs(s.x);
+      moved_sphere.compile_into(out, material_index, object_id);
+      return;
+    }
+    // An ellipsoid: the sphere as a solid, placed (geometry/placement.h).
+    if (motion.moving()) throw Error(loc, "a sphere scaled unevenly (an ellipsoid) cannot move");
+    validate::coordinates(center, loc, "sphere center");
+    validate::positive(radius, loc, "sphere radius");
+    validate::length(radius, loc, "sphere radius");
+    validate::resolvable(radius, max_abs_component(center), loc, "sphere radius");
+    out.solid_spheres.push_back({center, radius, material_index});
+    out.solids.push_back({kernel::SolidKind::Sphere, std::uint32_t(out.solid_spheres.size() - 1), material_index});
+    place_last_solid(out, affine_of(placement), loc);
+    return;
+  }
   validate::coordinates(center, loc, "sphere center");
   validate::positive(radius, loc, "sphere radius");
   validate::length(radius, loc, "sphere radius");
@@ -358,8 +381,8 @@ RenderScene compile(const Scene& scene) {
   // Bounded solids first (they enter the acceleration structure), unclipped quadrics and CSG
   // trees without bounds (an inverse, a union with such a quadric) after.
   const auto unbounded = [&](const kernel::Solid& k) {
-    if (k.kind == kernel::SolidKind::Csg) {
-      const kernel::Csg& g = out.csgs[k.index];
+    if (k.kind == kernel::SolidKind::Csg || k.kind == kernel::SolidKind::Placed) {
+      const Bounds g = kernel::bounds(out.shapes(), k);
       return !(std::isfinite(g.lo.x) && std::isfinite(g.lo.y) && std::isfinite(g.lo.z) && std::isfinite(g.hi.x) &&
                std::isfinite(g.hi.y) && std::isfinite(g.hi.z));
     }

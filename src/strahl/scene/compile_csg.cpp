@@ -6,6 +6,7 @@
 
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/csg.h"
+#include "strahl/scene/place_solid.h"
 #include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
 
@@ -40,7 +41,7 @@ struct TreeBuilder {
   void emit(kernel::CsgOp op, std::uint16_t leaf = 0) { out.csg_code.push_back({op, 0, leaf}); }
 
   // A solid operand: compiled alone, its handle taken out of the scene's solids.
-  Bounds leaf(const SceneObject& o, const Csg& parent) {
+  Bounds leaf(const SceneObject& o, const Csg& parent, const Affine* to_world) {
     const char* refusal = nullptr;
     if (dynamic_cast<const Plane*>(&o)) refusal = "a plane";
     else if (dynamic_cast<const Triangle*>(&o)) refusal = "a triangle";
@@ -62,6 +63,12 @@ struct TreeBuilder {
       validate::resolvable(s->radius, max_abs_component(s->center), s->loc, "sphere radius");
       out.solid_spheres.push_back({s->center, s->radius, material});
       handle = {kernel::SolidKind::Sphere, std::uint32_t(out.solid_spheres.size() - 1), material};
+      if (s->placed()) {
+        out.solids.push_back(handle);
+        place_last_solid(out, affine_of(s->placement), s->loc);
+        handle = out.solids.back();
+        out.solids.pop_back();
+      }
     } else {
       const std::size_t before = out.solids.size();
       o.compile_into(out, material, object_id);
@@ -75,17 +82,24 @@ struct TreeBuilder {
                                csg_operation_name(parent.operation) + " (remove `open` or `clipped_by`)");
       }
     }
+    if (to_world) {  // the enclosing CSG nodes' transforms, after the operand's own
+      out.solids.push_back(handle);
+      place_last_solid(out, *to_world, parent.loc);
+      handle = out.solids.back();
+      out.solids.pop_back();
+    }
     out.csg_leaves.push_back(handle);
     emit(kernel::CsgOp::Leaf, std::uint16_t(tree.leaf_count++));
     return kernel::bounds(out.shapes(), handle);
   }
 
-  Bounds operand(const SceneObject& o, const Csg& parent, int depth) {
-    if (const auto* c = dynamic_cast<const Csg*>(&o)) return node(*c, depth + 1);
-    return leaf(o, parent);
+  Bounds operand(const SceneObject& o, const Csg& parent, int depth, const Affine* to_world) {
+    if (const auto* c = dynamic_cast<const Csg*>(&o)) return node(*c, depth + 1, to_world);
+    return leaf(o, parent, to_world);
   }
 
-  Bounds node(const Csg& c, int depth) {
+  // `outer`: the transforms of the nodes around this one (nullptr: none).
+  Bounds node(const Csg& c, int depth, const Affine* outer) {
     const char* name = csg_operation_name(c.operation);
     if (depth > kMaxCsgDepth)
       throw Error(c.loc, std::string(name) + " is nested too deeply: CSG nodes may be nested at most " +
@@ -94,13 +108,19 @@ struct TreeBuilder {
     if (c.children.empty()) throw Error(c.loc, std::string("empty ") + name + ": it needs at least one operand");
     if (c.operation == CsgOperation::Inverse && c.children.size() != 1)
       throw Error(c.loc, "inverse takes exactly one operand (got " + std::to_string(c.children.size()) + ")");
-    Bounds b = operand(*c.children[0], c, depth);
+    Affine placed;
+    const Affine* to_world = outer;
+    if (c.placed()) {
+      placed = outer ? compose(*outer, affine_of(c.placement)) : affine_of(c.placement);
+      to_world = &placed;
+    }
+    Bounds b = operand(*c.children[0], c, depth, to_world);
     if (c.operation == CsgOperation::Inverse) {
       emit(kernel::CsgOp::Inverse);
       return infinite_bounds();
     }
     for (std::size_t i = 1; i < c.children.size(); ++i) {
-      const Bounds k = operand(*c.children[i], c, depth);
+      const Bounds k = operand(*c.children[i], c, depth, to_world);
       switch (c.operation) {
         case CsgOperation::Union:
         case CsgOperation::Merge:
@@ -131,7 +151,7 @@ void Csg::compile_into(RenderScene& out, std::uint32_t material_index, std::uint
   tree.first_instruction = static_cast<std::uint32_t>(out.csg_code.size());
   tree.first_leaf = static_cast<std::uint32_t>(out.csg_leaves.size());
   TreeBuilder builder{out, tree, material_index, object_id};
-  const Bounds b = builder.node(*this, 1);
+  const Bounds b = builder.node(*this, 1, nullptr);
   tree.instruction_count = static_cast<std::uint32_t>(out.csg_code.size()) - tree.first_instruction;
   if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) {
     // An intersection of operands whose bounds do not overlap: nothing to render.

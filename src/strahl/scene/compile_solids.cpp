@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/place_solid.h"
 #include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
 
@@ -16,8 +17,10 @@ void no_motion(const SceneObject& o, const char* what) {
   if (o.motion.moving()) throw Error(o.loc, std::string(what) + " cannot move (motion is for spheres, triangles and meshes)");
 }
 
-void push(RenderScene& out, kernel::SolidKind kind, std::size_t index, std::uint32_t material) {
+// Appends the handle, placed by the object's transform if it has one.
+void push(RenderScene& out, const SceneObject& o, kernel::SolidKind kind, std::size_t index, std::uint32_t material) {
   out.solids.push_back({kind, static_cast<std::uint32_t>(index), material});
+  if (o.placed()) place_last_solid(out, affine_of(o.placement), o.loc);
 }
 
 // Corners in any order → lo, hi; the box must have volume.
@@ -37,7 +40,7 @@ void Box::compile_into(RenderScene& out, std::uint32_t material_index, std::uint
   kernel::Box b;
   box_corners(corner_a, corner_b, loc, "box", b.lo, b.hi);
   out.boxes.push_back(b);
-  push(out, kernel::SolidKind::Box, out.boxes.size() - 1, material_index);
+  push(out, *this, kernel::SolidKind::Box, out.boxes.size() - 1, material_index);
 }
 
 void Cone::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
@@ -63,7 +66,7 @@ void Cone::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   c.cap_radius = cap_radius;
   c.open = open;
   out.cones.push_back(c);
-  push(out, kernel::SolidKind::Cone, out.cones.size() - 1, material_index);
+  push(out, *this, kernel::SolidKind::Cone, out.cones.size() - 1, material_index);
 }
 
 void Disk::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
@@ -72,7 +75,7 @@ void Disk::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   validate::non_zero(normal, loc, "disk normal");
   validate::positive(radius, loc, "disk radius");
   out.disks.push_back({center, normalize(normal), radius});
-  push(out, kernel::SolidKind::Disk, out.disks.size() - 1, material_index);
+  push(out, *this, kernel::SolidKind::Disk, out.disks.size() - 1, material_index);
 }
 
 void Torus::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
@@ -85,7 +88,7 @@ void Torus::compile_into(RenderScene& out, std::uint32_t material_index, std::ui
     throw Error(loc, "torus minor radius (" + validate::str(minor) + ") must be smaller than its major radius (" +
                          validate::str(major) + ")");
   out.tori.push_back({center, normalize(axis), major, minor});
-  push(out, kernel::SolidKind::Torus, out.tori.size() - 1, material_index);
+  push(out, *this, kernel::SolidKind::Torus, out.tori.size() - 1, material_index);
 }
 
 void Quadric::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
@@ -104,7 +107,7 @@ void Quadric::compile_into(RenderScene& out, std::uint32_t material_index, std::
     box_corners(clip->a, clip->b, loc, "quadric clip box", q.lo, q.hi);
   }
   out.quadrics.push_back(q);
-  push(out, kernel::SolidKind::Quadric, out.quadrics.size() - 1, material_index);
+  push(out, *this, kernel::SolidKind::Quadric, out.quadrics.size() - 1, material_index);
 }
 
 void ImplicitSurface::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
@@ -152,7 +155,7 @@ void ImplicitSurface::compile_into(RenderScene& out, std::uint32_t material_inde
   out.implicits.push_back(s);
   out.implicit_tallies.push_back({});
   out.implicit_locs.push_back(loc);
-  push(out, kernel::SolidKind::Implicit, out.implicits.size() - 1, material_index);
+  push(out, *this, kernel::SolidKind::Implicit, out.implicits.size() - 1, material_index);
 }
 
 namespace {

@@ -67,6 +67,12 @@ class SceneObject {
   Material material;
   FileLoc loc;  // where a scene file defined it, if it did
   Motion motion;
+  // Where the object's own coordinates are placed (solids, spheres and CSG nodes: scale, then
+  // rotate about x, y, z, then translate). Meshes have their own `transform`.
+  Transform placement;
+  bool placed() const {
+    return !(placement.scale == Vec3(1) && placement.rotate_degrees == Vec3(0) && placement.translate == Vec3(0));
+  }
 };
 
 class Sphere : public SceneObject {

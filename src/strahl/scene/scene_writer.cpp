@@ -85,6 +85,14 @@ std::string box_map(const Vec3& a, const Vec3& b, const std::string& what) {
   return "{type: box, corners: [" + Writer::vec(a, what) + ", " + Writer::vec(b, what) + "]}";
 }
 
+// scale, rotate and translate of a placed solid, sphere or CSG node.
+void placement(Writer& w, const SceneObject& o) {
+  if (!o.placed()) return;
+  w.line(4, "scale: " + Writer::vec(o.placement.scale, "scale"));
+  w.line(4, "rotate: " + Writer::vec(o.placement.rotate_degrees, "rotate"));
+  w.line(4, "translate: " + Writer::vec(o.placement.translate, "translate"));
+}
+
 // The solids of scene/solids.h; false for anything else.
 bool solid(Writer& w, const SceneObject& o) {
   using W = Writer;
@@ -152,6 +160,7 @@ bool solid(Writer& w, const SceneObject& o) {
   } else {
     return false;
   }
+  placement(w, o);
   return true;
 }
 
@@ -159,12 +168,14 @@ void sphere(Writer& w, const Sphere& s) {
   w.line(2, "- type: sphere");
   w.line(4, "center: " + Writer::vec(s.center, "sphere center"));
   w.line(4, "radius: " + Writer::num(s.radius, "sphere radius"));
+  placement(w, s);
 }
 
 // A CSG node (scene/csg.h): its type and its objects, each written as at the top level (without
 // a material: the outermost node's applies) and indented under `objects:`.
 void csg(Writer& w, const Csg& c) {
   w.line(2, std::string("- type: ") + csg_operation_name(c.operation));
+  placement(w, c);
   w.line(4, "objects:");
   for (const auto& child : c.children) {
     Writer sub;

@@ -32,8 +32,10 @@ Csg read_csg(const YAML::Node& n, const std::string& type, const CsgReader& r, i
   for (const Named& o : kOperations)
     if (type == o.name) op = o.op;
   const auto fail = [&](const YAML::Node& at, const std::string& message) { throw Error(r.loc(at), message); };
-  if (depth == 1) r.keys(n, {"type", "objects", "material"}, type);
-  else r.keys(n, {"type", "objects"}, type + " (inside a CSG: the outermost one's material applies)");
+  if (depth == 1) r.keys(n, {"type", "objects", "material", "scale", "rotate", "translate"}, type);
+  else
+    r.keys(n, {"type", "objects", "scale", "rotate", "translate"},
+           type + " (inside a CSG: the outermost one's material applies)");
   if (depth > kMaxCsgDepth)
     fail(n, type + " is nested too deeply: CSG nodes may be nested at most " + std::to_string(kMaxCsgDepth) +
                 " levels deep");
@@ -65,6 +67,7 @@ Csg read_csg(const YAML::Node& n, const std::string& type, const CsgReader& r, i
   }
   Csg c(op, std::move(children), depth == 1 ? r.material(n) : Material{});
   c.loc = r.loc(n);
+  c.placement = r.placement(n);
   return c;
 }
 

@@ -20,6 +20,7 @@ struct CsgReader {
   std::function<FileLoc(const YAML::Node&)> loc;
   std::function<void(const YAML::Node&, std::initializer_list<std::string_view>, const std::string&)> keys;
   std::function<Material(const YAML::Node&)> material;               // the node's `material`
+  std::function<Transform(const YAML::Node&)> placement;             // its scale, rotate, translate
   std::function<std::unique_ptr<SceneObject>(const YAML::Node&)> solid;  // an operand that is not CSG
 };
 

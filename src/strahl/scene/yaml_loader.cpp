@@ -437,7 +437,7 @@ class Reader {
     const std::string type = scalar(required(n, "type", "object"), "object type");
     SceneObject* added = nullptr;
     if (type == "sphere") {
-      keys(n, {"type", "center", "radius", "material", "motion"}, "sphere");
+      keys(n, {"type", "center", "radius", "material", "motion", "scale", "rotate", "translate"}, "sphere");
       const Vec3 center = vec3(required(n, "center", "sphere"), "sphere center");
       const Real radius = positive(required(n, "radius", "sphere"), "sphere radius");
       // A keyframe's scale acts on the radius too; one that differs between axes would make an ellipsoid.
@@ -492,7 +492,21 @@ class Reader {
                           "union, intersection, difference, merge or inverse)");
     }
     added->loc = loc(n);
+    if (type != "mesh") added->placement = placement(n);
     if (const auto m = n["motion"]) added->motion = motion(m);
+  }
+
+  // `scale` (a number or [x, y, z]), `rotate` ([x, y, z] degrees) and `translate` of a solid,
+  // sphere or CSG node (SceneObject::placement).
+  Transform placement(const YAML::Node& n) const {
+    Transform t;
+    if (const auto v = n["scale"]) {
+      t.scale = v.IsScalar() ? Vec3(number(v, "scale")) : vec3(v, "scale");
+      if (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0) fail(v, "scale must not be zero");
+    }
+    if (const auto v = n["rotate"]) t.rotate_degrees = vec3(v, "rotate");
+    if (const auto v = n["translate"]) t.translate = vec3(v, "translate");
+    return t;
   }
 
   // A CSG node (scene/yaml_csg.cpp); its solid operands are read here as objects of their own.
@@ -501,6 +515,7 @@ class Reader {
     r.loc = [this](const YAML::Node& x) { return loc(x); };
     r.keys = [this](const YAML::Node& x, Keys allowed, const std::string& what) { keys(x, allowed, what); };
     r.material = [this](const YAML::Node& x) { return object_material(x); };
+    r.placement = [this](const YAML::Node& x) { return placement(x); };
     r.solid = [this](const YAML::Node& x) {
       Scene operand;
       object(x, operand);
@@ -540,13 +555,13 @@ class Reader {
   // The solids (scene/solids.h); nullptr for another type.
   SceneObject* solid(const std::string& type, const YAML::Node& n, Scene& scene) const {
     if (type == "box") {
-      keys(n, {"type", "corners", "material"}, "box");
+      keys(n, {"type", "corners", "material", "scale", "rotate", "translate"}, "box");
       Vec3 a, b;
       corners(required(n, "corners", "box"), "box", a, b);
       return &scene.add(Box(a, b, object_material(n)));
     }
     if (type == "cylinder") {
-      keys(n, {"type", "base", "cap", "radius", "open", "material"}, "cylinder");
+      keys(n, {"type", "base", "cap", "radius", "open", "material", "scale", "rotate", "translate"}, "cylinder");
       const Vec3 base = vec3(required(n, "base", "cylinder"), "cylinder base");
       const Vec3 cap = vec3(required(n, "cap", "cylinder"), "cylinder cap");
       if (base == cap) fail(n["cap"], "degenerate cylinder: its base and cap are the same point");
@@ -555,7 +570,7 @@ class Reader {
       return &scene.add(Cone::cylinder(base, cap, radius, object_material(n), open));
     }
     if (type == "cone") {
-      keys(n, {"type", "base", "base_radius", "cap", "cap_radius", "open", "material"}, "cone");
+      keys(n, {"type", "base", "base_radius", "cap", "cap_radius", "open", "material", "scale", "rotate", "translate"}, "cone");
       const Vec3 base = vec3(required(n, "base", "cone"), "cone base");
       const Vec3 cap = vec3(required(n, "cap", "cone"), "cone cap");
       if (base == cap) fail(n["cap"], "degenerate cone: its base and cap are the same point");
@@ -566,7 +581,7 @@ class Reader {
       return &scene.add(Cone(base, r0, cap, r1, object_material(n), open));
     }
     if (type == "disk") {
-      keys(n, {"type", "center", "normal", "radius", "material"}, "disk");
+      keys(n, {"type", "center", "normal", "radius", "material", "scale", "rotate", "translate"}, "disk");
       const Vec3 center = vec3(required(n, "center", "disk"), "disk center");
       const YAML::Node nn = required(n, "normal", "disk");
       const Vec3 normal = vec3(nn, "disk normal");
@@ -575,7 +590,7 @@ class Reader {
       return &scene.add(Disk(center, normal, radius, object_material(n)));
     }
     if (type == "torus") {
-      keys(n, {"type", "center", "axis", "major_radius", "minor_radius", "material"}, "torus");
+      keys(n, {"type", "center", "axis", "major_radius", "minor_radius", "material", "scale", "rotate", "translate"}, "torus");
       const Vec3 center = n["center"] ? vec3(n["center"], "torus center") : Vec3(0);
       Vec3 axis(0, 1, 0);
       if (const auto v = n["axis"]) {
@@ -589,7 +604,7 @@ class Reader {
       return &scene.add(Torus(center, major, minor, object_material(n), axis));
     }
     if (type == "quadric") {
-      keys(n, {"type", "coefficients", "clipped_by", "material"}, "quadric");
+      keys(n, {"type", "coefficients", "clipped_by", "material", "scale", "rotate", "translate"}, "quadric");
       const YAML::Node c = required(n, "coefficients", "quadric");
       if (!c.IsSequence() || c.size() != 10)
         fail(c, "quadric coefficients must be a list of ten numbers [A, B, C, D, E, F, G, H, I, J]");
@@ -614,7 +629,7 @@ class Reader {
 
   SceneObject* implicit(const YAML::Node& n, Scene& scene) const {
     keys(n, {"type", "expression", "parameters", "contained_by", "max_gradient", "accuracy", "method", "step",
-             "material"},
+             "material", "scale", "rotate", "translate"},
          "implicit");
     const YAML::Node e = required(n, "expression", "implicit");
     ImplicitSurface s(scalar(e, "implicit expression"), object_material(n));
