@@ -47,6 +47,15 @@ TEST(SceneWarnings, AOneSidedLightFacingAwayFromEveryObject) {
   const std::string with_wall = kHead + "lights:\n  - {type: disk, center: [0, 3, 0], normal: [0, 1, 0], radius: 0.5}\n" +
                                 kObjects + "  - {type: plane, normal: [1, 0, 0], distance: -5}\n";
   EXPECT_TRUE(warnings_of(with_wall).empty()) << joined(warnings_of(with_wall));
+  // Solids count as objects: a light facing only a box, or only an unclipped quadric, is no warning.
+  const std::string light = "lights:\n  - {type: disk, center: [0, 3, 0], normal: [0, -1, 0], radius: 0.5}\n";
+  const std::string box = kHead + light + "objects:\n  - {type: box, corners: [[-1, -1, -1], [1, 1, 1]]}\n";
+  EXPECT_TRUE(warnings_of(box).empty()) << joined(warnings_of(box));
+  const std::string quadric =
+      kHead + light + "objects:\n  - {type: quadric, coefficients: [1, 0, 1, 0, 0, 0, 0, 0, 0, -1]}\n";
+  EXPECT_TRUE(warnings_of(quadric).empty()) << joined(warnings_of(quadric));
+  const std::string box_behind = kHead + light + "objects:\n  - {type: box, corners: [[-1, 4, -1], [1, 5, 1]]}\n";
+  EXPECT_EQ(warnings_of(box_behind).size(), 1u) << joined(warnings_of(box_behind));
 }
 
 TEST(SceneWarnings, ALightTooFaintOrTooSmallToShow) {

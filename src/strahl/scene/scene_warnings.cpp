@@ -10,11 +10,12 @@ namespace strahl {
 
 namespace {
 
-// The box around every bounded shape, moving ones over their whole path.
+// The box around every bounded shape (spheres, triangles, bounded solids), moving ones over
+// their whole path.
 Bounds bounded_shapes(const RenderScene& s) {
   Bounds b;
   const PrimitiveSet prims = s.primitives();
-  for (std::uint32_t i = 0; i < prims.sphere_count + prims.triangle_count; ++i) {
+  for (std::uint32_t i = 0; i < prims.size(); ++i) {
     const Bounds p = primitive_bounds(prims, i);
     b.extend(p.lo);
     b.extend(p.hi);
@@ -41,6 +42,7 @@ bool anything_in_front(const RenderScene& s, const Bounds& shapes, const Vec3& p
       if (dot(c - p, n) > 0) return true;
     }
   }
+  if (s.solids.size() > s.bounded_solid_count) return true;  // an unclipped quadric may reach anywhere
   for (const kernel::Plane& plane : s.planes) {
     // A plane not parallel to the light's reaches both sides; a parallel one lies on one side.
     if (length_squared(cross(plane.normal, n)) > Real(1e-12)) return true;
