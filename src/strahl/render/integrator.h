@@ -14,8 +14,7 @@ STRAHL_HOST_DEVICE inline Vec3 sample_radiance(const SceneView& s, const CameraS
                                                RayCounters& counters) {
   const Ray ray = s.camera.generate_ray(cs);
   ++counters.camera;
-  std::uint32_t budget = s.settings.ray_budget;
-  return guard_sample(trace(s, ray, 1, Real(1), MediumStack(s.settings.medium_ior), counters, rng, budget), counters);
+  return guard_sample(trace(s, ray, counters, rng), counters);
 }
 
 }  // namespace strahl

@@ -2,7 +2,8 @@
 // Whitted-style recursive ray tracing (lecture 2.1–2.5): nearest hit, local illumination
 // (ambient + Lambert + Blinn-Phong per unshadowed light, all additive), then a mirror ray and a
 // refracted ray, each weighted; recursion stops at max_depth and when a ray's weight in the
-// pixel falls below min_weight.
+// pixel falls below min_weight. The recursion is written as a loop over an explicit stack
+// (trace() below), so that the GPU runs the same code.
 //
 // Colour at a hit with material m, colour C, shading normal N (towards the viewer), view
 // direction V, and per light the unit vector L, half vector H = (L + V)/|L + V|, radiance I and
@@ -123,65 +124,152 @@ STRAHL_HOST_DEVICE inline int nearest_emitter(const SceneView& s, const Ray& ray
   return nearest;
 }
 
-// Radiance arriving along `ray`. `depth` is 1 for camera rays; `weight` is the ray's share of the
-// pixel; `budget` is what is left of the camera sample's ray budget (TraceSettings::ray_budget):
-// each reflected or refracted ray takes one, and once none is left further ones are cut (not
-// traced, counted), depth first, the reflected ray before the refracted one.
-STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, const Ray& ray, int depth, Real weight,
-                                     const MediumStack& media, RayCounters& counters, SampleStream& rng,
-                                     std::uint32_t& budget) {
-  const Hit hit = closest_hit(s, ray, 0, kInfinity);
-  if (s.area_light_count > 0) {
-    const int emitter = nearest_emitter(s, ray, hit.t);
-    if (emitter >= 0) return s.lights[emitter].radiance;
-  }
-  if (!hit.found()) return s.settings.background;
+// The deepest ray tree trace() follows: scenes allow max_depth up to this (camera rays are depth 1).
+inline constexpr int kMaxTraceDepth = 64;
 
-  const SurfacePoint sp = surface_at(s, ray, hit);
-  const Material& m = s.materials[sp.material];
-  // Does the ray arrive at the front (outside) of the surface? Normals then face the viewer.
-  const bool front = dot(ray.direction, sp.geometric_normal) < 0;
-  const Vec3 n = front ? sp.normal : -sp.normal;
-  const Vec3 view = -ray.direction;
+// A hit of the ray tree whose local colour is known and one of whose children (the reflected ray,
+// then the refracted one) is being traced: what it needs to add the child's radiance and to
+// start the refracted ray when the reflected one's subtree is done.
+struct TraceFrame {
+  Vec3 color;                 // local illumination, plus k_r times the reflected radiance once known
+  Vec3 p, geometric_normal;   // spawn_ray's start of the refracted ray
+  Vec3 refracted_dir;         // before the glossy perturbation, drawn when the ray starts
+  Real offset;
+  Real weight;                // this hit's ray's share of the pixel
+  Real kr, kt;                // after total internal reflection and Fresnel
+  MediumStack::Undo media;    // how to leave the refracted ray's media
+  std::uint32_t material;
+  bool front;                 // the ray arrived at the outside: the refracted ray enters the object
+  bool refracting;            // the child being traced is the refracted ray (else the reflected one)
+};
 
-  Vec3 color = local_illumination(s, sp, n, view, counters, rng);
-  if (depth >= s.settings.max_depth) return color;
+// Uninitialised storage for the frames (Vec3's members default to 0, and zeroing the whole stack
+// for every camera sample would cost more than most samples' tracing).
+union TraceFrameSlot {
+  TraceFrame frame;
+  STRAHL_HOST_DEVICE TraceFrameSlot() {}
+};
 
-  Real kr = m.reflectivity;
-  Real kt = m.transparency;
-  Vec3 refracted_dir;
-  MediumStack next_media = media;
-  if (kt > 0) {
-    // Entering: from the current medium into the object; leaving: from the object to the outer one.
-    const Real n1 = front ? media.current() : m.ior;
-    const Real n2 = front ? m.ior : media.outer();
-    if (!refract(ray.direction, n, n1 / n2, refracted_dir)) {
-      kr += kt;  // total internal reflection: all transmitted light is reflected
-      kt = 0;
+// Starts frame f's refracted ray if it has one and its weight and the ray budget allow it:
+// `ray`, `weight` and `media` become the refracted ray's (the glossy direction drawn now, after
+// the reflected ray's whole subtree, as recursion would draw it).
+STRAHL_HOST_DEVICE inline bool start_refracted(const SceneView& s, TraceFrame& f, Real time, Ray& ray, Real& weight,
+                                               MediumStack& media, std::uint32_t& budget, RayCounters& counters,
+                                               SampleStream& rng) {
+  if (!(f.kt > 0 && f.kt * f.weight >= s.settings.min_weight && spend(budget, counters))) return false;
+  ++counters.refraction;
+  const Material& m = s.materials[f.material];
+  Vec3 dir = f.refracted_dir;
+  if (m.roughness > 0) dir = glossy_direction(dir, f.geometric_normal, m.roughness, rng.next2());
+  ray = spawn_ray(f.p, f.geometric_normal, dir, time, f.offset);
+  weight = f.weight * f.kt;
+  f.media = f.front ? media.enter(m.ior) : media.leave();
+  f.refracting = true;
+  return true;
+}
+
+// Radiance arriving along the camera ray `ray` (depth 1, weight 1, in the scene's medium).
+// Whitted's recursion written as one loop over an explicit stack of the pending hits on the
+// path from the camera (kernel code for the CPU and the GPU alike: no recursion, no allocation).
+// At a hit: local illumination; below max_depth, the reflected ray and then the refracted ray,
+// each traced if its weight (its share of the pixel, the product of the k_r and k_t factors on
+// its path) is at least min_weight and the camera sample's ray budget (TraceSettings::ray_budget)
+// has a ray left; once none is left further rays are cut (not traced, counted). Rays are traced
+// depth first, the reflected subtree before the refracted ray, and each hit's colour is
+// local + k_r·reflected + T·tint·refracted added in that order, so the random numbers (area lights,
+// glossy directions) are drawn in the same order and the sums are the same as a recursive
+// trace()'s, bit for bit.
+STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng) {
+  TraceFrameSlot stack[kMaxTraceDepth - 1];  // hits at depths 1 … max_depth − 1 (deeper ones spawn no rays)
+  int top = 0;                               // frames in use: `ray` is at depth top + 1
+  const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
+  const Real min_weight = s.settings.min_weight;
+  const Real time = ray.time;                // every ray of a camera sample sees the scene at one instant
+  std::uint32_t budget = s.settings.ray_budget;
+  MediumStack media(s.settings.medium_ior);  // the media of `ray`, restored on the way back up
+  Real weight = 1;                           // `ray`'s share of the pixel
+
+  for (;;) {
+    // `ray`'s own colour, unless it spawns a child: then its frame is pushed and the child traced.
+    Vec3 color;
+    const Hit hit = closest_hit(s, ray, 0, kInfinity);
+    const int emitter = s.area_light_count > 0 ? nearest_emitter(s, ray, hit.t) : -1;
+    if (emitter >= 0) {
+      color = s.lights[emitter].radiance;
+    } else if (!hit.found()) {
+      color = s.settings.background;
     } else {
-      if (m.fresnel) {
-        const Real f = schlick(dot(view, n), n1, n2);
-        kr += kt * f;
-        kt *= 1 - f;
+      const SurfacePoint sp = surface_at(s, ray, hit);
+      const Material& m = s.materials[sp.material];
+      // Does the ray arrive at the front (outside) of the surface? Normals then face the viewer.
+      const bool front = dot(ray.direction, sp.geometric_normal) < 0;
+      const Vec3 n = front ? sp.normal : -sp.normal;
+      const Vec3 view = -ray.direction;
+      color = local_illumination(s, sp, n, view, counters, rng);
+      if (top + 1 < max_depth) {
+        Real kr = m.reflectivity;
+        Real kt = m.transparency;
+        Vec3 refracted_dir;
+        if (kt > 0) {
+          // Entering: from the current medium into the object; leaving: from the object to the outer one.
+          const Real n1 = front ? media.current() : m.ior;
+          const Real n2 = front ? m.ior : media.outer();
+          if (!refract(ray.direction, n, n1 / n2, refracted_dir)) {
+            kr += kt;  // total internal reflection: all transmitted light is reflected
+            kt = 0;
+          } else if (m.fresnel) {
+            const Real f = schlick(dot(view, n), n1, n2);
+            kr += kt * f;
+            kt *= 1 - f;
+          }
+        }
+        const bool reflects = kr > 0 && kr * weight >= min_weight && spend(budget, counters);
+        if (reflects || kt > 0) {
+          TraceFrame& f = stack[top].frame;
+          f.color = color;
+          f.p = sp.p;
+          f.geometric_normal = sp.geometric_normal;
+          f.refracted_dir = refracted_dir;
+          f.offset = sp.offset;
+          f.weight = weight;
+          f.kr = kr;
+          f.kt = kt;
+          f.material = sp.material;
+          f.front = front;
+          f.refracting = false;
+          if (reflects) {
+            ++counters.reflection;
+            Vec3 dir = reflect(ray.direction, n);
+            if (m.roughness > 0) dir = glossy_direction(dir, sp.geometric_normal, m.roughness, rng.next2());
+            ray = spawn_ray(sp, dir, time);
+            weight = weight * kr;
+            ++top;
+            continue;
+          }
+          if (start_refracted(s, f, time, ray, weight, media, budget, counters, rng)) {
+            ++top;
+            continue;
+          }
+        }
       }
-      next_media = front ? media.entered(m.ior) : media.left();
+    }
+    // Return `color` to the hits waiting for it, until one starts its refracted ray or none is left.
+    for (;;) {
+      if (top == 0) return color;
+      TraceFrame& f = stack[top - 1].frame;
+      if (!f.refracting) {
+        f.color += color * f.kr;
+        if (start_refracted(s, f, time, ray, weight, media, budget, counters, rng)) break;
+      } else {
+        const Material& m = s.materials[f.material];
+        const Vec3 tint = m.filter ? m.color : Vec3(1);
+        f.color += color * tint * f.kt;
+        media.undo(f.media);
+      }
+      color = f.color;
+      --top;
     }
   }
-  if (kr > 0 && kr * weight >= s.settings.min_weight && spend(budget, counters)) {
-    ++counters.reflection;
-    Vec3 dir = reflect(ray.direction, n);
-    if (m.roughness > 0) dir = glossy_direction(dir, sp.geometric_normal, m.roughness, rng.next2());
-    const Ray r = spawn_ray(sp, dir, ray.time);
-    color += trace(s, r, depth + 1, weight * kr, media, counters, rng, budget) * kr;
-  }
-  if (kt > 0 && kt * weight >= s.settings.min_weight && spend(budget, counters)) {
-    ++counters.refraction;
-    if (m.roughness > 0) refracted_dir = glossy_direction(refracted_dir, sp.geometric_normal, m.roughness, rng.next2());
-    const Ray r = spawn_ray(sp, refracted_dir, ray.time);
-    const Vec3 tint = m.filter ? m.color : Vec3(1);
-    color += trace(s, r, depth + 1, weight * kt, next_media, counters, rng, budget) * tint * kt;
-  }
-  return color;
 }
 
 }  // namespace strahl
