@@ -38,7 +38,10 @@ BenchRays make_rays(const BenchScene& scene, const AccelView& reference, std::ui
   const Camera& cam = scene.camera;
   const std::size_t width = std::size_t(cam.nx), height = std::size_t(cam.ny), pixels = width * height;
   BenchRays out;
+  out.width = cam.nx;
+  out.height = cam.ny;
   out.primary.rays.resize(pixels);
+  out.secondary_of_pixel.assign(pixels, kNoRay);
   std::vector<Ray> incoherent(pixels), shadow(pixels);
   std::vector<Real> shadow_t(pixels);
   std::vector<std::uint8_t> hit(pixels);
@@ -69,6 +72,7 @@ BenchRays make_rays(const BenchScene& scene, const AccelView& reference, std::ui
   });
   for (std::size_t i = 0; i < pixels; ++i) {
     if (!hit[i]) continue;
+    out.secondary_of_pixel[i] = std::uint32_t(out.shadow.rays.size());
     out.incoherent.rays.push_back(incoherent[i]);
     out.shadow.rays.push_back(shadow[i]);
     out.shadow.t_max.push_back(shadow_t[i]);

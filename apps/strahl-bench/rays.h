@@ -18,10 +18,14 @@ struct RayBatch {
   std::size_t size() const { return rays.size(); }
 };
 
+inline constexpr std::uint32_t kNoRay = ~std::uint32_t(0);
+
 struct BenchRays {
+  int width = 0, height = 0;
   RayBatch primary;     // width × height, row by row from the top; nearest hit
   RayBatch incoherent;  // one per primary hit; nearest hit
   RayBatch shadow;      // one per primary hit, t_max = distance to the light; any hit (occluded)
+  std::vector<std::uint32_t> secondary_of_pixel;  // per pixel: its incoherent and shadow ray, or kNoRay (a miss)
 };
 
 // Finds the primary hits with `reference` (strahl's BVH) to place the secondary rays. Each

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "console.h"
+#include "packets.h"
 
 namespace strahl::bench {
 
@@ -68,6 +69,95 @@ bool has(const Plan& plan, AccelKind kind) {
 std::size_t naive_stride(const Plan& plan, std::size_t prims, std::size_t rays) {
   const double tests = double(prims) * double(rays);
   return tests <= plan.naive_budget ? 1 : std::size_t(std::ceil(tests / plan.naive_budget));
+}
+
+// Packets of 8 and 16 rays for strahl's BVH and Embree, interleaved (bvh, embree, bvh, ...), on
+// the scene's own primary and shadow rays; each checked against the structure's single rays.
+void measure_packets(const PrimitiveSet& prims, const BenchRays& rays, const Plan& plan, SceneResult& result) {
+  std::vector<AccelKind> kinds;
+  for (AccelKind k : plan.kinds) {
+    if (k == AccelKind::Bvh) kinds.push_back(k);
+#if defined(STRAHL_HAVE_EMBREE)
+    if (k == AccelKind::Embree) kinds.push_back(k);
+#endif
+  }
+  if (kinds.empty()) return;
+  int embree_width = 0;
+#if defined(STRAHL_HAVE_EMBREE)
+  embree_width = embree_native_packet_width();
+#endif
+  const std::vector<int> sizes = {8, 16};
+  std::vector<PacketBatch> primary, shadow;
+  for (int size : sizes) {
+    primary.push_back(tile_packets(rays, size, false));
+    shadow.push_back(tile_packets(rays, size, true));
+  }
+  strahl::console::out("  packets: primary rays of tiles of 4x2 (8 rays) and 4x4 pixels (16), shadow rays from those "
+                       "pixels' hits ({} and {} primary packets, lanes {:.0f}% and {:.0f}% active in shadow packets)\n",
+                       grouped(primary[0].packets()), grouped(primary[1].packets()),
+                       shadow[0].packets() ? 100.0 * double(shadow[0].ray_count) / double(8 * shadow[0].packets()) : 0.0,
+                       shadow[1].packets() ? 100.0 * double(shadow[1].ray_count) / double(16 * shadow[1].packets()) : 0.0);
+  Table table({"packets", "rays", "threads", "primary Mrays/s", "shadow Mrays/s", "× single primary", "× single shadow",
+               "differ from single rays (primary, shadow)"});
+  struct Built {
+    AccelKind kind;
+    Accel accel;
+    AccelView view;
+    PacketTrace single[2];
+    const AccelResult* result = nullptr;
+  };
+  std::vector<Built> built;
+  for (AccelKind kind : kinds) {
+    Built b;
+    b.kind = kind;
+    tbb::task_arena arena(plan.threads.back());
+    arena.execute([&] { b.accel = build_accel(kind, prims); });
+    built.push_back(std::move(b));
+  }
+  for (Built& b : built) {
+    b.view = b.accel.view(prims);
+    b.single[0] = trace_single(b.view, rays.primary, Query::Nearest, plan.threads.back());
+    b.single[1] = trace_single(b.view, rays.shadow, Query::Occluded, plan.threads.back());
+    for (const AccelResult& ar : result.accels)
+      if (ar.kind == b.kind) b.result = &ar;
+  }
+  bool skipped16 = false;
+  for (std::size_t si = 0; si < sizes.size(); ++si) {
+    for (std::size_t ti = 0; ti < plan.threads.size(); ++ti) {
+      for (Built& b : built) {
+        bool embree = false;
+#if defined(STRAHL_HAVE_EMBREE)
+        embree = b.kind == AccelKind::Embree;
+#endif
+        if (embree && sizes[si] > embree_width) {
+          skipped16 = true;
+          continue;
+        }
+        const int threads = plan.threads[ti];
+        const PacketTrace p = trace_packets(b.view, primary[si], rays.primary.size(), Query::Nearest, threads, plan.repeat);
+        const PacketTrace s = trace_packets(b.view, shadow[si], rays.shadow.size(), Query::Occluded, threads, plan.repeat);
+        PacketFigures f{b.kind, sizes[si], threads, p.mrays(), s.mrays()};
+        result.packets.push_back(f);
+        const PacketDiff dp = compare(p, b.single[0], !embree), ds = compare(s, b.single[1], !embree);
+        std::string single_p = "-", single_s = "-";
+        if (b.result && ti < b.result->per_threads.size()) {
+          const Figures& single = b.result->per_threads[ti];
+          if (single.mrays[0] > 0) single_p = fmt::format("{:.2f}", f.primary / single.mrays[0]);
+          if (single.mrays[2] > 0) single_s = fmt::format("{:.2f}", f.shadow / single.mrays[2]);
+        }
+        std::string differ = fmt::format("{}, {}", grouped(dp.differ), grouped(ds.differ));
+        if (dp.ties > 0) differ += fmt::format(" ({} ties)", grouped(dp.ties));
+        table.add({std::string(accel_name(b.kind)), std::to_string(sizes[si]), std::to_string(threads),
+                   fmt::format("{:.2f}", f.primary), fmt::format("{:.2f}", f.shadow), single_p, single_s, differ});
+      }
+    }
+  }
+  table.print();
+  strahl::console::out("  (× single: against the structure's single-ray figure above at the same threads; differ: rays "
+                       "whose packet answer is not the single ray's — bvh: bit for bit, ties = another primitive at the "
+                       "same t; embree: as in the checksums)\n");
+  if (skipped16)
+    strahl::console::out("  (Embree's 16-ray packets skipped: its kernels for this CPU are {} wide)\n", embree_width);
 }
 
 }  // namespace
@@ -192,6 +282,7 @@ SceneResult measure_scene(const BenchScene& scene, const Plan& plan) {
   if (reference)
     strahl::console::out("  (n differ: rays where the structure and the BVH disagree on hit or miss, or hit different primitives at\n"
                "  different distances; float Embree differs on a few rays that graze an edge or the surface they leave)\n");
+  if (plan.packets) measure_packets(prims, rays, plan, result);
   strahl::console::out("\n");
   return result;
 }

@@ -17,6 +17,7 @@ struct Plan {
   Repeat repeat;
   // Primitive tests the naive loop may spend on one batch; beyond it, only every k-th ray is traced.
   double naive_budget = 5e7;
+  bool packets = true;  // the packet table (bvh and embree, where in `kinds`)
 };
 
 inline constexpr int kBatches = 3;  // primary, incoherent, shadow
@@ -35,10 +36,19 @@ struct AccelResult {
   bool threads_disagree = false;               // answers at 1 thread differed from all threads
 };
 
+// One structure's packets of one size at one thread count (packets.h).
+struct PacketFigures {
+  AccelKind kind = AccelKind::Bvh;
+  int size = 8;
+  int threads = 1;
+  double primary = 0, shadow = 0;  // Mrays/s
+};
+
 struct SceneResult {
   std::string name;
   std::size_t spheres = 0, triangles = 0;
   std::vector<AccelResult> accels;
+  std::vector<PacketFigures> packets;
 };
 
 void print_header(const Plan& plan, int width, int height);

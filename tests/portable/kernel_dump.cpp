@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "strahl/accel/accel.h"
+#include "strahl/accel/packet.h"
 #include "strahl/render/pixel.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/scene.h"
@@ -104,6 +105,28 @@ std::vector<Ray> awkward_rays(const Soup& s, std::uint64_t seed, int count) {
   return rays;
 }
 
+// The packet queries (accel/packet.h) on consecutive runs of N rays, every third lane off.
+template <int N>
+void dump_packets(const AccelView& a, const std::vector<Ray>& rays) {
+  std::printf("# packets of %d\n", N);
+  for (std::size_t first = 0; first + N <= rays.size(); first += N) {
+    const std::uint32_t active = ((1u << N) - 1) & ~(first % 3 == 0 ? 0x4924u : 0u);
+    Real t_min[N], t_max[N];
+    for (int i = 0; i < N; ++i) {
+      t_min[i] = 1e-9;
+      t_max[i] = i % 4 == 3 ? 2.0 : kInfinity;
+    }
+    NearestHit out[N];
+    nearest_hit_packet<N>(a, active, rays.data() + first, t_min, t_max, out);
+    const std::uint32_t occ = occluded_packet<N>(a, active, rays.data() + first, t_min, t_max);
+    for (int i = 0; i < N; ++i)
+      if ((active >> i) & 1u)
+        std::printf("p%d %zu %u %016" PRIx64 " %016" PRIx64 " %016" PRIx64 " o%u\n", N, first + std::size_t(i),
+                    out[i].hit.t < kInfinity ? out[i].prim : ~0u, bits(out[i].hit.t), bits(out[i].hit.b1),
+                    bits(out[i].hit.b2), (occ >> i) & 1u);
+  }
+}
+
 void dump_queries(const char* name, const AccelView& a, const std::vector<Ray>& rays) {
   std::printf("# %s: %u primitives, %zu rays\n", name, a.prims.size(), rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -120,6 +143,8 @@ void dump_queries(const char* name, const AccelView& a, const std::vector<Ray>& 
     for_each_crossing(a, ray, 1e-9, t_far, cross);
     std::printf("\n");
   }
+  dump_packets<8>(a, rays);
+  dump_packets<16>(a, rays);
 }
 
 void dump_render(const std::string& path, int width, int height) {

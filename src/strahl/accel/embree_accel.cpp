@@ -90,6 +90,7 @@ AccelView naive(const AccelView& a) {
 // &rtc to the callbacks, and rtc is the first member, so they can reach the rest.
 struct QueryContext {
   RTCIntersectContext rtc;
+  bool packet = false;  // false: this QueryContext; true: a PacketContext (below)
   const kernel::Sphere* spheres = nullptr;
   const kernel::Triangle* triangles = nullptr;
   const Ray* ray = nullptr;
@@ -100,6 +101,25 @@ struct QueryContext {
   std::uint32_t sphere = 0;
 };
 static_assert(std::is_standard_layout_v<QueryContext> && offsetof(QueryContext, rtc) == 0);
+
+// The same for a packet (rtcIntersect8/16, rtcOccluded8/16): per lane. Embree may call the
+// callbacks with another packet size than the one traced (single-ray mode inside a packet), so the
+// callbacks find a ray's lane by its id, which is set to the lane.
+struct PacketContext {
+  RTCIntersectContext rtc;
+  bool packet = true;
+  const kernel::Sphere* spheres = nullptr;
+  const kernel::Triangle* triangles = nullptr;
+  const Ray* rays = nullptr;
+  Real t_min[kEmbreeMaxPacket], t_max[kEmbreeMaxPacket];
+  float check_below[kEmbreeMaxPacket];
+  Real sphere_t[kEmbreeMaxPacket];
+  std::uint32_t sphere[kEmbreeMaxPacket];
+};
+static_assert(std::is_standard_layout_v<PacketContext> && offsetof(PacketContext, rtc) == 0 &&
+              offsetof(PacketContext, packet) == offsetof(QueryContext, packet));
+
+bool is_packet(const RTCIntersectContext* c) { return reinterpret_cast<const QueryContext*>(c)->packet; }
 
 void init_context(QueryContext& ctx, const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
   rtcInitIntersectContext(&ctx.rtc);
@@ -173,8 +193,37 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
   b.upper_z = round_up(s.center.z + s.radius);
 }
 
-// Only rtcIntersect1 / rtcOccluded1 are used, so N is 1 and the ray is an RTCRayHit / RTCRay.
+// Packets: every valid lane of the RTCRayHitN, each with its own lane's double ray.
+void sphere_intersect_packet(const RTCIntersectFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<PacketContext*>(args->context);
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    const unsigned lane = RTCRayN_id(ray, args->N, i);
+    const kernel::Sphere& s = ctx->spheres[args->primID];
+    const Real t_hi = ctx->sphere_t[lane] < ctx->t_max[lane] ? ctx->sphere_t[lane] : ctx->t_max[lane];
+    const Real t = kernel::intersect(s, ctx->rays[lane], ctx->t_min[lane], t_hi);
+    if (!(t < kInfinity)) continue;
+    const float tf = float(t);
+    if (tf > RTCRayN_tfar(ray, args->N, i)) continue;
+    RTCRayN_tfar(ray, args->N, i) = tf;
+    const Vec3 n = kernel::normal_at(s, ctx->rays[lane].at(t));
+    RTCHitN_Ng_x(hit, args->N, i) = float(n.x);
+    RTCHitN_Ng_y(hit, args->N, i) = float(n.y);
+    RTCHitN_Ng_z(hit, args->N, i) = float(n.z);
+    RTCHitN_u(hit, args->N, i) = RTCHitN_v(hit, args->N, i) = 0;
+    RTCHitN_primID(hit, args->N, i) = args->primID;
+    RTCHitN_geomID(hit, args->N, i) = args->geomID;
+    RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+    ctx->sphere_t[lane] = t;
+    ctx->sphere[lane] = args->primID;
+  }
+}
+
+// Single rays (rtcIntersect1 / rtcOccluded1): N is 1 and the ray is an RTCRayHit / RTCRay.
 void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+  if (is_packet(args->context)) return sphere_intersect_packet(args);
   if (args->N != 1 || !args->valid[0]) return;
   auto* ctx = reinterpret_cast<QueryContext*>(args->context);
   auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
@@ -200,7 +249,20 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
 // Triangles: a hit near the ray's origin may be the surface the ray leaves, which the float ray
 // (its origin rounded, losing strahl's tiny offset) can meet at a small t. Strahl's double test
 // decides such hits: it rejects them when it sees no hit in (t_min, ∞).
+void triangle_filter_packet(const RTCFilterFunctionNArguments* args) {
+  const auto* ctx = reinterpret_cast<const PacketContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    const unsigned lane = RTCRayN_id(args->ray, args->N, i);
+    if (RTCRayN_tfar(args->ray, args->N, i) >= ctx->check_below[lane]) continue;
+    const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+    if (!(kernel::intersect(ctx->triangles[prim], ctx->rays[lane], ctx->t_min[lane], kInfinity).t < kInfinity))
+      args->valid[i] = 0;
+  }
+}
+
 void triangle_filter(const RTCFilterFunctionNArguments* args) {
+  if (is_packet(args->context)) return triangle_filter_packet(args);
   if (args->N != 1 || !args->valid[0]) return;
   const auto* ctx = reinterpret_cast<const QueryContext*>(args->context);
   const auto* r = reinterpret_cast<const RTCRay*>(args->ray);  // tfar: the candidate hit's distance
@@ -211,6 +273,17 @@ void triangle_filter(const RTCFilterFunctionNArguments* args) {
 }
 
 void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
+  if (is_packet(args->context)) {
+    const auto* ctx = reinterpret_cast<const PacketContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+      if (!args->valid[i]) continue;
+      const unsigned lane = RTCRayN_id(args->ray, args->N, i);
+      if (kernel::intersect(ctx->spheres[args->primID], ctx->rays[lane], ctx->t_min[lane], ctx->t_max[lane]) <
+          kInfinity)
+        RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
+    }
+    return;
+  }
   if (args->N != 1 || !args->valid[0]) return;
   const auto* ctx = reinterpret_cast<const QueryContext*>(args->context);
   auto* r = reinterpret_cast<RTCRay*>(args->ray);
@@ -368,6 +441,137 @@ bool embree_occluded(const AccelView& a, const Ray& ray, Real t_min, Real t_max)
   set_ray(r, ray, t_min, t_max);
   rtcOccluded1(scene_of(a), &ctx.rtc, &r);
   return r.tfar < 0;  // Embree sets tfar to −∞ when it finds a hit
+}
+
+// ---- packets ----
+
+namespace {
+
+template <int N>
+struct alignas(64) EmbreePacket {
+  RTCRayHitNt<N> rh;
+  alignas(64) int valid[N];
+};
+
+// Fills the packet's lanes (inactive ones get a harmless ray and valid = 0) and the context.
+template <int N>
+std::uint32_t fill_packet(EmbreePacket<N>& p, PacketContext& ctx, const AccelView& a, std::uint32_t active,
+                          const Ray* rays, const Real* t_min, const Real* t_max) {
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  ctx.spheres = a.prims.spheres;
+  ctx.triangles = a.prims.triangles;
+  ctx.rays = rays;
+  for (int i = 0; i < N; ++i) {
+    const bool on = (active >> i) & 1u;
+    const Ray& ray = on ? rays[i] : rays[0];
+    p.valid[i] = on ? -1 : 0;
+    p.rh.ray.org_x[i] = on ? float(ray.origin.x) : 0;
+    p.rh.ray.org_y[i] = on ? float(ray.origin.y) : 0;
+    p.rh.ray.org_z[i] = on ? float(ray.origin.z) : 0;
+    p.rh.ray.dir_x[i] = on ? float(ray.direction.x) : 0;
+    p.rh.ray.dir_y[i] = on ? float(ray.direction.y) : 0;
+    p.rh.ray.dir_z[i] = on ? float(ray.direction.z) : 1;
+    p.rh.ray.tnear[i] = on ? float(t_min[i]) : 0;
+    p.rh.ray.tfar[i] = on ? float(t_max[i]) : 0;
+    p.rh.ray.time[i] = 0;
+    p.rh.ray.mask[i] = ~0u;
+    p.rh.ray.id[i] = unsigned(i);
+    p.rh.ray.flags[i] = 0;
+    p.rh.hit.geomID[i] = p.rh.hit.primID[i] = p.rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    ctx.t_min[i] = on ? t_min[i] : 0;
+    ctx.t_max[i] = on ? t_max[i] : 0;
+    ctx.check_below[i] = on ? float(kEmbreeCheckDistance * (1 + max_abs_component(ray.origin))) : 0;
+    ctx.sphere_t[i] = kInfinity;
+    ctx.sphere[i] = 0;
+  }
+  return active;
+}
+
+template <int N>
+void nearest_packet(const AccelView& a, std::uint32_t active, const Ray* rays, const Real* t_min, const Real* t_max,
+                    NearestHit* out) {
+  EmbreePacket<N> p;
+  PacketContext ctx;
+  fill_packet(p, ctx, a, active, rays, t_min, t_max);
+  if constexpr (N == 8)
+    rtcIntersect8(p.valid, scene_of(a), &ctx.rtc, reinterpret_cast<RTCRayHit8*>(&p.rh));
+  else
+    rtcIntersect16(p.valid, scene_of(a), &ctx.rtc, reinterpret_cast<RTCRayHit16*>(&p.rh));
+  for (int i = 0; i < N; ++i) {
+    if (!p.valid[i]) continue;
+    NearestHit result;
+    if (p.rh.hit.geomID[i] == kTriangleGeometry) {
+      const std::uint32_t prim = p.rh.hit.primID[i];
+      const kernel::TriangleHit h = kernel::plane_hit(a.prims.triangles[prim], rays[i], kernel::ray_shear(rays[i].direction));
+      const kernel::TriangleHit refined =
+          h.t < kInfinity ? h : kernel::TriangleHit{Real(p.rh.ray.tfar[i]), Real(p.rh.hit.u[i]), Real(p.rh.hit.v[i])};
+      if (refined.t > t_min[i] && refined.t < t_max[i]) {
+        result.prim = a.prims.sphere_count + prim;
+        result.hit = refined;
+      }
+    } else if (p.rh.hit.geomID[i] == kSphereGeometry) {
+      result.prim = ctx.sphere[i];
+      result.hit = {ctx.sphere_t[i], 0, 0};
+    }
+    out[i] = result;
+  }
+}
+
+template <int N>
+void occluded_packet(const AccelView& a, std::uint32_t active, const Ray* rays, const Real* t_min, const Real* t_max,
+                     bool* out) {
+  EmbreePacket<N> p;
+  PacketContext ctx;
+  fill_packet(p, ctx, a, active, rays, t_min, t_max);
+  if constexpr (N == 8)
+    rtcOccluded8(p.valid, scene_of(a), &ctx.rtc, reinterpret_cast<RTCRay8*>(&p.rh.ray));
+  else
+    rtcOccluded16(p.valid, scene_of(a), &ctx.rtc, reinterpret_cast<RTCRay16*>(&p.rh.ray));
+  for (int i = 0; i < N; ++i)
+    if (p.valid[i]) out[i] = p.rh.ray.tfar[i] < 0;
+}
+
+// Lanes Embree would refuse or misjudge (beyond_float) are answered one by one; returns the rest.
+std::uint32_t packet_lanes(int n, std::uint32_t active, const Ray* rays) {
+  if (n != 8 && n != 16) throw std::invalid_argument("Embree packets are 8 or 16 rays, not " + std::to_string(n));
+  active &= (1u << n) - 1;
+  for (int i = 0; i < n; ++i)
+    if (((active >> i) & 1u) && beyond_float(rays[i])) active &= ~(1u << i);
+  return active;
+}
+
+}  // namespace
+
+int embree_native_packet_width() {
+  const RTCDevice device = shared_device();
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 16;
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 8;
+  return 1;
+}
+
+void embree_nearest_hit_packet(const AccelView& a, int n, std::uint32_t active, const Ray* rays, const Real* t_min,
+                               const Real* t_max, NearestHit* out) {
+  const std::uint32_t lanes = packet_lanes(n, active, rays);
+  for (int i = 0; i < n; ++i)
+    if (((active & ~lanes) >> i) & 1u) out[i] = nearest_hit(naive(a), rays[i], t_min[i], t_max[i]);
+  if (lanes == 0) return;
+  if (n == 8)
+    nearest_packet<8>(a, lanes, rays, t_min, t_max, out);
+  else
+    nearest_packet<16>(a, lanes, rays, t_min, t_max, out);
+}
+
+void embree_occluded_packet(const AccelView& a, int n, std::uint32_t active, const Ray* rays, const Real* t_min,
+                            const Real* t_max, bool* out) {
+  const std::uint32_t lanes = packet_lanes(n, active, rays);
+  for (int i = 0; i < n; ++i)
+    if (((active & ~lanes) >> i) & 1u) out[i] = occluded(naive(a), rays[i], t_min[i], t_max[i]);
+  if (lanes == 0) return;
+  if (n == 8)
+    occluded_packet<8>(a, lanes, rays, t_min, t_max, out);
+  else
+    occluded_packet<16>(a, lanes, rays, t_min, t_max, out);
 }
 
 void embree_for_each_crossing(const AccelView& a, const Ray& ray, Real t_min, Real t_max, EmbreeCrossFn cross,

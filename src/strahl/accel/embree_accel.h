@@ -72,6 +72,20 @@ EmbreeAccel build_embree(const PrimitiveSet& prims, AccelBuildStats* stats = nul
 // AccelKind::Embree.
 NearestHit embree_nearest_hit(const AccelView& a, const Ray& ray, Real t_min, Real t_max);
 bool embree_occluded(const AccelView& a, const Ray& ray, Real t_min, Real t_max);
+// Packets of n = 8 or 16 rays, traced together by rtcIntersect8/16 / rtcOccluded8/16 (coherent
+// mode): lane i takes part when bit i of `active` is set, and only those lanes' out[i] are
+// written, with what the single-ray queries above answer (the same filter and double refinement;
+// Embree's packet kernels may still decide a grazing ray in float differently). Any other n
+// throws std::invalid_argument. rtcIntersect16 runs on any CPU, but natively only where
+// embree_native_packet_width() is 16 (AVX-512).
+inline constexpr int kEmbreeMaxPacket = 16;
+void embree_nearest_hit_packet(const AccelView& a, int n, std::uint32_t active, const Ray* rays, const Real* t_min,
+                               const Real* t_max, NearestHit* out);
+void embree_occluded_packet(const AccelView& a, int n, std::uint32_t active, const Ray* rays, const Real* t_min,
+                            const Real* t_max, bool* out);
+// 16, 8 or 1: the widest packet this CPU's Embree kernels run natively.
+int embree_native_packet_width();
+
 // Calls cross(state, prim, 1) for every surface crossing in (t_min, t_max), nearest first, until
 // it returns true: repeated rtcIntersect1, each starting past the previous hit.
 using EmbreeCrossFn = bool (*)(void* state, std::uint32_t prim, int crossings);

@@ -1,0 +1,528 @@
+#pragma once
+// Packets of N = 8 or 16 coherent rays (a tile of neighbouring pixels' primary rays, the shadow
+// rays from their hits to one light) through the wide BVH of wide_bvh.h together: each node is
+// fetched once per packet and its eight child boxes are tested against all the packet's rays with
+// SIMD across the rays (AVX-512: 16 lanes; AVX2: 8; else a scalar loop); a child is visited with
+// the mask of the lanes whose ray meets its box, nearest first by the smallest entry distance
+// among those lanes; a waiting box is dropped, lane by lane, once its entry distance lies beyond a
+// lane's nearest hit (or the lane is occluded).
+//
+// In the leaves every lane runs the single-ray block test (kernel::blocks_nearest /
+// blocks_any of triangle_block.h) with its own ray: the answers are those of wide_bvh_nearest()
+// and wide_bvh_occluded() bit for bit — the same t, barycentrics and primitive — except where two
+// primitives are hit at exactly the same t (a ray through a shared edge or vertex): then which of
+// them is reported depends on the order the leaves are visited in, which differs between a ray
+// alone and a ray in a packet (the t is the same).
+//
+// The float box test is the conservative one of wide_bvh.h (ray_boxes(): the same margins), with
+// the near and far planes chosen per lane by min/max instead of by the direction's sign, which
+// gives the same figures.
+//
+// Plain structs, a fixed stack, no allocation: the same code compiles for the device (scalar path).
+
+#include <cstdint>
+
+#include "strahl/accel/primitive.h"
+#include "strahl/accel/triangle_block.h"
+#include "strahl/accel/wide_bvh.h"
+
+// STRAHL_PORTABLE_KERNELS: the scalar path on a SIMD host too (the tests compare them).
+#if !defined(__CUDACC__) && defined(__AVX2__) && !defined(STRAHL_PORTABLE_KERNELS)
+#include <immintrin.h>
+#define STRAHL_PACKET_AVX2 1
+#if defined(__AVX512F__)
+#define STRAHL_PACKET_AVX512 1
+#endif
+#endif
+
+// GCC 12 warns about the undefined vectors inside its own AVX-512 intrinsics (GCC bug 105593)
+// wherever they are inlined; the warning is off for this header only.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
+namespace strahl {
+
+inline constexpr int kMaxPacketSize = 16;
+
+namespace wide_bvh_packet_detail {
+
+// Per lane, structure of arrays: the box-test figures of ray_boxes() and the interval, in float.
+template <int N>
+struct alignas(64) PacketBoxes {
+  float inv[3][N];
+  float near_offset[3][N];
+  float far_offset[3][N];
+  float t_min[N];
+  float t_max[N];  // round_up(the lane's t_max); lowered as hits are found
+};
+
+struct PacketStackEntry {
+  std::uint32_t child, count, lanes;
+  float t_near;  // the smallest entry distance among `lanes`
+};
+
+template <int N>
+STRAHL_HOST_DEVICE inline void set_lane(PacketBoxes<N>& p, int i, const WideBvhView& bvh, const Ray& ray, Real t_min,
+                                        Real t_max) {
+  const wide_bvh_detail::RayBoxes rb = wide_bvh_detail::ray_boxes(bvh, ray);
+  for (int a = 0; a < 3; ++a) {
+    p.inv[a][i] = rb.inv[a];
+    p.near_offset[a][i] = rb.near_offset[a];
+    p.far_offset[a][i] = rb.far_offset[a];
+  }
+  p.t_min[i] = wide_bvh_detail::round_down(t_min);
+  p.t_max[i] = wide_bvh_detail::round_up(t_max);
+}
+
+// An inactive lane: meets no box (t_min = +∞ > t_max = −∞) and has finite figures.
+template <int N>
+STRAHL_HOST_DEVICE inline void clear_lane(PacketBoxes<N>& p, int i) {
+  for (int a = 0; a < 3; ++a) p.inv[a][i] = p.near_offset[a][i] = p.far_offset[a][i] = 0;
+  p.t_min[i] = std::numeric_limits<float>::infinity();
+  p.t_max[i] = -std::numeric_limits<float>::infinity();
+}
+
+#if defined(STRAHL_PACKET_AVX2)
+// Eight lanes (from `first`) against child k: the mask of lanes whose ray meets the box, and the
+// smallest entry distance among them (+∞ when none).
+template <int N>
+STRAHL_FORCE_INLINE unsigned child_test8(const WideBvhNode& n, int k, const PacketBoxes<N>& p, int first,
+                                         unsigned lanes8, float& t_near) {
+  const __m256 inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  __m256 tn = _mm256_load_ps(p.t_min + first), tf = _mm256_load_ps(p.t_max + first);
+  // Axes z, y, x accumulated as in the single-ray test: max(x, max(y, max(z, t_min))). NaN (0·∞)
+  // in an axis's figure: max/min return the second operand, the bound so far.
+  for (int a = 2; a >= 0; --a) {
+    const __m256 inv = _mm256_load_ps(p.inv[a] + first);
+    const __m256 lo = _mm256_mul_ps(_mm256_set1_ps(n.lo[a][k]), inv);
+    const __m256 hi = _mm256_mul_ps(_mm256_set1_ps(n.hi[a][k]), inv);
+    const __m256 t0 = _mm256_add_ps(_mm256_min_ps(lo, hi), _mm256_load_ps(p.near_offset[a] + first));
+    const __m256 t1 = _mm256_add_ps(_mm256_max_ps(lo, hi), _mm256_load_ps(p.far_offset[a] + first));
+    tn = _mm256_max_ps(t0, tn);
+    tf = _mm256_min_ps(t1, tf);
+  }
+  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  const __m256 on = _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(lanes8)), bit), bit));
+  const __m256 hit = _mm256_and_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ), on);
+  const unsigned mask = unsigned(_mm256_movemask_ps(hit));
+  if (mask != 0) {
+    const __m256 v = _mm256_blendv_ps(inf, tn, hit);
+    __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+    m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+    m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+    t_near = _mm_cvtss_f32(m);
+  }
+  return mask;
+}
+#endif
+
+// Child k of node n against the packet's lanes in `lanes`: the lanes whose ray meets its box
+// within their interval, and the smallest entry distance among them.
+template <int N>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE std::uint32_t child_test(const WideBvhNode& n, int k, const PacketBoxes<N>& p,
+                                                                std::uint32_t lanes, float& t_near) {
+#if defined(STRAHL_PACKET_AVX512)
+  if constexpr (N == 16) {
+    __m512 tn = _mm512_load_ps(p.t_min), tf = _mm512_load_ps(p.t_max);
+    for (int a = 2; a >= 0; --a) {
+      const __m512 inv = _mm512_load_ps(p.inv[a]);
+      const __m512 lo = _mm512_mul_ps(_mm512_set1_ps(n.lo[a][k]), inv);
+      const __m512 hi = _mm512_mul_ps(_mm512_set1_ps(n.hi[a][k]), inv);
+      const __m512 t0 = _mm512_add_ps(_mm512_min_ps(lo, hi), _mm512_load_ps(p.near_offset[a]));
+      const __m512 t1 = _mm512_add_ps(_mm512_max_ps(lo, hi), _mm512_load_ps(p.far_offset[a]));
+      tn = _mm512_max_ps(t0, tn);
+      tf = _mm512_min_ps(t1, tf);
+    }
+    const __mmask16 hit = _mm512_mask_cmp_ps_mask(__mmask16(lanes), tn, tf, _CMP_LE_OQ);
+    if (hit != 0) {
+      // The smallest tn among the lanes hit (no _mm512_mask_reduce_min_ps: GCC 12 warns about
+      // its undefined vectors).
+      const __m512 v = _mm512_mask_blend_ps(hit, _mm512_set1_ps(std::numeric_limits<float>::infinity()), tn);
+      const __m512 h = _mm512_min_ps(v, _mm512_shuffle_f32x4(v, v, 0xee));
+      const __m256 q = _mm512_castps512_ps256(h);
+      __m128 m = _mm_min_ps(_mm256_castps256_ps128(q), _mm256_extractf128_ps(q, 1));
+      m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+      m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+      t_near = _mm_cvtss_f32(m);
+    }
+    return hit;
+  }
+#endif
+#if defined(STRAHL_PACKET_AVX2)
+  if constexpr (N % 8 == 0) {
+    std::uint32_t hit = 0;
+    t_near = std::numeric_limits<float>::infinity();
+    for (int first = 0; first < N; first += 8) {
+      if (((lanes >> first) & 0xffu) == 0) continue;
+      float t = 0;
+      const std::uint32_t m = child_test8(n, k, p, first, (lanes >> first) & 0xffu, t);
+      if (m != 0) {
+        hit |= m << first;
+        t_near = t < t_near ? t : t_near;
+      }
+    }
+    return hit;
+  }
+#endif
+  std::uint32_t hit = 0;
+  float best = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < N; ++i) {
+    if (((lanes >> i) & 1u) == 0) continue;
+    float lo = p.t_min[i], hi = p.t_max[i];
+    for (int a = 2; a >= 0; --a) {
+      const float l = n.lo[a][k] * p.inv[a][i], h = n.hi[a][k] * p.inv[a][i];
+      const float t0 = (l < h ? l : h) + p.near_offset[a][i];  // NaN: h, as min_ps
+      const float t1 = (l > h ? l : h) + p.far_offset[a][i];
+      lo = t0 > lo ? t0 : lo;  // NaN keeps the bound
+      hi = t1 < hi ? t1 : hi;
+    }
+    if (lo <= hi) {
+      hit |= 1u << i;
+      best = lo < best ? lo : best;
+    }
+  }
+  t_near = best;
+  return hit;
+}
+
+// The lanes of `lanes` whose t_max (float, rounded up) is ≥ t: those a box entered at t may still serve.
+template <int N>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE std::uint32_t lanes_reaching(const PacketBoxes<N>& p, std::uint32_t lanes,
+                                                                    float t) {
+#if defined(STRAHL_PACKET_AVX512)
+  if constexpr (N == 16)
+    return _mm512_mask_cmp_ps_mask(__mmask16(lanes), _mm512_set1_ps(t), _mm512_load_ps(p.t_max), _CMP_LE_OQ);
+#endif
+#if defined(STRAHL_PACKET_AVX2)
+  if constexpr (N % 8 == 0) {
+    std::uint32_t m = 0;
+    for (int first = 0; first < N; first += 8)
+      m |= std::uint32_t(_mm256_movemask_ps(
+               _mm256_cmp_ps(_mm256_set1_ps(t), _mm256_load_ps(p.t_max + first), _CMP_LE_OQ)))
+           << first;
+    return m & lanes;
+  }
+#endif
+  std::uint32_t m = 0;
+  for (int i = 0; i < N; ++i)
+    if (((lanes >> i) & 1u) && t <= p.t_max[i]) m |= 1u << i;
+  return m;
+}
+
+// ---- the leaves: one triangle against the packet's rays at once (AVX-512, double) ----
+//
+// Where every active lane's ray shears with the same axis order (kx, ky, kz: the usual case in a
+// coherent packet), each triangle of a leaf is tested against eight lanes at once, with exactly
+// the IEEE operations of kernel::intersect() in its order (as triangle_block.h's test, which is
+// bit for bit the scalar test), so each lane's t, b1, b2 are the single ray's. The triangles are
+// scanned in block and lane order accepting t < the lane's nearest so far, which finds what
+// blocks_nearest() finds: the first of the nearest. Leaves with spheres or solids, and packets
+// whose lanes shear differently, go lane by lane through blocks_nearest() / blocks_any().
+
+// Per lane, structure of arrays, in double: the origin in the shared axis order, the shear, the
+// interval, and the nearest hit so far.
+template <int N>
+struct alignas(64) PacketTriangles {
+  double o[3][N];
+  double s[3][N];  // sx, sy, sz
+  double t_min[N];
+  double t_far[N];  // the nearest hit's t so far (the interval's end before any)
+  double b1[N], b2[N];
+  std::uint32_t prim[N];
+  int kx = 0, ky = 1, kz = 2;
+  bool uniform = false;  // every active lane has this axis order
+};
+
+template <int N>
+STRAHL_HOST_DEVICE inline void set_triangle_lanes(PacketTriangles<N>& q, std::uint32_t active,
+                                                  const kernel::TriangleBlockRay* br, const Real* t_min,
+                                                  const Real* t_max) {
+  q.uniform = active != 0;
+  bool first = true;
+  for (int i = 0; i < N; ++i) {
+    q.t_far[i] = 0;
+    q.b1[i] = q.b2[i] = 0;
+    q.prim[i] = 0;
+    q.t_min[i] = 0;
+    for (int a = 0; a < 3; ++a) q.o[a][i] = q.s[a][i] = 0;
+    if (((active >> i) & 1u) == 0) continue;
+    const kernel::RayShear& s = br[i].shear;
+    if (first) {
+      q.kx = s.kx;
+      q.ky = s.ky;
+      q.kz = s.kz;
+      first = false;
+    } else if (s.kx != q.kx || s.ky != q.ky || s.kz != q.kz) {
+      q.uniform = false;
+    }
+    for (int a = 0; a < 3; ++a) q.o[a][i] = br[i].o[a];
+    q.s[0][i] = s.sx;
+    q.s[1][i] = s.sy;
+    q.s[2][i] = s.sz;
+    q.t_min[i] = t_min[i];
+    q.t_far[i] = t_max[i];
+  }
+}
+
+#if defined(STRAHL_PACKET_AVX512)
+// Eight lanes from `first` (mask m8) against every triangle of the leaf's blocks. any: stop a lane
+// at its first hit (returns the lanes hit); else keep the nearest (returns the lanes whose nearest
+// changed).
+template <int N>
+STRAHL_FORCE_INLINE unsigned leaf_triangles8(const WideBvhLeaf* blocks, std::uint32_t count, PacketTriangles<N>& q,
+                                             int first, unsigned m8, bool any) {
+  const __m512d ox = _mm512_load_pd(q.o[0] + first), oy = _mm512_load_pd(q.o[1] + first),
+                oz = _mm512_load_pd(q.o[2] + first);
+  const __m512d sx = _mm512_load_pd(q.s[0] + first), sy = _mm512_load_pd(q.s[1] + first),
+                sz = _mm512_load_pd(q.s[2] + first);
+  const __m512d t_min = _mm512_load_pd(q.t_min + first);
+  __m512d t_far = _mm512_load_pd(q.t_far + first);
+  __m512d b1 = _mm512_load_pd(q.b1 + first), b2 = _mm512_load_pd(q.b2 + first);
+  __m256i prim = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.prim + first));
+  const __m512d zero = _mm512_setzero_pd();
+  const int kx = q.kx, ky = q.ky, kz = q.kz;
+  __mmask8 live = __mmask8(m8), changed = 0;
+  for (std::uint32_t bi = 0; bi < count && live != 0; ++bi) {
+    const WideBvhLeaf& b = blocks[bi];
+    unsigned tri = b.triangles;
+    while (tri != 0 && live != 0) {
+      const int k = wide_bvh_detail::lowest_bit(tri);
+      tri &= tri - 1;
+      // shear_triangle(): a = v0 − o (components kx, ky, kz), ax = a[kx] − sx·a[kz], ...
+      const __m512d a_x = _mm512_sub_pd(_mm512_set1_pd(b.v[0][kx][k]), ox);
+      const __m512d a_y = _mm512_sub_pd(_mm512_set1_pd(b.v[0][ky][k]), oy);
+      const __m512d a_z = _mm512_sub_pd(_mm512_set1_pd(b.v[0][kz][k]), oz);
+      const __m512d b_x = _mm512_sub_pd(_mm512_set1_pd(b.v[1][kx][k]), ox);
+      const __m512d b_y = _mm512_sub_pd(_mm512_set1_pd(b.v[1][ky][k]), oy);
+      const __m512d b_z = _mm512_sub_pd(_mm512_set1_pd(b.v[1][kz][k]), oz);
+      const __m512d c_x = _mm512_sub_pd(_mm512_set1_pd(b.v[2][kx][k]), ox);
+      const __m512d c_y = _mm512_sub_pd(_mm512_set1_pd(b.v[2][ky][k]), oy);
+      const __m512d c_z = _mm512_sub_pd(_mm512_set1_pd(b.v[2][kz][k]), oz);
+      const __m512d ax = _mm512_sub_pd(a_x, _mm512_mul_pd(sx, a_z)), ay = _mm512_sub_pd(a_y, _mm512_mul_pd(sy, a_z));
+      const __m512d bx = _mm512_sub_pd(b_x, _mm512_mul_pd(sx, b_z)), by = _mm512_sub_pd(b_y, _mm512_mul_pd(sy, b_z));
+      const __m512d cx = _mm512_sub_pd(c_x, _mm512_mul_pd(sx, c_z)), cy = _mm512_sub_pd(c_y, _mm512_mul_pd(sy, c_z));
+      const __m512d u = _mm512_sub_pd(_mm512_mul_pd(cx, by), _mm512_mul_pd(cy, bx));
+      const __m512d v = _mm512_sub_pd(_mm512_mul_pd(ax, cy), _mm512_mul_pd(ay, cx));
+      const __m512d w = _mm512_sub_pd(_mm512_mul_pd(bx, ay), _mm512_mul_pd(by, ax));
+      const __mmask8 negative = _mm512_cmp_pd_mask(u, zero, _CMP_LT_OQ) | _mm512_cmp_pd_mask(v, zero, _CMP_LT_OQ) |
+                                _mm512_cmp_pd_mask(w, zero, _CMP_LT_OQ);
+      const __mmask8 positive = _mm512_cmp_pd_mask(u, zero, _CMP_GT_OQ) | _mm512_cmp_pd_mask(v, zero, _CMP_GT_OQ) |
+                                _mm512_cmp_pd_mask(w, zero, _CMP_GT_OQ);
+      const __m512d det = _mm512_add_pd(_mm512_add_pd(u, v), w);
+      const __mmask8 inside = __mmask8(live & ~(negative & positive) & _mm512_cmp_pd_mask(det, zero, _CMP_NEQ_OQ));
+      if (inside == 0) continue;
+      const __m512d inv_det = _mm512_div_pd(_mm512_set1_pd(1.0), det);
+      // sheared_distance(): az = sz·a[kz], ..., t = (u·az + v·bz + w·cz)·inv_det.
+      const __m512d az = _mm512_mul_pd(sz, a_z), bz = _mm512_mul_pd(sz, b_z), cz = _mm512_mul_pd(sz, c_z);
+      const __m512d t = _mm512_mul_pd(
+          _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(u, az), _mm512_mul_pd(v, bz)), _mm512_mul_pd(w, cz)), inv_det);
+      const __mmask8 hit = inside & _mm512_cmp_pd_mask(t, t_min, _CMP_GT_OQ) & _mm512_cmp_pd_mask(t, t_far, _CMP_LT_OQ);
+      if (hit == 0) continue;
+      if (any) {
+        changed |= hit;
+        live &= __mmask8(~hit);
+        continue;
+      }
+      changed |= hit;
+      t_far = _mm512_mask_mov_pd(t_far, hit, t);
+      b1 = _mm512_mask_mov_pd(b1, hit, _mm512_mul_pd(v, inv_det));
+      b2 = _mm512_mask_mov_pd(b2, hit, _mm512_mul_pd(w, inv_det));
+      prim = _mm256_mask_mov_epi32(prim, hit, _mm256_set1_epi32(int(b.prim[k])));
+    }
+  }
+  if (!any && changed != 0) {
+    _mm512_store_pd(q.t_far + first, t_far);
+    _mm512_store_pd(q.b1 + first, b1);
+    _mm512_store_pd(q.b2 + first, b2);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(q.prim + first), prim);
+  }
+  return changed;
+}
+#endif
+
+// Does every block of the leaf hold triangles only (no sphere or solid lanes)?
+STRAHL_HOST_DEVICE inline bool triangles_only(const WideBvhLeaf* blocks, std::uint32_t count) {
+  std::uint32_t other = 0;
+  for (std::uint32_t i = 0; i < count; ++i) other |= blocks[i].other;
+  return other == 0;
+}
+
+// Calls leaf(first_block, count, lanes) for every leaf some lane's ray meets within its interval,
+// with the mask of those lanes (a subset of `live`); leaf returns the lanes that are finished
+// (occluded) and lowers p.t_max of lanes whose interval shrank. Nearer boxes first.
+template <int N, class Leaf>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_packet(const WideBvhView& bvh, PacketBoxes<N>& p,
+                                                            std::uint32_t live, Leaf& leaf) {
+  using wide_bvh_detail::lowest_bit;
+  if (live == 0) return;
+  if (bvh.root_leaf_count > 0) {
+    leaf(bvh.leaves, bvh.root_leaf_count, live);
+    return;
+  }
+  if (bvh.nodes == nullptr) return;
+  PacketStackEntry stack[(kWideBvhWidth - 1) * 64 + 4];
+  int top = 0;
+  std::uint32_t child = 0, count = 0, lanes = live;  // the root node, every live lane
+  for (;;) {
+    if (count == 0) {
+      const WideBvhNode& n = bvh.nodes[child];
+      std::uint32_t child_lanes[kWideBvhWidth];
+      float t_near[kWideBvhWidth];
+      int order[kWideBvhWidth], hits = 0;
+      for (int k = 0; k < kWideBvhWidth; ++k) {
+        if (n.child[k] == kWideBvhEmpty) continue;
+        float t = 0;
+        const std::uint32_t m = child_test(n, k, p, lanes, t);
+        if (m == 0) continue;
+        child_lanes[k] = m;
+        t_near[k] = t;
+        int j = hits++;  // insertion by entry distance, equal ones in slot order
+        for (; j > 0 && t_near[order[j - 1]] > t; --j) order[j] = order[j - 1];
+        order[j] = k;
+      }
+      if (hits > 0) {
+        for (int i = hits - 1; i > 0; --i) {
+          const int k = order[i];
+          stack[top++] = {n.child[k], n.count[k], child_lanes[k], t_near[k]};
+        }
+        const int k = order[0];
+        child = n.child[k];
+        count = n.count[k];
+        lanes = child_lanes[k];
+        continue;
+      }
+    } else {
+      live &= ~leaf(bvh.leaves + child, count, lanes);
+      if (live == 0) return;
+    }
+    // The next waiting box that some live lane may still need.
+    for (;;) {
+      if (top == 0) return;
+      const PacketStackEntry& e = stack[--top];
+      const std::uint32_t m = lanes_reaching(p, e.lanes & live, e.t_near);
+      if (m != 0) {
+        child = e.child;
+        count = e.count;
+        lanes = m;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace wide_bvh_packet_detail
+
+// The nearest hit of each active lane (bit i of `active`) in (t_min[i], t_max[i]), N = 8 or 16:
+// like wide_bvh_nearest() on each ray — t_max[i] lowered to the hit's t, prim[i] and hit[i] set
+// where a hit is found, left alone where none is (the caller sets hit[i].t = kInfinity first).
+template <int N>
+STRAHL_HOST_DEVICE inline void wide_bvh_nearest_packet(const WideBvhView& bvh, const PrimitiveSet& prims,
+                                                       std::uint32_t active, const Ray* rays, const Real* t_min,
+                                                       Real* t_max, std::uint32_t* prim, kernel::TriangleHit* hit) {
+  static_assert(N == 8 || N == 16);
+  using namespace wide_bvh_packet_detail;
+  active &= (1u << N) - 1;
+  PacketBoxes<N> p;
+  kernel::TriangleBlockRay br[N];
+  for (int i = 0; i < N; ++i) {
+    if ((active >> i) & 1u) {
+      set_lane(p, i, bvh, rays[i], t_min[i], t_max[i]);
+      br[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
+    } else {
+      clear_lane(p, i);
+    }
+  }
+  PacketTriangles<N> q;
+  set_triangle_lanes(q, active, br, t_min, t_max);
+  std::uint32_t found = 0;
+  auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, std::uint32_t lanes) -> std::uint32_t {
+    std::uint32_t changed = 0;
+#if defined(STRAHL_PACKET_AVX512)
+    if (q.uniform && triangles_only(first, count)) {
+      for (int h = 0; h < N; h += 8)
+        if ((lanes >> h) & 0xffu) changed |= leaf_triangles8(first, count, q, h, (lanes >> h) & 0xffu, false) << h;
+    } else
+#endif
+    {
+      for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
+        const int i = wide_bvh_detail::lowest_bit(m);
+        Real t_far = q.t_far[i];
+        kernel::TriangleHit h{q.t_far[i], q.b1[i], q.b2[i]};
+        std::uint32_t pr = q.prim[i];
+        kernel::blocks_nearest(first, count, prims, br[i], t_min[i], t_far, pr, h);
+        if (t_far != q.t_far[i]) {
+          q.t_far[i] = h.t;
+          q.b1[i] = h.b1;
+          q.b2[i] = h.b2;
+          q.prim[i] = pr;
+          changed |= 1u << i;
+        }
+      }
+    }
+    found |= changed;
+    for (std::uint32_t m = changed; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      p.t_max[i] = wide_bvh_detail::round_up(q.t_far[i]);
+    }
+    return 0;
+  };
+  traverse_packet<N>(bvh, p, active, leaf);
+  for (std::uint32_t m = found; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    t_max[i] = q.t_far[i];
+    prim[i] = q.prim[i];
+    hit[i] = kernel::TriangleHit{q.t_far[i], q.b1[i], q.b2[i]};
+  }
+}
+
+// Which active lanes' rays hit something in (t_min[i], t_max[i]) (wide_bvh_occluded() on each):
+// the mask of the occluded lanes.
+template <int N>
+STRAHL_HOST_DEVICE inline std::uint32_t wide_bvh_occluded_packet(const WideBvhView& bvh, const PrimitiveSet& prims,
+                                                                 std::uint32_t active, const Ray* rays,
+                                                                 const Real* t_min, const Real* t_max) {
+  static_assert(N == 8 || N == 16);
+  using namespace wide_bvh_packet_detail;
+  active &= (1u << N) - 1;
+  PacketBoxes<N> p;
+  kernel::TriangleBlockRay br[N];
+  for (int i = 0; i < N; ++i) {
+    if ((active >> i) & 1u) {
+      set_lane(p, i, bvh, rays[i], t_min[i], t_max[i]);
+      br[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
+    } else {
+      clear_lane(p, i);
+    }
+  }
+  PacketTriangles<N> q;
+  set_triangle_lanes(q, active, br, t_min, t_max);
+  std::uint32_t occluded = 0;
+  auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, std::uint32_t lanes) -> std::uint32_t {
+    std::uint32_t done = 0;
+#if defined(STRAHL_PACKET_AVX512)
+    if (q.uniform && triangles_only(first, count)) {
+      for (int h = 0; h < N; h += 8)
+        if ((lanes >> h) & 0xffu) done |= leaf_triangles8(first, count, q, h, (lanes >> h) & 0xffu, true) << h;
+    } else
+#endif
+    {
+      for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
+        const int i = wide_bvh_detail::lowest_bit(m);
+        if (kernel::blocks_any(first, count, prims, br[i], t_min[i], t_max[i])) done |= 1u << i;
+      }
+    }
+    occluded |= done;
+    return done;
+  };
+  traverse_packet<N>(bvh, p, active, leaf);
+  return occluded;
+}
+
+}  // namespace strahl
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif

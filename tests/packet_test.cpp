@@ -1,0 +1,373 @@
+// Packets of 8 and 16 rays (accel/packet.h, accel/wide_bvh_packet.h) against the single-ray
+// queries, lane for lane: the nearest hit bit for bit (primitive, t, b1, b2) and the occlusion
+// answer, on random rays, coherent camera tiles (those straddling the image border with their
+// outside lanes off), degenerate rays (zero direction components, ±0, along the axes, origins on
+// triangle edges and vertices, rays through shared vertices) and random lane masks; inactive
+// lanes' outputs are never written. Where two primitives are hit at exactly the same t, which
+// one a ray reports depends on the order it meets the leaves in (wide_bvh_packet.h): such a lane
+// must report the same t and a primitive really hit at that t, and the test counts them.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "strahl/accel/accel.h"
+#include "strahl/accel/packet.h"
+#include "strahl/camera/camera.h"
+#include "test_random.h"
+
+namespace strahl {
+namespace {
+
+using test::Random;
+
+struct Prims {
+  std::vector<kernel::Sphere> spheres;
+  std::vector<kernel::Triangle> triangles;
+  PrimitiveSet set() const {
+    return {spheres.data(), std::uint32_t(spheres.size()), triangles.data(), std::uint32_t(triangles.size()),
+            nullptr, 0, {}};
+  }
+  void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
+    kernel::Triangle t;
+    t.v0 = a;
+    t.v1 = b;
+    t.v2 = c;
+    triangles.push_back(t);
+  }
+};
+
+// A 24×24 grid of unit-spaced quads in the plane z = 0 (x, y ∈ [−1, 1]: shared edges and vertices
+// on exact binary fractions), a bumpy grid above it, random triangles and spheres.
+Prims scene(std::uint64_t seed) {
+  Random rng(seed);
+  Prims s;
+  const int n = 24;
+  const auto at = [&](int i, int j, Real z) { return Vec3(-1 + 2 * Real(i) / n, -1 + 2 * Real(j) / n, z); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      s.triangle(at(i, j, 0), at(i + 1, j, 0), at(i + 1, j + 1, 0));
+      s.triangle(at(i, j, 0), at(i + 1, j + 1, 0), at(i, j + 1, 0));
+    }
+  Vec3 h[17][17];
+  for (int i = 0; i <= 16; ++i)
+    for (int j = 0; j <= 16; ++j)
+      h[i][j] = Vec3(-0.8 + 0.1 * i, -0.8 + 0.1 * j, 0.5 + 0.05 * std::sin(3.0 * i) * std::cos(2.0 * j));
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) {
+      s.triangle(h[i][j], h[i + 1][j], h[i + 1][j + 1]);
+      s.triangle(h[i][j], h[i + 1][j + 1], h[i][j + 1]);
+    }
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 p = rng.point(-1, 1);
+    s.triangle(p, p + rng.direction() * rng.log_uniform(1e-3, 0.3), p + rng.direction() * rng.log_uniform(1e-3, 0.3));
+  }
+  for (int i = 0; i < 40; ++i) s.spheres.push_back({rng.point(-1, 1), rng.log_uniform(1e-3, 0.15), 0});
+  return s;
+}
+
+struct Counts {
+  std::size_t lanes = 0, hits = 0, ties = 0, occluded = 0;
+};
+
+// One packet against the single rays: every active lane's answer, every inactive lane untouched.
+template <int N>
+void check_packet(const AccelView& v, std::uint32_t active, const Ray* rays, const Real* t_min, const Real* t_max,
+                  Counts& c) {
+  NearestHit out[N];
+  for (NearestHit& h : out) h = NearestHit{0xdeadbeefu, kernel::TriangleHit{-7, -7, -7}};
+  nearest_hit_packet<N>(v, active, rays, t_min, t_max, out);
+  const std::uint32_t occ = occluded_packet<N>(v, active, rays, t_min, t_max);
+  EXPECT_EQ(occ & ~active, 0u);
+  for (int i = 0; i < N; ++i) {
+    if (((active >> i) & 1u) == 0) {
+      EXPECT_EQ(out[i].prim, 0xdeadbeefu) << "inactive lane " << i << " written";
+      EXPECT_EQ(out[i].hit.t, -7) << "inactive lane " << i << " written";
+      continue;
+    }
+    ++c.lanes;
+    const NearestHit single = nearest_hit(v, rays[i], t_min[i], t_max[i]);
+    const bool single_occluded = occluded(v, rays[i], t_min[i], t_max[i]);
+    EXPECT_EQ(((occ >> i) & 1u) != 0, single_occluded) << "lane " << i;
+    c.occluded += single_occluded;
+    ASSERT_EQ(out[i].hit.t, single.hit.t) << "lane " << i << " of " << N;  // bit for bit (t is never NaN)
+    if (!(single.hit.t < kInfinity)) continue;
+    ++c.hits;
+    if (out[i].prim != single.prim) {
+      // Another primitive at exactly the same t: it must really be hit there.
+      ++c.ties;
+      const kernel::TriangleHit h = intersect_primitive(v.prims, out[i].prim, rays[i],
+                                                        kernel::ray_shear(rays[i].direction), t_min[i], t_max[i]);
+      EXPECT_EQ(h.t, out[i].hit.t) << "lane " << i << ": primitive " << out[i].prim << " is not hit at that t";
+      EXPECT_EQ(std::memcmp(&h, &out[i].hit, sizeof h), 0);
+      continue;
+    }
+    EXPECT_EQ(std::memcmp(&out[i].hit, &single.hit, sizeof single.hit), 0)
+        << "lane " << i << ": b1 " << out[i].hit.b1 << " vs " << single.hit.b1 << ", b2 " << out[i].hit.b2 << " vs "
+        << single.hit.b2;
+  }
+}
+
+// Packets of N from a list of rays (t_min 0 unless given), all lanes active.
+template <int N>
+Counts check_all(const AccelView& v, const std::vector<Ray>& rays, const std::vector<Real>& t_max) {
+  Counts c;
+  for (std::size_t first = 0; first + N <= rays.size(); first += N) {
+    Real t_min[N] = {};
+    check_packet<N>(v, (1u << N) - 1, rays.data() + first, t_min, t_max.data() + first, c);
+  }
+  return c;
+}
+
+struct Built {
+  Prims prims;
+  Accel accel;
+  AccelView view;
+  explicit Built(std::uint64_t seed, AccelKind kind = AccelKind::Bvh) : prims(scene(seed)) {
+    accel = build_accel(kind, prims.set());
+    view = accel.view(prims.set());
+  }
+};
+
+TEST(Packet, RandomRaysMatchSingleRays) {
+  const Built b(1);
+  ASSERT_FALSE(b.view.one_leaf);
+  Random rng(2);
+  std::vector<Ray> rays;
+  std::vector<Real> t_max;
+  for (int i = 0; i < 8192; ++i) {
+    rays.push_back(Ray{rng.point(-1.5, 1.5), rng.direction()});
+    t_max.push_back(rng.coin() ? kInfinity : rng.uniform(0.1, 3));
+  }
+  const Counts c8 = check_all<8>(b.view, rays, t_max), c16 = check_all<16>(b.view, rays, t_max);
+  EXPECT_EQ(c8.lanes, rays.size());
+  EXPECT_GT(c8.hits, rays.size() / 10);  // the rays meet the scene
+  EXPECT_GT(c8.occluded, rays.size() / 8);
+  EXPECT_LT(c8.occluded, rays.size());
+  EXPECT_EQ(c16.hits, c8.hits);
+  EXPECT_LE(c8.ties + c16.ties, rays.size() / 1000);
+}
+
+// Neighbouring rays, as packets are meant for: bundles from one origin in a narrow cone, and the
+// same with origins spread (shadow rays towards one point).
+TEST(Packet, CoherentBundlesMatchSingleRays) {
+  const Built b(3);
+  Random rng(4);
+  std::vector<Ray> rays;
+  std::vector<Real> t_max;
+  for (int k = 0; k < 400; ++k) {
+    const Vec3 o = rng.point(-1.5, 1.5), d = rng.direction();
+    const Vec3 light = rng.point(-1.5, 1.5);
+    for (int i = 0; i < 16; ++i) {
+      rays.push_back(Ray{o, normalize(d + rng.direction() * 0.02)});
+      t_max.push_back(kInfinity);
+    }
+    for (int i = 0; i < 16; ++i) {
+      const Vec3 p = o + rng.direction() * 0.05;
+      rays.push_back(Ray{p, normalize(light - p)});
+      t_max.push_back(length(light - p));
+    }
+  }
+  const Counts c8 = check_all<8>(b.view, rays, t_max), c16 = check_all<16>(b.view, rays, t_max);
+  EXPECT_GT(c8.hits, rays.size() / 4);
+  EXPECT_EQ(c16.hits, c8.hits);
+  EXPECT_LE(c8.ties + c16.ties, rays.size() / 1000);
+}
+
+// Zero direction components (+0 and −0), rays along the axes, origins exactly on the grid's edges
+// and vertices and in its plane, rays through its shared vertices and along its edges.
+TEST(Packet, DegenerateRaysMatchSingleRays) {
+  const Built b(5);
+  Random rng(6);
+  std::vector<Ray> rays;
+  const Real zeros[2] = {0.0, -0.0};
+  const auto grid = [&](int i) { return -1 + 2 * Real(i) / 24; };
+  for (int k = 0; k < 2048; ++k) {
+    Vec3 o = rng.point(-1.2, 1.2), d = rng.direction();
+    switch (k % 8) {
+      case 0: d = Vec3(zeros[k / 8 % 2], zeros[k / 16 % 2], k / 32 % 2 ? 1 : -1); break;  // along z
+      case 1: d = Vec3(k / 8 % 2 ? 1 : -1, zeros[k / 16 % 2], zeros[k / 32 % 2]); break;  // along x
+      case 2: d = normalize(Vec3(d.x, zeros[k / 8 % 2], d.z)); break;                    // one zero component
+      case 3: o = Vec3(grid(rng.below(25)), grid(rng.below(25)), 0); break;               // origin on a vertex
+      case 4: o = Vec3(grid(rng.below(25)), rng.uniform(-1, 1), 0); break;                // origin on an edge
+      case 5: {                                                                           // through a vertex
+        const Vec3 target(grid(rng.below(25)), grid(rng.below(25)), 0);
+        o = target + d * rng.uniform(0.5, 2);
+        d = -d;
+        break;
+      }
+      case 6: o = Vec3(grid(rng.below(25)), rng.uniform(-1.5, 1.5), 0); d = Vec3(0, k / 8 % 2 ? 1 : -1, 0); break;  // along an edge
+      case 7: o = Vec3(o.x, o.y, 0); d = normalize(Vec3(d.x, d.y, zeros[k / 8 % 2])); break;  // in the grid's plane
+    }
+    rays.push_back(Ray{o, d});
+  }
+  const std::vector<Real> t_max(rays.size(), kInfinity);
+  const Counts c8 = check_all<8>(b.view, rays, t_max), c16 = check_all<16>(b.view, rays, t_max);
+  EXPECT_GT(c8.hits, rays.size() / 4);
+  EXPECT_EQ(c16.hits, c8.hits);
+  // Rays through shared vertices may meet several triangles at one t: ties, each checked above.
+  std::printf("degenerate rays: %zu hits, ties %zu (8) and %zu (16)\n", c8.hits, c8.ties, c16.ties);
+}
+
+// Random masks, single lanes, no lane, and per-lane intervals (t_min > 0, empty ones).
+TEST(Packet, PartiallyActiveLanes) {
+  const Built b(7);
+  Random rng(8);
+  Counts c;
+  for (int k = 0; k < 2000; ++k) {
+    Ray rays[16];
+    Real t_min[16], t_max[16];
+    const Vec3 o = rng.point(-1.5, 1.5), d = rng.direction();
+    for (int i = 0; i < 16; ++i) {
+      rays[i] = Ray{k % 2 ? o : rng.point(-1.5, 1.5), normalize(d + rng.direction() * (k % 3 ? 0.05 : 1.0))};
+      t_min[i] = rng.coin() ? 0 : rng.uniform(0, 1);
+      t_max[i] = rng.coin() ? kInfinity : t_min[i] + rng.uniform(-0.1, 2);  // sometimes empty
+    }
+    const std::uint32_t masks[] = {std::uint32_t(rng.below(1 << 16)), 1u << rng.below(16), 0u,
+                                   std::uint32_t(rng.below(1 << 16)) & std::uint32_t(rng.below(1 << 16))};
+    const std::uint32_t mask = masks[k % 4];
+    check_packet<16>(b.view, mask, rays, t_min, t_max, c);
+    check_packet<8>(b.view, mask & 0xffu, rays, t_min, t_max, c);
+    check_packet<8>(b.view, mask >> 8, rays + 8, t_min + 8, t_max + 8, c);
+  }
+  EXPECT_GT(c.hits, c.lanes / 16);
+}
+
+// A camera's tiles of 4×2 and 4×4 pixels over an image whose size is no multiple of the tile:
+// the border tiles' lanes outside the image are off.
+TEST(Packet, CameraTilesStraddlingTheBorder) {
+  const Built b(9);
+  Camera cam;
+  cam.eye = Vec3(0.3, -0.4, 2.5);
+  cam.basis = Frame::look_at(cam.eye, Vec3(0, 0, 0.3), Vec3(0, 1, 0));
+  cam.l = cam.b = -0.6;
+  cam.r = cam.t = 0.6;
+  cam.nx = 37;
+  cam.ny = 23;
+  Counts c;
+  for (int size : {8, 16}) {
+    const int tw = 4, th = size / 4;
+    for (int ty = 0; ty < cam.ny; ty += th)
+      for (int tx = 0; tx < cam.nx; tx += tw) {
+        Ray rays[16];
+        Real t_min[16] = {}, t_max[16];
+        std::uint32_t active = 0;
+        for (int i = 0; i < size; ++i) {
+          const int x = tx + i % tw, y = ty + i / tw;
+          t_max[i] = kInfinity;
+          rays[i] = cam.generate_ray(Real(std::min(x, cam.nx - 1)) + 0.5, Real(std::min(y, cam.ny - 1)) + 0.5);
+          if (x < cam.nx && y < cam.ny) active |= 1u << i;
+        }
+        if (size == 8)
+          check_packet<8>(b.view, active, rays, t_min, t_max, c);
+        else
+          check_packet<16>(b.view, active, rays, t_min, t_max, c);
+      }
+  }
+  EXPECT_EQ(c.lanes, std::size_t(2 * cam.nx * cam.ny));
+  EXPECT_GT(c.hits, c.lanes / 3);
+}
+
+// The other structures, a one-leaf BVH and an empty scene answer lane by lane: the same.
+TEST(Packet, OtherStructuresAndTinyScenes) {
+  Random rng(10);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 256; ++i) rays.push_back(Ray{rng.point(-1.5, 1.5), rng.direction()});
+  const std::vector<Real> t_max(rays.size(), kInfinity);
+  for (AccelKind kind : {AccelKind::Naive, AccelKind::KdTree, AccelKind::Octree}) {
+    const Built b(11, kind);
+    EXPECT_GT(check_all<8>(b.view, rays, t_max).hits, 0u);
+    check_all<16>(b.view, rays, t_max);
+  }
+  Prims tiny;
+  tiny.triangle(Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0));
+  tiny.spheres.push_back({Vec3(0, 0, 0.5), 0.3, 0});
+  const Accel one = build_accel(AccelKind::Bvh, tiny.set());
+  check_all<8>(one.view(tiny.set()), rays, t_max);
+  check_all<16>(one.view(tiny.set()), rays, t_max);
+  const Prims none;
+  const Accel empty = build_accel(AccelKind::Bvh, none.set());
+  EXPECT_EQ(check_all<16>(empty.view(none.set()), rays, t_max).hits, 0u);
+}
+
+// The BVH's packet traversal itself on a one-leaf tree (root_leaf_count > 0, no nodes): what
+// packet.h never calls it with (it answers one-leaf scenes ray by ray), but the kernel allows.
+TEST(Packet, WideBvhPacketOnOneLeafTree) {
+  Prims tiny;
+  tiny.triangle(Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0));
+  tiny.triangle(Vec3(-1, -1, 0.2), Vec3(1, -1, 0.2), Vec3(0, 1, 0.2));
+  const Accel a = build_accel(AccelKind::Bvh, tiny.set());
+  ASSERT_GT(a.bvh.root_leaf_count, 0u);
+  Random rng(12);
+  for (int k = 0; k < 100; ++k) {
+    Ray rays[8];
+    Real t_min[8] = {}, t_max[8], t_far[8];
+    std::uint32_t prim[8] = {};
+    kernel::TriangleHit hit[8];
+    for (int i = 0; i < 8; ++i) {
+      rays[i] = Ray{rng.point(-1, 1) + Vec3(0, 0, 2), normalize(Vec3(0, 0, -1) + rng.direction() * 0.3)};
+      t_max[i] = t_far[i] = kInfinity;
+    }
+    wide_bvh_nearest_packet<8>(a.bvh.view(), tiny.set(), 0xffu, rays, t_min, t_far, prim, hit);
+    const std::uint32_t occ = wide_bvh_occluded_packet<8>(a.bvh.view(), tiny.set(), 0xffu, rays, t_min, t_max);
+    for (int i = 0; i < 8; ++i) {
+      std::uint32_t p = 0;
+      kernel::TriangleHit h;
+      wide_bvh_nearest(a.bvh.view(), tiny.set(), rays[i], 0, kInfinity, p, h);
+      EXPECT_EQ(std::memcmp(&h, &hit[i], sizeof h), 0);
+      if (h.t < kInfinity) {
+        EXPECT_EQ(p, prim[i]);
+      }
+      EXPECT_EQ(((occ >> i) & 1u) != 0, h.t < kInfinity);
+    }
+  }
+}
+
+#if defined(STRAHL_HAVE_EMBREE)
+// Embree's packets (rtcIntersect8/16, rtcOccluded8/16) against its own single rays: the same
+// primitive (or, on a grazing ray, a hit at the same distance) and the same occlusion.
+TEST(Packet, EmbreePacketsMatchEmbreeSingleRays) {
+  const Built b(13, AccelKind::Embree);
+  Random rng(14);
+  std::size_t lanes = 0, differ = 0, hits = 0;
+  for (int k = 0; k < 1000; ++k) {
+    Ray rays[16];
+    Real t_min[16], t_max[16];
+    const Vec3 o = rng.point(-1.5, 1.5), d = rng.direction();
+    for (int i = 0; i < 16; ++i) {
+      rays[i] = Ray{o, normalize(d + rng.direction() * (k % 2 ? 0.05 : 1.0))};
+      t_min[i] = 0;
+      t_max[i] = k % 3 ? kInfinity : rng.uniform(0.1, 2);
+    }
+    const std::uint32_t active = k % 5 ? 0xffffu : std::uint32_t(rng.below(1 << 16));
+    for (int n : {8, 16}) {
+      NearestHit out[16];
+      bool occ[16] = {};
+      embree_nearest_hit_packet(b.view, n, active, rays, t_min, t_max, out);
+      embree_occluded_packet(b.view, n, active, rays, t_min, t_max, occ);
+      for (int i = 0; i < n; ++i) {
+        if (((active >> i) & 1u) == 0) continue;
+        ++lanes;
+        const NearestHit s = nearest_hit(b.view, rays[i], t_min[i], t_max[i]);
+        hits += s.hit.t < kInfinity;
+        const bool same = (out[i].hit.t < kInfinity) == (s.hit.t < kInfinity) &&
+                          (!(s.hit.t < kInfinity) || out[i].prim == s.prim ||
+                           std::fabs(out[i].hit.t - s.hit.t) <= 1e-6 * s.hit.t);
+        differ += !same;
+        differ += occ[i] != occluded(b.view, rays[i], t_min[i], t_max[i]);
+      }
+    }
+  }
+  EXPECT_GT(hits, lanes / 8);
+  EXPECT_LE(differ, lanes / 2000) << differ << " of " << lanes << " lanes differ";
+  NearestHit out[16];
+  Real zero[16] = {};
+  Ray rays[16];
+  EXPECT_THROW(embree_nearest_hit_packet(b.view, 4, 1u, rays, zero, zero, out), std::invalid_argument);
+}
+#endif
+
+}  // namespace
+}  // namespace strahl
