@@ -130,6 +130,26 @@ TEST(PixelSampler, GridPutsOneSampleAtEachSubpixelCentre) {
   EXPECT_EQ(c.film_y, 9.5);
 }
 
+// One stratum (1 spp, and every pass of a progressive 1-spp render): the sample is the pixel's
+// own random numbers, with no order to draw — pixel() skips the hashes and sample() the
+// divisions; the values are those of the general formula (a stratum's corner 0 plus the jitter).
+TEST(PixelSampler, OneStratumIsThePixelsOwnRandomNumbers) {
+  for (SamplerKind kind : {SamplerKind::Grid, SamplerKind::Stratified}) {
+    const PixelSampler ps = make_pixel_sampler(settings(kind, 1, 11));
+    for (std::uint64_t pixel : {0ull, 17ull, 123456ull})
+      for (std::uint32_t i : {0u, 1u, 2u, 7u, 1000u}) {
+        const CameraSample cs = ps.sample(4, 6, pixel, i);
+        const auto u = [&](std::uint32_t dim) { return random_real(11, pixel, i, dim); };
+        const bool jitter = kind == SamplerKind::Stratified;
+        EXPECT_EQ(cs.film_x, 4 + (jitter ? u(kDimPixel) : 0.5));
+        EXPECT_EQ(cs.film_y, 6 + (jitter ? u(kDimPixel + 1) : 0.5));
+        EXPECT_EQ(cs.lens.x, u(kDimLens));
+        EXPECT_EQ(cs.lens.y, u(kDimLens + 1));
+        EXPECT_EQ(cs.time, u(kDimTime));
+      }
+  }
+}
+
 // Stratified: each of the n×n film strata, lens strata and n² time strata holds exactly one of
 // the first n² samples, and again one of the next n².
 TEST(PixelSampler, StratifiedFillsEveryStratumOncePerRound) {

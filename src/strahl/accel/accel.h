@@ -129,7 +129,7 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
     spatial_nearest(a.octree, a.prims, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
     const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far);
     if (h.t < t_far) {
@@ -154,7 +154,7 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
     if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims, ray, t_min, t_max);
   }
   bool found = false;
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
     found = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far).t < kInfinity;
     return found;
@@ -178,7 +178,7 @@ STRAHL_HOST_DEVICE inline void for_each_crossing(const AccelView& a, const Ray& 
     return;
   }
 #endif
-  const kernel::RayShear shear = kernel::ray_shear(ray.direction);
+  const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real leaf_lo, Real leaf_hi, Real& t_far) {
     const Real lo = leaf_lo > t_min ? leaf_lo : t_min;
     const Real hi = leaf_hi < t_far ? leaf_hi : t_far;

@@ -59,8 +59,14 @@ STRAHL_HOST_DEVICE inline Bounds primitive_bounds(const PrimitiveSet& p, std::ui
   return b;
 }
 
+// The ray's shear for the watertight triangle test (kernel::ray_shear: three divisions), or a
+// placeholder when the set has no triangles, whose tests are then never run.
+STRAHL_HOST_DEVICE inline kernel::RayShear ray_shear_for(const PrimitiveSet& p, const Vec3& direction) {
+  return p.triangle_count > 0 ? kernel::ray_shear(direction) : kernel::RayShear{};
+}
+
 // Nearest root of one primitive in (t_min, t_max); triangles also give barycentrics. `shear` is
-// kernel::ray_shear(ray.direction), computed once per ray.
+// ray_shear_for(p, ray.direction), computed once per ray.
 STRAHL_HOST_DEVICE inline kernel::TriangleHit intersect_primitive(const PrimitiveSet& p, std::uint32_t prim,
                                                                   const Ray& ray, const kernel::RayShear& shear,
                                                                   Real t_min, Real t_max) {
@@ -69,7 +75,7 @@ STRAHL_HOST_DEVICE inline kernel::TriangleHit intersect_primitive(const Primitiv
 }
 STRAHL_HOST_DEVICE inline kernel::TriangleHit intersect_primitive(const PrimitiveSet& p, std::uint32_t prim,
                                                                   const Ray& ray, Real t_min, Real t_max) {
-  return intersect_primitive(p, prim, ray, kernel::ray_shear(ray.direction), t_min, t_max);
+  return intersect_primitive(p, prim, ray, ray_shear_for(p, ray.direction), t_min, t_max);
 }
 
 STRAHL_HOST_DEVICE inline std::uint32_t primitive_material(const PrimitiveSet& p, std::uint32_t prim) {
@@ -88,7 +94,7 @@ STRAHL_HOST_DEVICE inline int primitive_crossings(const PrimitiveSet& p, std::ui
 }
 STRAHL_HOST_DEVICE inline int primitive_crossings(const PrimitiveSet& p, std::uint32_t prim, const Ray& ray,
                                                   Real t_min, Real t_max) {
-  return primitive_crossings(p, prim, ray, kernel::ray_shear(ray.direction), t_min, t_max);
+  return primitive_crossings(p, prim, ray, ray_shear_for(p, ray.direction), t_min, t_max);
 }
 
 }  // namespace strahl

@@ -175,7 +175,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void spatial_traverse(const View& view, c
 template <class View>
 STRAHL_HOST_DEVICE inline void spatial_nearest(const View& view, const PrimitiveSet& prims, const Ray& ray,
                                                Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
-  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, ray_shear_for(prims, ray.direction));
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
     kernel::blocks_nearest(first, count, prims, br, t_min, t_far, prim, hit);
     return false;
@@ -187,7 +187,7 @@ STRAHL_HOST_DEVICE inline void spatial_nearest(const View& view, const Primitive
 template <class View>
 STRAHL_HOST_DEVICE inline bool spatial_occluded(const View& view, const PrimitiveSet& prims, const Ray& ray,
                                                 Real t_min, Real t_max) {
-  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, ray_shear_for(prims, ray.direction));
   bool found = false;
   auto leaf = [&](const SpatialLeaf* first, std::uint32_t count, Real, Real, Real& t_far) {
     return found = kernel::blocks_any(first, count, prims, br, t_min, t_far);

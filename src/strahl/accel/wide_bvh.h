@@ -284,7 +284,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const WideBvhView& bvh, con
 // when none.
 STRAHL_HOST_DEVICE inline void wide_bvh_nearest(const WideBvhView& bvh, const PrimitiveSet& prims, const Ray& ray,
                                                 Real t_min, Real t_max, std::uint32_t& prim, kernel::TriangleHit& hit) {
-  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, ray_shear_for(prims, ray.direction));
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
     kernel::blocks_nearest(first, count, prims, br, t_min, t_far, prim, hit);
     return false;
@@ -295,7 +295,7 @@ STRAHL_HOST_DEVICE inline void wide_bvh_nearest(const WideBvhView& bvh, const Pr
 // Any hit in (t_min, t_max)? Stops at the first one.
 STRAHL_HOST_DEVICE inline bool wide_bvh_occluded(const WideBvhView& bvh, const PrimitiveSet& prims, const Ray& ray,
                                                  Real t_min, Real t_max) {
-  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, kernel::ray_shear(ray.direction));
+  const kernel::TriangleBlockRay br = kernel::triangle_block_ray(ray, ray_shear_for(prims, ray.direction));
   bool found = false;
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, Real& t_far) {
     return found = kernel::blocks_any(first, count, prims, br, t_min, t_far);

@@ -53,26 +53,11 @@ std::unique_ptr<CudaBackend> CudaBackend::create(const RenderScene& scene, std::
   return b;
 }
 
-namespace {
-
-FilmParams film_params(const FilmLayout& f) {
-  FilmParams p;
-  p.width = f.width();
-  p.height = f.height();
-  p.filter = f.filter();
-  p.local = f.pixel_local();
-  p.stats = f.keeps_stats();
-  p.margin = f.margin();
-  return p;
-}
-
-}  // namespace
-
 void CudaBackend::render_pass(RenderJob& job) {
   std::vector<TileWork> works;
   while (std::optional<TileWork> w = job.next_tile()) works.push_back(std::move(*w));
   if (works.empty()) return;
-  const FilmParams film = film_params(job.film_layout());
+  const FilmParams film = job.film_layout().params();
 
   PassData pass;
   std::size_t pixels = 0, fixed = 0;

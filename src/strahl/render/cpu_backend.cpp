@@ -1,5 +1,7 @@
 #include "strahl/render/cpu_backend.h"
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -19,14 +21,15 @@ CpuBackend::~CpuBackend() = default;
 
 void CpuBackend::render_pass(RenderJob& job) {
   arena_->arena.execute([&] {
-    // One iteration per tile of the grid; each takes whichever tile the job hands out next.
-    tbb::parallel_for(tbb::blocked_range<int>(0, job.tile_count(), 1),
-                      [&](const tbb::blocked_range<int>& r) {
-                        for (int i = r.begin(); i != r.end(); ++i) {
-                          std::optional<TileWork> work = job.next_tile();
-                          if (!work) return;
-                          render_tile(job.view(), job.sampler(), job.film_layout(), job.stop(), *work);
-                          job.deliver(std::move(*work));
+    // One task per thread, each rendering whichever tile the job hands out next until none is
+    // left, in one TileWork whose buffers it reuses.
+    const int tasks = std::min(job.tile_count(), tbb::this_task_arena::max_concurrency());
+    tbb::parallel_for(tbb::blocked_range<int>(0, tasks, 1),
+                      [&](const tbb::blocked_range<int>&) {
+                        TileWork work;
+                        while (job.next_tile(work)) {
+                          render_tile(job.view(), job.sampler(), job.film_layout(), job.stop(), work);
+                          job.deliver(work);
                         }
                       },
                       tbb::simple_partitioner());

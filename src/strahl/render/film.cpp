@@ -1,7 +1,5 @@
 #include "strahl/render/film.h"
 
-#include "strahl/render/film_sample.h"
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -12,17 +10,6 @@ namespace {
 
 constexpr double kFixedScale = kFilmFixedScale;
 
-FilmParams film_params(const FilmLayout& f) {
-  FilmParams p;
-  p.width = f.width();
-  p.height = f.height();
-  p.filter = f.filter();
-  p.local = f.pixel_local();
-  p.stats = f.keeps_stats();
-  p.margin = f.margin();
-  return p;
-}
-
 }  // namespace
 
 FilmLayout::FilmLayout(int width, int height, const Filter& filter, bool pixel_stats)
@@ -32,6 +19,17 @@ FilmLayout::FilmLayout(int width, int height, const Filter& filter, bool pixel_s
       local_(filter_is_pixel_local(filter)),
       stats_(pixel_stats),
       margin_(int(std::ceil(filter.radius)) + 1) {}
+
+FilmParams FilmLayout::params() const {
+  FilmParams p;
+  p.width = width_;
+  p.height = height_;
+  p.filter = filter_;
+  p.local = local_;
+  p.stats = stats_;
+  p.margin = margin_;
+  return p;
+}
 
 void FilmLayout::prepare(TileWork& t) const {
   const std::size_t n = t.rect.pixels();
@@ -50,15 +48,8 @@ void FilmLayout::prepare(TileWork& t) const {
   t.fixed.assign(std::size_t(t.bw) * std::size_t(t.bh) * 4, 0);
 }
 
-void FilmLayout::add_sample(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const {
-  // The arithmetic is render/film_sample.h's, which the CUDA kernel runs too.
-  const std::size_t own = tile.rect.index(x, row);
-  if (stats_) film_add_stats(tile.stats[own], L);
-  if (local_) {
-    film_add_local(&tile.local[own * 4], L);
-    return;
-  }
-  film_add_wide(film_params(*this), x, row, cs, L, tile.fixed.data(), tile.bx0, tile.brow0, tile.bw,
+void FilmLayout::add_wide(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const {
+  film_add_wide(params(), x, row, cs, L, tile.fixed.data(), tile.bx0, tile.brow0, tile.bw,
                 [](std::int64_t* p, std::int64_t v) { *p += v; });
 }
 
@@ -77,27 +68,27 @@ Film::Film(const FilmLayout& layout) : layout_(layout) {
 void Film::begin_tile(TileWork& t) const {
   layout_.prepare(t);
   const TileRect& r = t.rect;
-  for (int row = r.row0; row < r.row1; ++row)
-    for (int x = r.x0; x < r.x1; ++x) {
-      const std::size_t own = r.index(x, row), p = index(x, row);
-      if (!stats_.empty()) t.stats[own] = stats_[p];
-      if (pixel_local())
-        for (int c = 0; c < 4; ++c) t.local[own * 4 + std::size_t(c)] = local_sums_[p * 4 + std::size_t(c)];
-    }
+  const std::size_t tw = std::size_t(r.width());
+  for (int row = r.row0; row < r.row1; ++row) {
+    const std::size_t own = std::size_t(row - r.row0) * tw, p = index(r.x0, row);
+    if (!stats_.empty()) std::copy_n(&stats_[p], tw, &t.stats[own]);
+    // Only this tile writes these pixels, and not before it is merged: plain reads.
+    if (pixel_local()) std::copy_n(&local_sums_[p * 4], tw * 4, &t.local[own * 4]);
+  }
 }
 
 void Film::merge(const TileWork& t) {
   const TileRect& r = t.rect;
-  for (int row = r.row0; row < r.row1; ++row)
-    for (int x = r.x0; x < r.x1; ++x) {
-      const std::size_t own = r.index(x, row), p = index(x, row);
-      if (!stats_.empty()) stats_[p] = t.stats[own];
-      // Only this tile writes the pixel; atomic stores let resolve() read meanwhile.
-      if (pixel_local())
-        for (int c = 0; c < 4; ++c)
-          std::atomic_ref<double>(local_sums_[p * 4 + std::size_t(c)])
-              .store(t.local[own * 4 + std::size_t(c)], std::memory_order_relaxed);
-    }
+  const std::size_t tw = std::size_t(r.width());
+  for (int row = r.row0; row < r.row1; ++row) {
+    const std::size_t own = std::size_t(row - r.row0) * tw, p = index(r.x0, row);
+    if (!stats_.empty()) std::copy_n(&t.stats[own], tw, &stats_[p]);
+    if (!pixel_local()) continue;
+    // Only this tile writes the pixels; atomic stores let resolve() read meanwhile.
+    const double* src = &t.local[own * 4];
+    double* dst = &local_sums_[p * 4];
+    for (std::size_t k = 0; k < tw * 4; ++k) std::atomic_ref<double>(dst[k]).store(src[k], std::memory_order_relaxed);
+  }
   if (pixel_local()) return;
   for (int r2 = 0; r2 < t.bh; ++r2)
     for (int c = 0; c < t.bw; ++c) {

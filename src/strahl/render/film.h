@@ -19,6 +19,7 @@
 #include "strahl/camera/camera_sample.h"
 #include "strahl/image/image.h"
 #include "strahl/math/vec3.h"
+#include "strahl/render/film_sample.h"
 #include "strahl/render/tile.h"
 #include "strahl/sampling/filter.h"
 
@@ -39,6 +40,8 @@ class FilmLayout {
   bool pixel_local() const { return local_; }
   bool keeps_stats() const { return stats_; }
   int margin() const { return margin_; }  // pixels a sample can reach beyond its own
+  // The same as plain data, for kernel code (render/film_sample.h; the CUDA back end).
+  FilmParams params() const;
 
   // Sizes the tile's buffers for its rect: no samples taken yet, no wide-filter contributions;
   // sums and statistics it already carries (a request decoded by a worker) are kept, missing ones
@@ -46,9 +49,21 @@ class FilmLayout {
   void prepare(TileWork& tile) const;
   // A sample of pixel (x, row) (inside the tile) at film position cs.film_x/film_y (raster units,
   // y up from the bottom row, as the pixel sampler made it) with radiance `L`.
-  void add_sample(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const;
+  // Inline: it runs once per camera sample.
+  void add_sample(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const {
+    // The arithmetic is render/film_sample.h's, which the CUDA kernel runs too.
+    const std::size_t own = tile.rect.index(x, row);
+    if (stats_) film_add_stats(tile.stats[own], L);
+    if (local_) {
+      film_add_local(&tile.local[own * 4], L);
+      return;
+    }
+    add_wide(tile, x, row, cs, L);
+  }
 
  private:
+  void add_wide(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const;
+
   int width_, height_;
   Filter filter_;
   bool local_, stats_;

@@ -142,23 +142,27 @@ bool RenderJob::plan_next_pass() {
 
 TileWork RenderJob::tile(int index) const {
   TileWork w;
+  tile(index, w);
+  return w;
+}
+
+void RenderJob::tile(int index, TileWork& w) const {
   w.pass = pass_;
   w.index = index;
   w.rect.x0 = (index % tiles_x_) * tile_;
   w.rect.row0 = (index / tiles_x_) * tile_;
   w.rect.x1 = std::min(width_, w.rect.x0 + tile_);
   w.rect.row1 = std::min(height_, w.rect.row0 + tile_);
-  const std::size_t n = w.rect.pixels();
+  const std::size_t n = w.rect.pixels(), tw = std::size_t(w.rect.width());
   w.first.resize(n);
   w.count.resize(n);
-  for (int row = w.rect.row0; row < w.rect.row1; ++row)
-    for (int x = w.rect.x0; x < w.rect.x1; ++x) {
-      const std::size_t p = std::size_t(row) * std::size_t(width_) + std::size_t(x), i = w.rect.index(x, row);
-      w.first[i] = counts_[p];
-      w.count[i] = add_[p];
-    }
+  for (int row = w.rect.row0; row < w.rect.row1; ++row) {
+    const std::size_t p = std::size_t(row) * std::size_t(width_) + std::size_t(w.rect.x0);
+    const std::size_t i = std::size_t(row - w.rect.row0) * tw;
+    std::copy_n(&counts_[p], tw, &w.first[i]);
+    std::copy_n(&add_[p], tw, &w.count[i]);
+  }
   film_.begin_tile(w);
-  return w;
 }
 
 // A replayed tile fits the current pass: the same rectangle, every sample it should have, and
@@ -177,6 +181,12 @@ bool RenderJob::replayable(const TileWork& done, int index) const {
 }
 
 std::optional<TileWork> RenderJob::next_tile() {
+  TileWork w;
+  if (!next_tile(w)) return std::nullopt;
+  return w;
+}
+
+bool RenderJob::next_tile(TileWork& work) {
   while (!stop_.requested()) {
     const int i = next_.fetch_add(1, std::memory_order_relaxed);
     if (i >= tile_count()) break;
@@ -191,21 +201,25 @@ std::optional<TileWork> RenderJob::next_tile() {
       std::optional<TileWork> done = options_.replay(pass_, i);
       if (done && replayable(*done, i)) {
         replayed_.fetch_add(1, std::memory_order_relaxed);
-        deliver(std::move(*done));
+        deliver(*done);
         continue;
       }
     }
-    return tile(i);
+    tile(i, work);
+    return true;
   }
-  return std::nullopt;
+  return false;
 }
 
-void RenderJob::deliver(TileWork&& work) {
+void RenderJob::deliver(const TileWork& work) {
   film_.merge(work);
   const TileRect& r = work.rect;
-  for (int row = r.row0; row < r.row1; ++row)
-    for (int x = r.x0; x < r.x1; ++x)
-      counts_[std::size_t(row) * std::size_t(width_) + std::size_t(x)] += work.taken[r.index(x, row)];
+  const std::size_t tw = std::size_t(r.width());
+  for (int row = r.row0; row < r.row1; ++row) {
+    std::uint32_t* count = &counts_[std::size_t(row) * std::size_t(width_) + std::size_t(r.x0)];
+    const std::uint32_t* taken = &work.taken[std::size_t(row - r.row0) * tw];
+    for (std::size_t k = 0; k < tw; ++k) count[k] += taken[k];
+  }
   const std::uint64_t n = work.samples_taken();
   {
     std::lock_guard lock(deliver_mutex_);

@@ -108,12 +108,16 @@ class RenderJob {
   // The next tile of the current pass, the film's sums carried in; none when every tile of the
   // pass has been handed out or the job is stopping.
   std::optional<TileWork> next_tile();
-  // Takes a rendered tile back into the film.
-  void deliver(TileWork&& work);
+  // The same into `work`, reusing its buffers (a back end's thread renders tile after tile in
+  // one TileWork: no allocation per tile); false when none is left.
+  bool next_tile(TileWork& work);
+  // Takes a rendered tile back into the film (reads it only: the caller may reuse it).
+  void deliver(const TileWork& work);
   int tile_count() const { return tiles_x_ * tiles_y_; }
   // The tile of the current pass with this index (for a back end that must hand one out again,
   // e.g. after losing an MPI worker); the film's state is carried in afresh.
   TileWork tile(int index) const;
+  void tile(int index, TileWork& work) const;  // the same into `work`, reusing its buffers
 
   // ---- for front ends (thread-safe) ----
   Image image() const { return film_.resolve(); }  // the image so far

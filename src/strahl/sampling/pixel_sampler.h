@@ -94,7 +94,7 @@ inline constexpr const char* kFilterNames = "box, tent, gaussian, mitchell";
 struct PixelSequence {
   SamplerKind kind = SamplerKind::Grid;
   std::uint32_t side = 1;
-  std::uint64_t seed = 0, pixel = 0, key = 0;
+  std::uint64_t seed = 0, pixel = 0, key = 0;  // key: what hash() mixes (0 when no hash is needed)
   std::uint64_t stream = 0;  // pixel_key(seed, pixel): the per-sample random numbers are keyed_bits(stream, …)
   int x = 0, y = 0;
   std::uint32_t h[9] = {};  // grid/stratified: round 0's film, lens, time orders; sobol: 3 per pair
@@ -109,6 +109,7 @@ struct PixelSequence {
   }
 
   STRAHL_HOST_DEVICE Vec2 stratum_2d(std::uint32_t k, std::uint32_t order, Vec2 jitter) const {
+    if (side == 1) return jitter;  // (0 + j) / 1, without the divisions
     const std::uint32_t s = permutation_element(k, side * side, order);
     return {(Real(s % side) + jitter.x) / Real(side), (Real(s / side) + jitter.y) / Real(side)};
   }
@@ -125,18 +126,20 @@ struct PixelSequence {
     switch (kind) {
       case SamplerKind::Grid:
       case SamplerKind::Stratified: {
-        const std::uint32_t count = side * side, k = index % count, round = index / count;
+        const std::uint32_t count = side * side;
+        const std::uint32_t k = count == 1 ? 0 : index % count, round = count == 1 ? index : index / count;
         const bool jitter = kind == SamplerKind::Stratified;
         const auto u = [&](std::uint32_t dim) { return to_unit(keyed_bits(stream, index, dim)); };
-        // Each round visits the strata in new orders (purposes 3·round + {0, 1, 2}). The grid's
-        // film positions are the strata's centres; lens and time are jittered for both (centres
-        // would bias the lens's and the shutter's averages).
-        film = stratum_2d(k, round == 0 ? h[0] : hash(3 * round),
-                          jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
-        if (uses_lens) lens = stratum_2d(k, round == 0 ? h[1] : hash(3 * round + 1), {u(kDimLens), u(kDimLens + 1)});
-        if (uses_time)
-          time = (Real(permutation_element(k, count, round == 0 ? h[2] : hash(3 * round + 2))) + u(kDimTime)) /
-                 Real(count);
+        // Each round visits the strata in new orders (purposes 3·round + {0, 1, 2}); one stratum
+        // needs no order (and pixel() computed no hashes for it). The grid's film positions are
+        // the strata's centres; lens and time are jittered for both (centres would bias the
+        // lens's and the shutter's averages).
+        const auto order = [&](std::uint32_t purpose) {
+          return count <= 1 ? 0u : round == 0 ? h[purpose] : hash(3 * round + purpose);
+        };
+        film = stratum_2d(k, order(0), jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
+        if (uses_lens) lens = stratum_2d(k, order(1), {u(kDimLens), u(kDimLens + 1)});
+        if (uses_time) time = (Real(permutation_element(k, count, order(2))) + u(kDimTime)) / Real(count);
         break;
       }
       case SamplerKind::Random: {
@@ -180,8 +183,13 @@ struct PixelSampler {
     p.y = y;
     // Sample index 0xffffffff, which no sample reaches: independent of the samples' numbers.
     p.stream = pixel_key(seed, pixel_index);
+    // Hashes: the sobol pairs' scrambles, or the strata orders (none for a single stratum).
+    const int hashes = kind == SamplerKind::Random                                  ? 0
+                       : (kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) ? 9
+                       : side > 1                                                     ? 3
+                                                                                      : 0;
+    if (hashes == 0) return p;
     p.key = keyed_bits(p.stream, 0xffffffffu, 0);
-    const int hashes = kind == SamplerKind::Random ? 0 : (kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) ? 9 : 3;
     for (int i = 0; i < hashes; ++i) p.h[i] = p.hash(std::uint32_t(i));
     return p;
   }
