@@ -40,6 +40,7 @@
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #endif
 
 namespace strahl {
@@ -56,6 +57,10 @@ struct alignas(64) PacketBoxes {
   float far_offset[3][N];
   float t_min[N];
   float t_max[N];  // round_up(the lane's t_max); lowered as hits are found
+  // Bit a set: every active lane's direction is negative along axis a (signbit); −1: the lanes'
+  // signs differ along some axis. Where they agree the near plane of a box is the same for every
+  // lane (lo, or hi where negative) and the SIMD tests skip the per-lane min/max.
+  int signs = -1;
 };
 
 struct PacketStackEntry {
@@ -82,6 +87,77 @@ STRAHL_HOST_DEVICE inline void clear_lane(PacketBoxes<N>& p, int i) {
   for (int a = 0; a < 3; ++a) p.inv[a][i] = p.near_offset[a][i] = p.far_offset[a][i] = 0;
   p.t_min[i] = std::numeric_limits<float>::infinity();
   p.t_max[i] = -std::numeric_limits<float>::infinity();
+}
+
+// Every lane of the packet: set_lane() for the active ones, clear_lane() for the others. With
+// AVX-512 ray_boxes()'s double arithmetic runs eight lanes at once, the same IEEE operations in
+// the same order (so the same figures as set_lane()).
+template <int N>
+STRAHL_HOST_DEVICE inline void set_lanes(PacketBoxes<N>& p, std::uint32_t active, const WideBvhView& bvh,
+                                         const Ray* rays, const Real* t_min, const Real* t_max) {
+  int any_sign = 0, all_sign = 7;
+  for (int i = 0; i < N; ++i) {
+    if (((active >> i) & 1u) == 0) continue;
+    const Vec3& d = rays[i].direction;
+    const int sign = (std::signbit(d.x) ? 1 : 0) | (std::signbit(d.y) ? 2 : 0) | (std::signbit(d.z) ? 4 : 0);
+    any_sign |= sign;
+    all_sign &= sign;
+  }
+  p.signs = any_sign == all_sign ? all_sign : -1;
+#if defined(STRAHL_PACKET_AVX512)
+  alignas(64) double o[3][N], d[3][N];
+  for (int i = 0; i < N; ++i) {
+    const bool on = (active >> i) & 1u;
+    o[0][i] = on ? rays[i].origin.x : 0;
+    o[1][i] = on ? rays[i].origin.y : 0;
+    o[2][i] = on ? rays[i].origin.z : 0;
+    d[0][i] = on ? rays[i].direction.x : 1;
+    d[1][i] = on ? rays[i].direction.y : 1;
+    d[2][i] = on ? rays[i].direction.z : 1;
+  }
+  const __m512d one = _mm512_set1_pd(1.0), scale = _mm512_set1_pd(0x1p-21);
+  const __m256 inf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+  const __m256 sign = _mm256_set1_ps(-0.0f);
+  const auto finite = [&](__m256 x) { return _mm256_cmp_ps(_mm256_andnot_ps(sign, x), inf, _CMP_LT_OQ); };
+  for (int a = 0; a < 3; ++a) {
+    const __m512d extent = _mm512_set1_pd(Real(bvh.extent[a]));
+    for (int h = 0; h < N; h += 8) {
+      const __m512d ov = _mm512_load_pd(o[a] + h), dv = _mm512_load_pd(d[a] + h);
+      const __m512d inv = _mm512_div_pd(one, dv);
+      const __m512d margin = _mm512_mul_pd(_mm512_mul_pd(_mm512_add_pd(extent, _mm512_abs_pd(ov)), _mm512_abs_pd(inv)), scale);
+      const __m256 inv_f = _mm512_cvtpd_ps(inv);
+      const __m512d minus_o = _mm512_castsi512_pd(
+          _mm512_xor_si512(_mm512_castpd_si512(ov), _mm512_set1_epi64(std::int64_t(0x8000000000000000ull))));
+      const __m256 offset = _mm512_cvtpd_ps(_mm512_mul_pd(minus_o, inv));
+      const __m256 margin_f = _mm512_cvtpd_ps(margin);
+      const __m256 near = _mm256_sub_ps(offset, margin_f), far = _mm256_add_ps(offset, margin_f);
+      const __m256 ok = _mm256_and_ps(_mm256_and_ps(finite(inv_f), finite(offset)),
+                                      _mm256_and_ps(finite(margin_f), _mm256_and_ps(finite(near), finite(far))));
+      _mm256_store_ps(p.inv[a] + h, _mm256_and_ps(ok, inv_f));
+      _mm256_store_ps(p.near_offset[a] + h, _mm256_blendv_ps(_mm256_sub_ps(_mm256_setzero_ps(), inf), near, ok));
+      _mm256_store_ps(p.far_offset[a] + h, _mm256_blendv_ps(inf, far, ok));
+    }
+  }
+  // round_down / round_up: the conversion rounding towards −∞ / +∞ gives the same floats (the
+  // largest ≤ x / smallest ≥ x, ±FLT_MAX for finite x beyond float).
+  alignas(64) double lo[N], hi[N];
+  for (int i = 0; i < N; ++i) {
+    const bool on = (active >> i) & 1u;
+    lo[i] = on ? t_min[i] : std::numeric_limits<double>::infinity();  // an inactive lane meets no box
+    hi[i] = on ? t_max[i] : -std::numeric_limits<double>::infinity();
+  }
+  for (int h = 0; h < N; h += 8) {
+    _mm256_store_ps(p.t_min + h, _mm512_cvt_roundpd_ps(_mm512_load_pd(lo + h), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+    _mm256_store_ps(p.t_max + h, _mm512_cvt_roundpd_ps(_mm512_load_pd(hi + h), _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC));
+  }
+#else
+  for (int i = 0; i < N; ++i) {
+    if ((active >> i) & 1u)
+      set_lane(p, i, bvh, rays[i], t_min[i], t_max[i]);
+    else
+      clear_lane(p, i);
+  }
+#endif
 }
 
 #if defined(STRAHL_PACKET_AVX2)
@@ -121,23 +197,36 @@ STRAHL_FORCE_INLINE unsigned child_test8(const WideBvhNode& n, int k, const Pack
 
 // Child k of node n against the packet's lanes in `lanes`: the lanes whose ray meets its box
 // within their interval, and the smallest entry distance among them.
-template <int N>
+template <int N, bool kNear = true>
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE std::uint32_t child_test(const WideBvhNode& n, int k, const PacketBoxes<N>& p,
                                                                 std::uint32_t lanes, float& t_near) {
 #if defined(STRAHL_PACKET_AVX512)
   if constexpr (N == 16) {
     __m512 tn = _mm512_load_ps(p.t_min), tf = _mm512_load_ps(p.t_max);
-    for (int a = 2; a >= 0; --a) {
-      const __m512 inv = _mm512_load_ps(p.inv[a]);
-      const __m512 lo = _mm512_mul_ps(_mm512_set1_ps(n.lo[a][k]), inv);
-      const __m512 hi = _mm512_mul_ps(_mm512_set1_ps(n.hi[a][k]), inv);
-      const __m512 t0 = _mm512_add_ps(_mm512_min_ps(lo, hi), _mm512_load_ps(p.near_offset[a]));
-      const __m512 t1 = _mm512_add_ps(_mm512_max_ps(lo, hi), _mm512_load_ps(p.far_offset[a]));
-      tn = _mm512_max_ps(t0, tn);
-      tf = _mm512_min_ps(t1, tf);
+    if (p.signs >= 0) {  // one near plane for every lane: near·inv is min(lo·inv, hi·inv)
+      for (int a = 2; a >= 0; --a) {
+        const bool negative = (p.signs >> a) & 1;
+        const __m512 inv = _mm512_load_ps(p.inv[a]);
+        const __m512 t0 = _mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(negative ? n.hi[a][k] : n.lo[a][k]), inv),
+                                        _mm512_load_ps(p.near_offset[a]));
+        const __m512 t1 = _mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(negative ? n.lo[a][k] : n.hi[a][k]), inv),
+                                        _mm512_load_ps(p.far_offset[a]));
+        tn = _mm512_max_ps(t0, tn);
+        tf = _mm512_min_ps(t1, tf);
+      }
+    } else {
+      for (int a = 2; a >= 0; --a) {
+        const __m512 inv = _mm512_load_ps(p.inv[a]);
+        const __m512 lo = _mm512_mul_ps(_mm512_set1_ps(n.lo[a][k]), inv);
+        const __m512 hi = _mm512_mul_ps(_mm512_set1_ps(n.hi[a][k]), inv);
+        const __m512 t0 = _mm512_add_ps(_mm512_min_ps(lo, hi), _mm512_load_ps(p.near_offset[a]));
+        const __m512 t1 = _mm512_add_ps(_mm512_max_ps(lo, hi), _mm512_load_ps(p.far_offset[a]));
+        tn = _mm512_max_ps(t0, tn);
+        tf = _mm512_min_ps(t1, tf);
+      }
     }
     const __mmask16 hit = _mm512_mask_cmp_ps_mask(__mmask16(lanes), tn, tf, _CMP_LE_OQ);
-    if (hit != 0) {
+    if (kNear && hit != 0) {
       // The smallest tn among the lanes hit (no _mm512_mask_reduce_min_ps: GCC 12 warns about
       // its undefined vectors).
       const __m512 v = _mm512_mask_blend_ps(hit, _mm512_set1_ps(std::numeric_limits<float>::infinity()), tn);
@@ -353,7 +442,9 @@ STRAHL_HOST_DEVICE inline bool triangles_only(const WideBvhLeaf* blocks, std::ui
 // Calls leaf(first_block, count, lanes) for every leaf some lane's ray meets within its interval,
 // with the mask of those lanes (a subset of `live`); leaf returns the lanes that are finished
 // (occluded) and lowers p.t_max of lanes whose interval shrank. Nearer boxes first.
-template <int N, class Leaf>
+// kOrdered: children nearest first (nearest-hit queries); else in slot order, with t_near 0 (any
+// hit: the intervals never shrink, so nothing is culled by distance and order matters little).
+template <int N, bool kOrdered, class Leaf>
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_packet(const WideBvhView& bvh, PacketBoxes<N>& p,
                                                             std::uint32_t live, Leaf& leaf) {
   using wide_bvh_detail::lowest_bit;
@@ -375,12 +466,13 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_packet(const WideBvhView& b
       for (int k = 0; k < kWideBvhWidth; ++k) {
         if (n.child[k] == kWideBvhEmpty) continue;
         float t = 0;
-        const std::uint32_t m = child_test(n, k, p, lanes, t);
+        const std::uint32_t m = child_test<N, kOrdered>(n, k, p, lanes, t);
         if (m == 0) continue;
         child_lanes[k] = m;
         t_near[k] = t;
         int j = hits++;  // insertion by entry distance, equal ones in slot order
-        for (; j > 0 && t_near[order[j - 1]] > t; --j) order[j] = order[j - 1];
+        if (kOrdered)
+          for (; j > 0 && t_near[order[j - 1]] > t; --j) order[j] = order[j - 1];
         order[j] = k;
       }
       if (hits > 0) {
@@ -402,7 +494,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_packet(const WideBvhView& b
     for (;;) {
       if (top == 0) return;
       const PacketStackEntry& e = stack[--top];
-      const std::uint32_t m = lanes_reaching(p, e.lanes & live, e.t_near);
+      const std::uint32_t m = kOrdered ? lanes_reaching(p, e.lanes & live, e.t_near) : e.lanes & live;
       if (m != 0) {
         child = e.child;
         count = e.count;
@@ -426,19 +518,21 @@ STRAHL_HOST_DEVICE inline void wide_bvh_nearest_packet(const WideBvhView& bvh, c
   using namespace wide_bvh_packet_detail;
   active &= (1u << N) - 1;
   PacketBoxes<N> p;
+  set_lanes(p, active, bvh, rays, t_min, t_max);
+  // What the triangle tests need, made when the first leaf is reached (a packet that misses every
+  // box never needs it).
   kernel::TriangleBlockRay br[N];
-  for (int i = 0; i < N; ++i) {
-    if ((active >> i) & 1u) {
-      set_lane(p, i, bvh, rays[i], t_min[i], t_max[i]);
-      br[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
-    } else {
-      clear_lane(p, i);
-    }
-  }
   PacketTriangles<N> q;
-  set_triangle_lanes(q, active, br, t_min, t_max);
+  bool ready = false;
+  const auto prepare = [&] {
+    for (int i = 0; i < N; ++i)
+      if ((active >> i) & 1u) br[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
+    set_triangle_lanes(q, active, br, t_min, t_max);
+    ready = true;
+  };
   std::uint32_t found = 0;
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, std::uint32_t lanes) -> std::uint32_t {
+    if (!ready) prepare();
     std::uint32_t changed = 0;
 #if defined(STRAHL_PACKET_AVX512)
     if (q.uniform && triangles_only(first, count)) {
@@ -469,7 +563,7 @@ STRAHL_HOST_DEVICE inline void wide_bvh_nearest_packet(const WideBvhView& bvh, c
     }
     return 0;
   };
-  traverse_packet<N>(bvh, p, active, leaf);
+  traverse_packet<N, true>(bvh, p, active, leaf);
   for (std::uint32_t m = found; m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     t_max[i] = q.t_far[i];
@@ -488,19 +582,21 @@ STRAHL_HOST_DEVICE inline std::uint32_t wide_bvh_occluded_packet(const WideBvhVi
   using namespace wide_bvh_packet_detail;
   active &= (1u << N) - 1;
   PacketBoxes<N> p;
+  set_lanes(p, active, bvh, rays, t_min, t_max);
+  // What the triangle tests need, made when the first leaf is reached (a packet that misses every
+  // box never needs it).
   kernel::TriangleBlockRay br[N];
-  for (int i = 0; i < N; ++i) {
-    if ((active >> i) & 1u) {
-      set_lane(p, i, bvh, rays[i], t_min[i], t_max[i]);
-      br[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
-    } else {
-      clear_lane(p, i);
-    }
-  }
   PacketTriangles<N> q;
-  set_triangle_lanes(q, active, br, t_min, t_max);
+  bool ready = false;
+  const auto prepare = [&] {
+    for (int i = 0; i < N; ++i)
+      if ((active >> i) & 1u) br[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
+    set_triangle_lanes(q, active, br, t_min, t_max);
+    ready = true;
+  };
   std::uint32_t occluded = 0;
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, std::uint32_t lanes) -> std::uint32_t {
+    if (!ready) prepare();
     std::uint32_t done = 0;
 #if defined(STRAHL_PACKET_AVX512)
     if (q.uniform && triangles_only(first, count)) {
@@ -517,7 +613,7 @@ STRAHL_HOST_DEVICE inline std::uint32_t wide_bvh_occluded_packet(const WideBvhVi
     occluded |= done;
     return done;
   };
-  traverse_packet<N>(bvh, p, active, leaf);
+  traverse_packet<N, false>(bvh, p, active, leaf);
   return occluded;
 }
 
