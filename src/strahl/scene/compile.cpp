@@ -109,13 +109,25 @@ Mat3 moved_linear(const Motion& m, int key) {
 
 void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
   if (placed()) {
-    const Vec3 s = placement.scale;
-    if (std::fabs(s.x) == std::fabs(s.y) && std::fabs(s.x) == std::fabs(s.z)) {
+    Real even = 0;  // the scale when the map scales evenly (a similarity), else 0
+    if (!placement.general()) {
+      const Vec3 s = placement.scale;
+      if (std::fabs(s.x) == std::fabs(s.y) && std::fabs(s.x) == std::fabs(s.z)) even = std::fabs(s.x);
+    } else {
+      // Columns of one length, at right angles, to rounding (an axis-and-angle rotation's are).
+      const Mat3 c = placement.matrix().transposed();
+      const Real l0 = length(c.row[0]), l1 = length(c.row[1]), l2 = length(c.row[2]);
+      const Real tol = 1e-12 * l0;
+      if (std::fabs(l1 - l0) <= tol && std::fabs(l2 - l0) <= tol && std::fabs(dot(c.row[0], c.row[1])) <= tol * l0 &&
+          std::fabs(dot(c.row[0], c.row[2])) <= tol * l0 && std::fabs(dot(c.row[1], c.row[2])) <= tol * l0)
+        even = l0;
+    }
+    if (even > 0) {
       // Still a sphere: its centre moved, its radius scaled.
       Sphere moved_sphere = *this;
       moved_sphere.placement = Transform{};
       moved_sphere.center = placement.linear() * center + placement.translate;
-      moved_sphere.radius = radius * std::fabs(s.x);
+      moved_sphere.radius = radius * even;
       moved_sphere.compile_into(out, material_index, object_id);
       return;
     }

@@ -68,11 +68,10 @@ class SceneObject {
   FileLoc loc;  // where a scene file defined it, if it did
   Motion motion;
   // Where the object's own coordinates are placed (solids, spheres and CSG nodes: scale, then
-  // rotate about x, y, z, then translate). Meshes have their own `transform`.
+  // rotate about x, y, z, then translate, or a general affine map). Meshes have their own
+  // `transform`; the scene loader bakes a plane's or triangle's into its coordinates.
   Transform placement;
-  bool placed() const {
-    return !(placement.scale == Vec3(1) && placement.rotate_degrees == Vec3(0) && placement.translate == Vec3(0));
-  }
+  bool placed() const { return !placement.identity(); }
 };
 
 class Sphere : public SceneObject {

@@ -71,9 +71,20 @@ void motion(Writer& w, const Motion& m) {
   }
 }
 
+// A general transform (Transform::general) as its 3×4 matrix.
+void matrix(Writer& w, const Transform& t, const std::string& what) {
+  const Mat3& m = t.matrix();
+  std::string rows;
+  for (int r = 0; r < 3; ++r)
+    rows += std::string(r ? ", " : "") + "[" + Writer::num(m.row[r].x, what) + ", " + Writer::num(m.row[r].y, what) + ", " +
+            Writer::num(m.row[r].z, what) + ", " + Writer::num(t.translate[r], what) + "]";
+  w.line(4, "matrix: [" + rows + "]");
+}
+
 void mesh(Writer& w, const Mesh& mesh, const std::string& file) {
   using W = Writer;
   w.line(4, "file: " + file);
+  if (mesh.transform.general()) return matrix(w, mesh.transform, "mesh matrix");
   w.line(4, "scale: " + W::vec(mesh.transform.scale, "mesh scale"));
   w.line(4, "rotate: " + W::vec(mesh.transform.rotate_degrees, "mesh rotate"));
   w.line(4, "translate: " + W::vec(mesh.transform.translate, "mesh translate"));
@@ -88,6 +99,7 @@ std::string box_map(const Vec3& a, const Vec3& b, const std::string& what) {
 // scale, rotate and translate of a placed solid, sphere or CSG node.
 void placement(Writer& w, const SceneObject& o) {
   if (!o.placed()) return;
+  if (o.placement.general()) return matrix(w, o.placement, "matrix");
   w.line(4, "scale: " + Writer::vec(o.placement.scale, "scale"));
   w.line(4, "rotate: " + Writer::vec(o.placement.rotate_degrees, "rotate"));
   w.line(4, "translate: " + Writer::vec(o.placement.translate, "translate"));

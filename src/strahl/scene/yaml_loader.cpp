@@ -437,7 +437,7 @@ class Reader {
     const std::string type = scalar(required(n, "type", "object"), "object type");
     SceneObject* added = nullptr;
     if (type == "sphere") {
-      keys(n, {"type", "center", "radius", "material", "motion", "scale", "rotate", "translate"}, "sphere");
+      keys(n, {"type", "center", "radius", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "sphere");
       const Vec3 center = vec3(required(n, "center", "sphere"), "sphere center");
       const Real radius = positive(required(n, "radius", "sphere"), "sphere radius");
       // A keyframe's scale acts on the radius too; one that differs between axes would make an ellipsoid.
@@ -450,30 +450,33 @@ class Reader {
             }
       added = &scene.add(Sphere(center, radius, object_material(n)));
     } else if (type == "plane") {
-      keys(n, {"type", "normal", "distance", "material"}, "plane");
+      keys(n, {"type", "normal", "distance", "material", "scale", "rotate", "translate", "matrix", "transform"}, "plane");
       const YAML::Node nn = required(n, "normal", "plane");
-      const Vec3 normal = vec3(nn, "plane normal");
+      Vec3 normal = vec3(nn, "plane normal");
       validate::non_zero(normal, loc(nn), "plane normal");
-      const Real distance = n["distance"] ? number(n["distance"], "plane distance") : Real(0);
+      Real distance = n["distance"] ? number(n["distance"], "plane distance") : Real(0);
+      if (const Transform t = placement(n); !t.identity()) transform_plane(t, normal, distance);
       added = &scene.add(Plane(normal, distance, object_material(n)));
     } else if (type == "triangle") {
-      keys(n, {"type", "vertices", "material", "motion"}, "triangle");
+      keys(n, {"type", "vertices", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "triangle");
       const YAML::Node v = required(n, "vertices", "triangle");
       if (!v.IsSequence() || v.size() != 3) fail(v, "triangle vertices must be a list of three points");
-      const Vec3 a = vec3(v[0], "vertex"), b = vec3(v[1], "vertex"), c = vec3(v[2], "vertex");
+      Vec3 a = vec3(v[0], "vertex"), b = vec3(v[1], "vertex"), c = vec3(v[2], "vertex");
+      if (const Transform t = placement(n); !t.identity()) {
+        // Baked into the vertices; a mirroring map swaps two so the front face stays in front.
+        const Mat3 m = t.linear();
+        a = m * a + t.translate;
+        b = m * b + t.translate;
+        c = m * c + t.translate;
+        if (m.determinant() < 0) std::swap(b, c);
+      }
       if (!(length_squared(cross(b - a, c - a)) > 0)) fail(v, "degenerate triangle (its vertices are collinear)");
       added = &scene.add(Triangle(a, b, c, object_material(n)));
     } else if (type == "mesh") {
-      keys(n, {"type", "file", "material", "scale", "rotate", "translate", "motion"}, "mesh");
+      keys(n, {"type", "file", "material", "scale", "rotate", "translate", "matrix", "transform", "motion"}, "mesh");
       const YAML::Node f = required(n, "file", "mesh");
       const fs::path path = base_dir_ / scalar(f, "mesh file");
-      Transform t;
-      if (const auto v = n["scale"]) {
-        t.scale = v.IsScalar() ? Vec3(number(v, "scale")) : vec3(v, "scale");
-        if (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0) fail(v, "mesh scale must not be zero");
-      }
-      if (const auto v = n["rotate"]) t.rotate_degrees = vec3(v, "rotate");
-      if (const auto v = n["translate"]) t.translate = vec3(v, "translate");
+      const Transform t = placement(n, "mesh ");
       const Material m = object_material(n);
       MeshData data;
       try {
@@ -492,21 +495,106 @@ class Reader {
                           "union, intersection, difference, merge or inverse)");
     }
     added->loc = loc(n);
-    if (type != "mesh") added->placement = placement(n);
+    if (type != "mesh" && type != "plane" && type != "triangle") added->placement = placement(n);
     if (const auto m = n["motion"]) added->motion = motion(m);
   }
 
-  // `scale` (a number or [x, y, z]), `rotate` ([x, y, z] degrees) and `translate` of a solid,
-  // sphere or CSG node (SceneObject::placement).
-  Transform placement(const YAML::Node& n) const {
-    Transform t;
-    if (const auto v = n["scale"]) {
-      t.scale = v.IsScalar() ? Vec3(number(v, "scale")) : vec3(v, "scale");
-      if (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0) fail(v, "scale must not be zero");
+  // Where an object's own coordinates go (docs/scene-format.md, "Transforms"): the fixed-order
+  // keys `scale`, `rotate` ([x, y, z] degrees or {axis, angle}) and `translate`, or a `matrix`,
+  // or a `transform` list applied in the order written. `what` prefixes the zero-scale message.
+  Transform placement(const YAML::Node& n, const std::string& what = "") const {
+    if (const YAML::Node list = n["transform"]) {
+      for (const char* k : {"scale", "rotate", "translate", "matrix"})
+        if (n[k]) fail(n[k], std::string("give either a transform list or '") + k + "', not both (put it in the list)");
+      sequence(list, "transform");
+      Mat3 m;
+      Vec3 t(0);
+      for (const YAML::Node& step : list) {
+        if (!step.IsMap() || step.size() != 1)
+          fail(step, "each step of a transform list must be a map of one key: scale, rotate, translate or matrix");
+        const std::string key = step.begin()->first.Scalar();
+        const YAML::Node v = step.begin()->second;
+        Mat3 sm;
+        Vec3 st(0);
+        if (key == "scale") sm = Mat3::scale(scale(v, what));
+        else if (key == "rotate") sm = rotation(v);
+        else if (key == "translate") st = vec3(v, "translate");
+        else if (key == "matrix") affine_matrix(v, sm, st);
+        else fail(step.begin()->first, "unknown transform step '" + key + "' (scale, rotate, translate or matrix)");
+        m = sm * m;
+        t = sm * t + st;
+      }
+      check_determinant(list, m.determinant(), "the transform");
+      return Transform::affine(m, t);
     }
-    if (const auto v = n["rotate"]) t.rotate_degrees = vec3(v, "rotate");
+    if (const YAML::Node v = n["matrix"]) {
+      for (const char* k : {"scale", "rotate", "translate"})
+        if (n[k]) fail(n[k], std::string("give either 'matrix' or '") + k + "', not both (or write a transform list)");
+      Mat3 m;
+      Vec3 t(0);
+      affine_matrix(v, m, t);
+      return Transform::affine(m, t);
+    }
+    Transform t;
+    if (const auto v = n["scale"]) t.scale = scale(v, what);
     if (const auto v = n["translate"]) t.translate = vec3(v, "translate");
+    if (const auto v = n["rotate"]) {
+      if (!v.IsMap()) {
+        t.rotate_degrees = vec3(v, "rotate");
+      } else {  // about an axis: still scale, rotate, translate
+        const Mat3 m = rotation(v) * Mat3::scale(t.scale);
+        return Transform::affine(m, t.translate);
+      }
+    }
     return t;
+  }
+  // The plane N·p = d carried by p' = M·p + t: its normal by M's inverse transpose, a point of it
+  // (N·d/|N|²) by the map; the front side stays in front.
+  static void transform_plane(const Transform& x, Vec3& normal, Real& distance) {
+    const Mat3 m = x.linear();
+    const Vec3 n = validate::direction(normal);
+    const Vec3 point = n * (distance / validate::norm(normal));
+    normal = m.inverse().transposed() * n;
+    distance = dot(normal, m * point + x.translate);
+  }
+  Vec3 scale(const YAML::Node& v, const std::string& what) const {
+    const Vec3 s = v.IsScalar() ? Vec3(number(v, "scale")) : vec3(v, "scale");
+    if (s.x == 0 || s.y == 0 || s.z == 0) fail(v, what + "scale must not be zero");
+    return s;
+  }
+  // [x, y, z] (degrees about x, then y, then z) or {axis: [x, y, z], angle: degrees}.
+  Mat3 rotation(const YAML::Node& v) const {
+    if (!v.IsMap()) {
+      const Vec3 r = vec3(v, "rotate");
+      return Mat3::rotation(2, r.z) * Mat3::rotation(1, r.y) * Mat3::rotation(0, r.x);
+    }
+    keys(v, {"axis", "angle"}, "rotate");
+    const YAML::Node a = required(v, "axis", "rotate");
+    const Vec3 axis = vec3(a, "rotate axis");
+    if (axis == Vec3(0)) fail(a, "rotate axis must not be the zero vector");
+    return Mat3::rotation(axis / max_abs_component(axis), number(required(v, "angle", "rotate"), "rotate angle"));
+  }
+  // An affine matrix: three rows of four numbers [m, m, m, t] (or of three: no translation), or
+  // four rows whose last is [0, 0, 0, 1]. Not singular.
+  void affine_matrix(const YAML::Node& v, Mat3& m, Vec3& t) const {
+    const char* shape = "matrix must be a list of 3 or 4 rows of 4 numbers (3 rows of 3: no translation)";
+    if (!v.IsSequence() || (v.size() != 3 && v.size() != 4)) fail(v, shape);
+    const std::size_t columns = v[0].IsSequence() ? v[0].size() : 0;
+    if ((columns != 3 && columns != 4) || (v.size() == 4 && columns != 4)) fail(v, shape);
+    Real e[4][4] = {};
+    for (std::size_t r = 0; r < v.size(); ++r) {
+      if (!v[r].IsSequence() || v[r].size() != columns) fail(v[r], shape);
+      for (std::size_t c = 0; c < columns; ++c) e[r][c] = number(v[r][c], "matrix element");
+    }
+    if (v.size() == 4 && !(e[3][0] == 0 && e[3][1] == 0 && e[3][2] == 0 && e[3][3] == 1))
+      fail(v[3], "a 4x4 matrix's last row must be [0, 0, 0, 1] (an affine map; projective ones are not supported)");
+    for (int r = 0; r < 3; ++r) m.row[r] = {e[r][0], e[r][1], e[r][2]};
+    t = {e[0][3], e[1][3], e[2][3]};
+    check_determinant(v, m.determinant(), "matrix");
+  }
+  void check_determinant(const YAML::Node& v, Real det, const std::string& what) const {
+    if (!std::isfinite(det)) fail(v, what + "'s determinant is not finite (its entries are too large)");
+    if (det == 0) fail(v, what + " is singular (its determinant is 0): it flattens the object");
   }
 
   // A CSG node (scene/yaml_csg.cpp); its solid operands are read here as objects of their own.
@@ -555,13 +643,13 @@ class Reader {
   // The solids (scene/solids.h); nullptr for another type.
   SceneObject* solid(const std::string& type, const YAML::Node& n, Scene& scene) const {
     if (type == "box") {
-      keys(n, {"type", "corners", "material", "scale", "rotate", "translate"}, "box");
+      keys(n, {"type", "corners", "material", "scale", "rotate", "translate", "matrix", "transform"}, "box");
       Vec3 a, b;
       corners(required(n, "corners", "box"), "box", a, b);
       return &scene.add(Box(a, b, object_material(n)));
     }
     if (type == "cylinder") {
-      keys(n, {"type", "base", "cap", "radius", "open", "material", "scale", "rotate", "translate"}, "cylinder");
+      keys(n, {"type", "base", "cap", "radius", "open", "material", "scale", "rotate", "translate", "matrix", "transform"}, "cylinder");
       const Vec3 base = vec3(required(n, "base", "cylinder"), "cylinder base");
       const Vec3 cap = vec3(required(n, "cap", "cylinder"), "cylinder cap");
       if (base == cap) fail(n["cap"], "degenerate cylinder: its base and cap are the same point");
@@ -570,7 +658,7 @@ class Reader {
       return &scene.add(Cone::cylinder(base, cap, radius, object_material(n), open));
     }
     if (type == "cone") {
-      keys(n, {"type", "base", "base_radius", "cap", "cap_radius", "open", "material", "scale", "rotate", "translate"}, "cone");
+      keys(n, {"type", "base", "base_radius", "cap", "cap_radius", "open", "material", "scale", "rotate", "translate", "matrix", "transform"}, "cone");
       const Vec3 base = vec3(required(n, "base", "cone"), "cone base");
       const Vec3 cap = vec3(required(n, "cap", "cone"), "cone cap");
       if (base == cap) fail(n["cap"], "degenerate cone: its base and cap are the same point");
@@ -581,7 +669,7 @@ class Reader {
       return &scene.add(Cone(base, r0, cap, r1, object_material(n), open));
     }
     if (type == "disk") {
-      keys(n, {"type", "center", "normal", "radius", "material", "scale", "rotate", "translate"}, "disk");
+      keys(n, {"type", "center", "normal", "radius", "material", "scale", "rotate", "translate", "matrix", "transform"}, "disk");
       const Vec3 center = vec3(required(n, "center", "disk"), "disk center");
       const YAML::Node nn = required(n, "normal", "disk");
       const Vec3 normal = vec3(nn, "disk normal");
@@ -590,7 +678,7 @@ class Reader {
       return &scene.add(Disk(center, normal, radius, object_material(n)));
     }
     if (type == "torus") {
-      keys(n, {"type", "center", "axis", "major_radius", "minor_radius", "material", "scale", "rotate", "translate"}, "torus");
+      keys(n, {"type", "center", "axis", "major_radius", "minor_radius", "material", "scale", "rotate", "translate", "matrix", "transform"}, "torus");
       const Vec3 center = n["center"] ? vec3(n["center"], "torus center") : Vec3(0);
       Vec3 axis(0, 1, 0);
       if (const auto v = n["axis"]) {
@@ -604,7 +692,7 @@ class Reader {
       return &scene.add(Torus(center, major, minor, object_material(n), axis));
     }
     if (type == "quadric") {
-      keys(n, {"type", "coefficients", "clipped_by", "material", "scale", "rotate", "translate"}, "quadric");
+      keys(n, {"type", "coefficients", "clipped_by", "material", "scale", "rotate", "translate", "matrix", "transform"}, "quadric");
       const YAML::Node c = required(n, "coefficients", "quadric");
       if (!c.IsSequence() || c.size() != 10)
         fail(c, "quadric coefficients must be a list of ten numbers [A, B, C, D, E, F, G, H, I, J]");
@@ -629,7 +717,7 @@ class Reader {
 
   SceneObject* implicit(const YAML::Node& n, Scene& scene) const {
     keys(n, {"type", "expression", "parameters", "contained_by", "max_gradient", "accuracy", "method", "step",
-             "material", "scale", "rotate", "translate"},
+             "material", "scale", "rotate", "translate", "matrix", "transform"},
          "implicit");
     const YAML::Node e = required(n, "expression", "implicit");
     ImplicitSurface s(scalar(e, "implicit expression"), object_material(n));
