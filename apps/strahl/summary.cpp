@@ -20,6 +20,18 @@ std::string summary(const std::string& output, int width, int height, int thread
                      scene.spheres.size() + scene.moving_spheres.size(), scene.planes.size(),
                      scene.triangles.size() + scene.moving_triangles.size(), scene.solids.size(), scene.lights.size(),
                      moving > 0 ? fmt::format(" ({} of the shapes moving)", moving) : std::string());
+  if (!scene.instances.empty()) {
+    std::size_t triangles = 0, spheres = 0, solids = 0, bytes = 0;
+    for (const RenderScene& g : scene.groups) {
+      triangles += g.triangles.size();
+      spheres += g.spheres.size();
+      solids += g.solids.size();
+      bytes += g.accel.stats.bytes;
+    }
+    out += fmt::format("instances   {} instances of {} groups ({} spheres, {} triangles, {} solids, once; their {}: {:.1f} MiB)\n",
+                       scene.instances.size(), scene.groups.size(), spheres, triangles, solids,
+                       accel_name(scene.groups.front().accel.kind), double(bytes) / (1 << 20));
+  }
   // Embree reports no node count or depth.
   const std::string nodes =
       a.nodes > 0 ? fmt::format("{} nodes, {} leaves, depth {}, ", a.nodes, a.leaves, a.max_depth) : std::string();

@@ -32,6 +32,11 @@ CudaBackend::~CudaBackend() = default;
 
 std::unique_ptr<CudaBackend> CudaBackend::create(const RenderScene& scene, std::string& error) {
   const AccelKind kind = scene.accel.kind;
+  if (!scene.instances.empty()) {
+    error = "the CUDA back end cannot render instances yet (the scene places " + std::to_string(scene.instances.size()) +
+            "): use --device cpu, or write the objects in place";
+    return nullptr;
+  }
   if (kind != AccelKind::Bvh && kind != AccelKind::Naive) {
     error = "the CUDA back end traverses the BVH (or the naive loop), not the " + std::string(accel_name(kind)) +
             ": use --accel bvh with --device cuda";

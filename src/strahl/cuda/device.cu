@@ -23,7 +23,9 @@ namespace strahl::cuda_detail {
 // (Impl::device_view) member by member: a kernel reading an array not uploaded would read host
 // memory. So a new member of SceneView, AccelView or PrimitiveSet stops the build here until it
 // is uploaded and mapped below — then update these sizes.
-static_assert(sizeof(SceneView) - sizeof(AccelView) == 424 && sizeof(PrimitiveSet) == 144 &&
+// (Instances are not uploaded: CudaBackend::create refuses a scene that has them, and
+// device_view clears their pointers.)
+static_assert(sizeof(SceneView) - sizeof(AccelView) == 464 && sizeof(PrimitiveSet) == 144 &&
 #if defined(STRAHL_HAVE_EMBREE)
                   sizeof(AccelView) == 400,
 #else
@@ -192,6 +194,10 @@ struct Device::Impl {
   // `host` (a job's view of the uploaded scene: its camera may differ) with device pointers.
   bool device_view(const SceneView& host, SceneView& out) const {
     out = host;
+    if (host.instance_count != 0) return false;  // not uploaded (CudaBackend::create refuses them)
+    out.instances = nullptr;
+    out.instance_bvh = {};
+    out.groups = nullptr;
     return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) &&
            map(out.accel.prims.spheres) && map(out.accel.prims.triangles) && map(out.accel.bvh.nodes) &&
            map(out.accel.bvh.leaves) && map(out.moving_spheres) && map(out.moving_triangles) &&

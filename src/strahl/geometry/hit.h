@@ -8,12 +8,13 @@
 
 namespace strahl {
 
-enum class ShapeKind : std::uint8_t { None, Sphere, Plane, Triangle, MovingSphere, MovingTriangle, Solid };
+enum class ShapeKind : std::uint8_t { None, Sphere, Plane, Triangle, MovingSphere, MovingTriangle, Solid, Instance };
 
 struct Hit {
   Real t = kInfinity;
   ShapeKind kind = ShapeKind::None;
   std::uint32_t index = 0;  // into the RenderScene's array for `kind`
+  std::uint32_t prim = 0;   // Instance: the primitive in its group's structure (index: the instance)
   Real b1 = 0, b2 = 0;      // barycentric coordinates of triangle hits; a solid's part in b1
 
   STRAHL_HOST_DEVICE constexpr bool found() const { return kind != ShapeKind::None; }

@@ -4,6 +4,7 @@
 // unbounded solids are tested one by one.
 
 #include "strahl/geometry/hit.h"
+#include "strahl/render/instance_queries.h"
 #include "strahl/render/moving_shapes.h"
 #include "strahl/render/scene_view.h"
 
@@ -39,6 +40,7 @@ STRAHL_HOST_DEVICE inline Hit closest_hit(const SceneView& s, const Ray& ray, Re
     }
   }
   closest_moving_hit(s, ray, t_min, hit);
+  closest_instance_hit(s, ray, t_min, hit);
   if (!hit.found()) hit.t = kInfinity;
   return hit;
 }
@@ -68,7 +70,7 @@ STRAHL_HOST_DEVICE inline Vec3 transmittance(const SceneView& s, const Ray& ray,
   }
   // Nothing transparent: the first surface found blocks the light (any-hit, no crossings to count).
   if (s.opaque && s.moving_sphere_count + s.moving_triangle_count == 0)
-    return occluded(s.accel, ray, 0, distance) ? Vec3(0) : tr;
+    return occluded(s.accel, ray, 0, distance) || instance_occluded(s, ray, 0, distance) ? Vec3(0) : tr;
   bool blocked = false;
   auto cross = [&](std::uint32_t prim, int crossings) {
     const Material& m = s.materials[primitive_material(s.accel.prims, prim)];
@@ -88,6 +90,7 @@ STRAHL_HOST_DEVICE inline Vec3 transmittance(const SceneView& s, const Ray& ray,
     return false;
   };
   for_each_moving_crossing(s, ray, distance, cross_moving);
+  if (!blocked) for_each_instance_crossing(s, ray, distance, cross_moving);
   return blocked ? Vec3(0) : tr;
 }
 

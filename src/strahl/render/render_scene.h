@@ -40,6 +40,15 @@ struct RenderScene {
   std::vector<kernel::MovingSphere> moving_spheres;
   std::vector<kernel::MovingTriangle> moving_triangles;
   Bvh moving_bvh;  // over the moving shapes' swept boxes (empty when nothing moves)
+  // Instances (scene/instances.h): each group compiled once (its own arrays and structure; only
+  // spheres, triangles, vertex normals, solids and accel are used), the instances' records, their
+  // world boxes and the BVH over them.
+  std::vector<RenderScene> groups;
+  std::vector<Bounds> group_bounds;  // object space
+  std::vector<kernel::Instance> instances;
+  std::vector<Bounds> instance_bounds;
+  Bvh instance_bvh;
+  mutable std::vector<InstanceGroupView> group_views;  // rebuilt by view()
   std::vector<Material> materials;
   std::vector<Light> lights;
   Camera camera;
@@ -79,6 +88,12 @@ struct RenderScene {
     v.moving_triangles = moving_triangles.data();
     v.moving_triangle_count = static_cast<std::uint32_t>(moving_triangles.size());
     v.moving_bvh = moving_bvh.view();
+    group_views.clear();
+    for (const RenderScene& g : groups) group_views.push_back({g.accel.view(g.primitives()), g.vertex_normals.data()});
+    v.instances = instances.data();
+    v.instance_count = static_cast<std::uint32_t>(instances.size());
+    v.instance_bvh = instance_bvh.view();
+    v.groups = group_views.data();
     v.shutter_open = camera.shutter_open;
     v.inv_shutter = camera.shutter_close > camera.shutter_open ? 1 / (camera.shutter_close - camera.shutter_open) : 0;
     v.materials = materials.data();

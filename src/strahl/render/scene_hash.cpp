@@ -54,7 +54,7 @@ static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof
 // A new array in the render-ready scene must be hashed too (with Embree: its scene handle).
 // (Not `warnings`: messages for the user, they change no pixel.)
 #if defined(STRAHL_HAVE_EMBREE)
-static_assert(sizeof(RenderScene) == 1432, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+static_assert(sizeof(RenderScene) == 1600, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
 #endif
 
 void hash(Hasher& h, const Material& m) {
@@ -231,6 +231,15 @@ void hash(Hasher& h, const kernel::PlacedSolid& x) {
   h.add(x.lo);
   h.add(x.hi);
 }
+static_assert(sizeof(kernel::Instance) == 120, "kernel::Instance changed: hash its new fields here");
+void hash(Hasher& h, const kernel::Instance& x) {
+  for (const Vec3& r : x.to_object.row) h.add(r);
+  h.add(x.to_object.translate);
+  h.add(x.stretch);
+  h.add(x.shift);
+  h.add(x.group);
+  h.add(x.translation_only);
+}
 void hash(Hasher& h, const kernel::CsgInstruction& x) {
   h.add(x.op);
   h.add(x.leaf);
@@ -259,6 +268,10 @@ std::uint64_t scene_hash(const RenderScene& s) {
   h.add_all(s.csg_code);
   h.add_all(s.csg_leaves);
   h.add_all(s.placed);
+  // Instances: each group's own arrays (their hash), the records (the boxes and BVHs follow).
+  h.add(std::uint64_t(s.groups.size()));
+  for (const RenderScene& g : s.groups) h.add(scene_hash(g));
+  h.add_all(s.instances);
   h.add_all(s.materials);
   h.add_all(s.lights);
   hash(h, s.camera);

@@ -11,6 +11,7 @@
 #include "strahl/geometry/sphere.h"
 #include "strahl/geometry/triangle.h"
 #include "strahl/math/bounds.h"
+#include "strahl/render/instance_group.h"
 #include "strahl/render/ray_budget.h"
 #include "strahl/shading/light.h"
 #include "strahl/shading/material.h"
@@ -51,6 +52,12 @@ struct SceneView {
   const kernel::MovingTriangle* moving_triangles = nullptr;
   std::uint32_t moving_triangle_count = 0;
   BvhView moving_bvh;
+  // Instances (render/instance_queries.h): small records in a BVH of their own over their world
+  // boxes, each placing one of the groups. Empty without instances.
+  const kernel::Instance* instances = nullptr;
+  std::uint32_t instance_count = 0;
+  BvhView instance_bvh;
+  const InstanceGroupView* groups = nullptr;
   Real shutter_open = 0, inv_shutter = 0;  // u = (time − open) · inv_shutter; 0 for no interval
   const Material* materials = nullptr;
   bool opaque = false;  // no material is transparent: a shadow ray needs only an any-hit test

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "strahl/geometry/hit.h"
+#include "strahl/render/instance_surface.h"
 #include "strahl/render/moving_shapes.h"
 #include "strahl/render/scene_view.h"
 
@@ -106,6 +107,15 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
       sp.geometric_normal = sp.normal = kernel::normal_at(s.accel.prims.shapes, solid, int(hit.b1), sp.p);
       sp.texcoord = sp.p;
       sp.material = solid.material;
+      break;
+    }
+    case ShapeKind::Instance: {
+      const InstanceSurface is = instance_surface(s, sp.p, hit);
+      sp.geometric_normal = is.geometric_normal;
+      sp.normal = is.normal;
+      sp.texcoord = is.texcoord;
+      sp.material = is.material;
+      sp.offset = ray_offset(ray, hit.t, sp.p, is.magnitude);
       break;
     }
     case ShapeKind::None: break;

@@ -5,6 +5,7 @@
 #include "strahl/accel/embree_range.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/camera_build.h"
+#include "strahl/scene/instances.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/place_solid.h"
 #include "strahl/scene/scene_warnings.h"
@@ -382,6 +383,7 @@ RenderScene compile(const Scene& scene) {
   out.supersample = s.supersample;
   out.sampling = compile_sampling(s);
 
+  compile_groups(scene, out);  // before the instances that place them
   std::uint32_t object_id = 0;  // (the camera, with its shutter, is built first: moving shapes need it)
   for (const auto& object : scene.objects()) {
     if ((object_id & 0x3ff) == 0) check_cancelled("build");
@@ -434,6 +436,7 @@ RenderScene compile(const Scene& scene) {
     for (const kernel::MovingTriangle& m : out.moving_triangles) boxes.push_back(kernel::swept_bounds(m));
     out.moving_bvh = build_bvh(boxes);
   }
+  build_instance_bvh(out);
   return out;
 }
 

@@ -212,6 +212,14 @@ struct RenderSettings {
   FileLoc loc;
 };
 
+// A named group of objects, placed by instances (scene/instances.h; docs/scene-format.md,
+// "Instances").
+struct ObjectGroup {
+  std::string name;
+  FileLoc loc;
+  std::vector<std::unique_ptr<SceneObject>> objects;
+};
+
 class Scene {
  public:
   Scene() = default;
@@ -250,6 +258,8 @@ class Scene {
 
   CameraDescription camera;
   RenderSettings settings;
+  // Groups of objects that `Instance` objects place (scene/instances.h).
+  std::vector<ObjectGroup> groups;
   // What the loader noticed but accepted, one line each ("file:line:column: what"); compile()
   // passes them on in RenderScene::warnings with its own.
   std::vector<std::string> warnings;

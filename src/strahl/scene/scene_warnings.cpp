@@ -30,6 +30,10 @@ Bounds bounded_shapes(const RenderScene& s) {
     b.extend(p.lo);
     b.extend(p.hi);
   }
+  for (const Bounds& p : s.instance_bounds) {
+    b.extend(p.lo);
+    b.extend(p.hi);
+  }
   return b;
 }
 

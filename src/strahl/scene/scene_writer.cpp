@@ -293,6 +293,8 @@ void render_settings(Writer& w, const RenderSettings& s) {
 }  // namespace
 
 std::string scene_to_yaml(const Scene& scene, const std::string& mesh_stem) {
+  if (!scene.groups.empty())
+    throw Error(scene.groups.front().loc, "cannot write a scene with groups and instances to a scene file (not supported yet)");
   Writer w;
   w.line(0, "# Written by strahl " + std::string("(scene_to_yaml); docs/scene-format.md describes every key."));
   camera(w, scene.camera);

@@ -73,14 +73,14 @@ class LimitChecker : public YAML::EventHandler {
       if (c.entries % 2 == 1) c.key = scalar ? *scalar : std::string();
       if (!c.long_allowed && c.entries > 2 * kMaxShortMap)
         fail(mark, "a map of more than " + std::to_string(kMaxShortMap) +
-                       " keys; no map in a scene file holds that many (only the top-level 'materials')");
+                       " keys; no map in a scene file holds that many (only the top-level 'materials' and 'groups')");
     } else if (c.csg_objects && c.entries > kMaxCsgList) {
       fail(mark, "a CSG node's objects list of more than " + std::to_string(kMaxCsgList) +
                      " elements (a CSG tree holds at most 256 solids)");
     } else if (!c.long_allowed && !c.csg_objects && c.entries > kMaxShortList) {
       fail(mark, "a list of more than " + std::to_string(kMaxShortList) +
                      " elements; no list in a scene file holds that many (only the top-level 'objects' and "
-                     "'lights', and a CSG's 'objects'; put large geometry in a mesh file)");
+                     "'lights', a group's objects and a CSG's 'objects'; put large geometry in a mesh file)");
     }
   }
 
@@ -90,13 +90,17 @@ class LimitChecker : public YAML::EventHandler {
     bool long_allowed = false;
     if (stack_.size() == 1 && stack_[0].map && stack_[0].entries % 2 == 0) {
       const std::string& key = stack_[0].key;
-      long_allowed = map ? key == "materials" : (key == "objects" || key == "lights");
+      long_allowed = map ? (key == "materials" || key == "groups") : (key == "objects" || key == "lights");
       if (!map && key == "objects") {
         // Only one block-style list can be read element by element (a repeated key is an error later).
         objects_ = objects_ == Objects::none && style == YAML::EmitterStyle::Block ? Objects::inside : Objects::unusable;
         objects_depth_ = stack_.size() + 1;
       }
     }
+    // So may the lists of objects of the top-level 'groups' (scene/instances.h).
+    if (!map && stack_.size() == 2 && stack_[0].map && stack_[0].key == "groups" && stack_[1].map &&
+        stack_[1].entries % 2 == 0)
+      long_allowed = true;
     // So may a CSG node's 'objects', up to kMaxCsgList (scene/csg.h).
     const bool csg_objects = !map && stack_.size() > 1 && stack_.back().map && stack_.back().entries % 2 == 0 &&
                              stack_.back().key == "objects";

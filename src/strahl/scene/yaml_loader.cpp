@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "strahl/scene/instances.h"
 #include "strahl/scene/mesh_file.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/solids.h"
@@ -58,7 +59,7 @@ class Reader {
     Scene scene;
     if (root.IsNull()) fail(root, "the scene file is empty");
     map(root, "scene");
-    keys(root, {"camera", "render", "materials", "lights", "objects"}, "scene");
+    keys(root, {"camera", "render", "materials", "groups", "lights", "objects"}, "scene");
     if (const YAML::Node n = root["render"]) render(n, scene.settings);
     if (const YAML::Node n = root["camera"]) camera(n, scene.camera);
     if (const YAML::Node n = root["materials"]) {
@@ -69,6 +70,7 @@ class Reader {
         materials_[name] = material(kv.second);
       }
     }
+    if (const YAML::Node n = root["groups"]) groups(n, scene);
     if (const YAML::Node n = root["lights"]) {
       sequence(n, "lights");
       for (const YAML::Node& l : n) light(l, scene);
@@ -432,11 +434,57 @@ class Reader {
     return Motion::keyframes(from, to);
   }
 
+  // `groups: {name: [objects…], …}` (docs/scene-format.md, "Instances"), read before the objects
+  // that place them. An object of a group is read as at the top level.
+  void groups(const YAML::Node& n, Scene& scene) {
+    map(n, "groups");
+    for (const auto& kv : n) {
+      const std::string name = scalar(kv.first, "group name");
+      if (group_index_.count(name)) fail(kv.first, "group '" + name + "' is defined twice");
+      if (!kv.second.IsSequence()) fail(kv.second, "group '" + name + "' must be a list of objects");
+      ObjectGroup g;
+      g.name = name;
+      g.loc = loc(kv.first);
+      reading_group_ = &name;
+      for (const YAML::Node& o : kv.second) {
+        Scene objects;
+        object(o, objects);
+        g.objects.push_back(objects.take_last());
+      }
+      reading_group_ = nullptr;
+      if (g.objects.empty()) fail(kv.second, "group '" + name + "' has no objects");
+      group_index_[name] = static_cast<std::uint32_t>(scene.groups.size());
+      scene.groups.push_back(std::move(g));
+    }
+  }
+
+  // `type: instance, of: name` with its own transform.
+  SceneObject* instance(const YAML::Node& n, Scene& scene) const {
+    keys(n, {"type", "of", "scale", "rotate", "translate", "matrix", "transform"}, "instance");
+    const YAML::Node of = required(n, "of", "instance");
+    const std::string name = scalar(of, "instance of");
+    if (reading_group_) {
+      if (name == *reading_group_)
+        fail(of, "group '" + name + "' places an instance of itself (a cycle)");
+      fail(n["type"], "instances cannot be nested: group '" + *reading_group_ + "' places an instance of '" + name +
+                          "' (place the objects of '" + name + "' in it, or the instances side by side in objects)");
+    }
+    const auto it = group_index_.find(name);
+    if (it == group_index_.end()) {
+      std::string known;
+      for (const auto& [k, v] : group_index_) known += (known.empty() ? "" : ", ") + k;
+      fail(of, "unknown group '" + name + "'" + (known.empty() ? std::string(" (the scene defines no groups)") : " (groups: " + known + ")"));
+    }
+    return &scene.add(Instance(it->second));
+  }
+
   void object(const YAML::Node& n, Scene& scene) const {
     map(n, "object");
     const std::string type = scalar(required(n, "type", "object"), "object type");
     SceneObject* added = nullptr;
-    if (type == "sphere") {
+    if (type == "instance") {
+      added = instance(n, scene);
+    } else if (type == "sphere") {
       keys(n, {"type", "center", "radius", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "sphere");
       const Vec3 center = vec3(required(n, "center", "sphere"), "sphere center");
       const Real radius = positive(required(n, "radius", "sphere"), "sphere radius");
@@ -492,7 +540,7 @@ class Reader {
     } else {
       fail(n["type"], "unknown object type '" + type +
                           "' (sphere, plane, triangle, mesh, box, cylinder, cone, disk, torus, quadric, implicit, "
-                          "union, intersection, difference, merge or inverse)");
+                          "union, intersection, difference, merge, inverse or instance)");
     }
     added->loc = loc(n);
     if (type != "mesh" && type != "plane" && type != "triangle") added->placement = placement(n);
@@ -763,6 +811,8 @@ class Reader {
   fs::path base_dir_;
   std::map<std::string, Material> materials_;
   int line_offset_ = 0;  // of the object being read from its own text
+  std::map<std::string, std::uint32_t> group_index_;  // into Scene::groups
+  const std::string* reading_group_ = nullptr;        // the group whose objects are being read
 };
 
 // The scene's text with the top-level objects list cut out (its lines left empty, so line numbers

@@ -1,0 +1,112 @@
+// Groups and instances (scene/instances.h).
+
+#include "strahl/scene/instances.h"
+
+#include <cmath>
+#include <string>
+
+#include "strahl/render/render_scene.h"
+#include "strahl/scene/validate.h"
+#include "strahl/util/cancel.h"
+
+namespace strahl {
+namespace {
+
+bool finite(const Bounds& b) {
+  return std::isfinite(b.lo.x) && std::isfinite(b.lo.y) && std::isfinite(b.lo.z) && std::isfinite(b.hi.x) &&
+         std::isfinite(b.hi.y) && std::isfinite(b.hi.z);
+}
+
+}  // namespace
+
+void compile_groups(const Scene& scene, RenderScene& out) {
+  for (const ObjectGroup& group : scene.groups) {
+    check_cancelled("build");
+    if (group.objects.empty()) throw Error(group.loc, "group '" + group.name + "' has no objects");
+    RenderScene g;
+    g.camera = out.camera;
+    std::uint32_t object_id = 0;
+    for (const auto& object : group.objects) {
+      validate::material(object->material, object->loc);
+      const auto material_index = static_cast<std::uint32_t>(out.materials.size());
+      out.materials.push_back(object->material);
+      const std::size_t planes = g.planes.size(), solids = g.solids.size(), instances = g.instances.size();
+      const std::size_t moving = g.moving_spheres.size() + g.moving_triangles.size();
+      object->compile_into(g, material_index, object_id++);
+      if (g.planes.size() != planes)
+        throw Error(object->loc, "a plane cannot be part of group '" + group.name + "': it is unbounded (place it in objects)");
+      if (g.moving_spheres.size() + g.moving_triangles.size() != moving)
+        throw Error(object->loc, "objects of group '" + group.name + "' cannot move (give the motion to no object of a group)");
+      if (g.instances.size() != instances)
+        throw Error(object->loc, "instances cannot be nested: group '" + group.name + "' places an instance");
+      for (std::size_t i = solids; i < g.solids.size(); ++i) {
+        const kernel::Solid& k = g.solids[i];
+        const bool unbounded = (k.kind == kernel::SolidKind::Quadric && !g.quadrics[k.index].clipped) ||
+                               !finite(kernel::bounds(g.shapes(), k));
+        if (unbounded)
+          throw Error(object->loc, "an unbounded solid (an unclipped quadric, an inverse) cannot be part of group '" +
+                                       group.name + "'");
+      }
+    }
+    g.bounded_solid_count = static_cast<std::uint32_t>(g.solids.size());
+    // The scene's structure inside each group; Embree (no visitor traversal, float) gets the BVH.
+    AccelKind kind = scene.settings.accel;
+#if defined(STRAHL_HAVE_EMBREE)
+    if (kind == AccelKind::Embree) {
+      kind = AccelKind::Bvh;
+      if (out.groups.empty())
+        out.warnings.push_back(scene.settings.loc.str() + (scene.settings.loc.file.empty() ? "" : ": ") +
+                               "accel embree: the groups of instances are built as bvh");
+    }
+#endif
+    g.accel = build_accel(kind, g.primitives());
+    Bounds b;
+    const PrimitiveSet prims = g.primitives();
+    for (std::uint32_t p = 0; p < prims.size(); ++p) {
+      const Bounds pb = primitive_bounds(prims, p);
+      b.extend(pb.lo);
+      b.extend(pb.hi);
+    }
+    out.groups.push_back(std::move(g));
+    out.group_bounds.push_back(b);
+  }
+}
+
+void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) const {
+  if (group >= out.groups.size()) throw Error(loc, "instance of group number " + std::to_string(group) + ", which the scene does not have");
+  if (motion.moving()) throw Error(loc, "an instance cannot move");
+  validate::finite(placement.translate, loc, "instance translate");
+  const Mat3 m = placement.linear();
+  const Real det = m.determinant();
+  if (!(std::fabs(det) > 0) || !std::isfinite(det)) throw Error(loc, "the instance's transform is singular (it flattens the group)");
+  const Mat3 inv = m.inverse();
+  kernel::Instance x;
+  for (int i = 0; i < 3; ++i) x.to_object.row[i] = inv.row[i];
+  x.to_object.translate = placement.translate;
+  const Mat3 identity;
+  x.translation_only = m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2];
+  // The Frobenius norm bounds the map's largest stretch.
+  x.stretch = std::sqrt(dot(m.row[0], m.row[0]) + dot(m.row[1], m.row[1]) + dot(m.row[2], m.row[2]));
+  x.shift = max_abs_component(placement.translate);
+  x.group = group;
+  const Bounds& b = out.group_bounds[group];
+  Bounds w;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z);
+    w.extend(m * corner + placement.translate);
+  }
+  // Widened by a little more than the corners' rounding, so the box holds every transformed point.
+  const Real pad = 1e-9 * std::fmax(max_abs_component(w.lo), max_abs_component(w.hi));
+  w.lo = w.lo - Vec3(pad);
+  w.hi = w.hi + Vec3(pad);
+  validate::coordinates(w.lo, loc, "instance bounds");
+  validate::coordinates(w.hi, loc, "instance bounds");
+  out.instances.push_back(x);
+  out.instance_bounds.push_back(w);
+}
+
+void build_instance_bvh(RenderScene& out) {
+  if (!out.instances.empty()) out.instance_bvh = build_bvh(out.instance_bounds);
+}
+
+}  // namespace strahl

@@ -1,0 +1,219 @@
+// Instances (docs/scene-format.md, "Instances"; scene/instances.h, render/instance_queries.h):
+// an instance with the identity transform renders the same image, bit for bit, as its group's
+// objects written in place; a transformed instance agrees with the same objects with the same
+// transform written on each (hit t, normals, shadow rays through opaque and transparent
+// objects, CSG), for every accelerator; the group's geometry is held once however many
+// instances place it.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "strahl/render/intersect_scene.h"
+#include "strahl/render/render_scene.h"
+#include "strahl/render/renderer.h"
+#include "strahl/render/surface_point.h"
+#include "strahl/scene/scene_file.h"
+#include "test_helpers.h"
+#include "test_random.h"
+
+namespace strahl {
+namespace {
+
+const std::string kHead =
+    "camera: {position: [0, 2, 7], look_at: [0, 0.5, 0], fov: 45}\n"
+    "render: {width: 48, height: 32, max_depth: 4}\n"
+    "materials:\n"
+    "  red: {color: [0.9, 0.2, 0.1], reflectivity: 0.3}\n"
+    "  glass: {color: [0.6, 0.9, 1], transparency: 0.7, ior: 1.4, filter: true}\n"
+    "lights:\n  - {type: point, position: [3, 5, 4]}\n  - {type: point, position: [-4, 3, 2], intensity: 0.5}\n";
+
+// The objects of the group, each line an element of a list at the given indentation, with
+// `extra` (a transform) added to every object's map.
+std::string group_objects(const std::string& indent, const std::string& extra) {
+  const char* objects[] = {
+      "{type: sphere, center: [-1, 0.5, 0], radius: 0.5, material: red",
+      "{type: box, corners: [[0.2, 0, -0.4], [1, 0.8, 0.4]], material: glass",
+      "{type: triangle, vertices: [[-2, 0, -1], [2, 0, -1], [0, 2, -1.5]]",
+      "{type: difference, material: red, objects: [{type: sphere, center: [0, 1.6, 0.5], radius: 0.4}, "
+      "{type: cylinder, base: [0, 1.6, 0], cap: [0, 1.6, 1], radius: 0.2}]",
+      "{type: torus, center: [1.6, 0.3, 0.8], major_radius: 0.3, minor_radius: 0.1, material: glass",
+  };
+  std::string s;
+  for (const char* o : objects) s += indent + "- " + o + (extra.empty() ? "" : ", " + extra) + "}\n";
+  return s;
+}
+
+const std::string kFloor = "  - {type: plane, normal: [0, 1, 0], distance: -0.5}\n";
+
+RenderScene direct(const std::string& extra, AccelKind accel = AccelKind::Bvh) {
+  Scene s = parse_scene(kHead + "objects:\n" + kFloor + group_objects("  ", extra), "direct.yaml", ".");
+  s.settings.accel = accel;
+  return compile(s);
+}
+RenderScene instanced(const std::string& transform, AccelKind accel = AccelKind::Bvh) {
+  Scene s = parse_scene(kHead + "groups:\n  g:\n" + group_objects("    ", "") + "objects:\n" + kFloor +
+                            "  - {type: instance, of: g" + (transform.empty() ? "" : ", " + transform) + "}\n",
+                        "instanced.yaml", ".");
+  s.settings.accel = accel;
+  return compile(s);
+}
+
+Image render_of(const RenderScene& rs) {
+  RenderOptions o;
+  o.threads = 2;
+  return render(rs, o);
+}
+
+
+struct Compared {
+  int rays = 0, both = 0, disagree = 0;
+  Real max_t = 0, max_normal = 0;
+};
+
+// Nearest hits along random rays towards the objects, and their surface normals.
+Compared compare(const RenderScene& x, const RenderScene& y, std::uint64_t seed) {
+  const SceneView vx = x.view(), vy = y.view();
+  test::Random rng(seed);
+  Compared c;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 o = Vec3(0, 0.8, 0) + rng.direction() * 8;
+    const Ray ray{o, normalize(Vec3(0, 0.8, 0) + rng.point(-2.5, 2.5) - o)};
+    const Hit hx = closest_hit(vx, ray, 0, kInfinity), hy = closest_hit(vy, ray, 0, kInfinity);
+    ++c.rays;
+    if (hx.found() != hy.found() || (hx.found() && std::fabs(hx.t - hy.t) > 1e-6 * hx.t)) {
+      ++c.disagree;  // a grazing ray may pass on either side of an edge
+      continue;
+    }
+    if (!hx.found()) continue;
+    ++c.both;
+    c.max_t = std::fmax(c.max_t, std::fabs(hx.t - hy.t) / hx.t);
+    const SurfacePoint sx = surface_at(vx, ray, hx), sy = surface_at(vy, ray, hy);
+    c.max_normal = std::fmax(c.max_normal, length(sx.normal - sy.normal));
+    c.max_normal = std::fmax(c.max_normal, length(sx.geometric_normal - sy.geometric_normal));
+    EXPECT_EQ(x.materials[sx.material].color, y.materials[sy.material].color);  // (the indices differ)
+    EXPECT_EQ(x.materials[sx.material].transparency, y.materials[sy.material].transparency);
+  }
+  return c;
+}
+
+TEST(Instance, IdentityInstanceRendersTheSameBitsAsItsObjects) {
+  const RenderScene a = direct(""), b = instanced("");
+  ASSERT_EQ(b.instances.size(), 1u);
+  ASSERT_TRUE(b.triangles.empty());
+  ASSERT_TRUE(b.spheres.empty());
+  const Image ia = render_of(a), ib = render_of(b);
+  EXPECT_TRUE(ia == ib) << "max difference " << test::max_abs_diff(ia, ib);
+  // And it is not a blank picture that would agree with anything.
+  EXPECT_GT(test::max_abs_diff(ia, render_of(direct("translate: [0.05, 0, 0]"))), 0.1);
+  // The image is float: the hits themselves, in double, are the same bits too.
+  const Compared c = compare(a, b, 5);
+  EXPECT_GT(c.both, 1000);
+  EXPECT_EQ(c.disagree, 0);
+  EXPECT_EQ(c.max_t, 0);
+  EXPECT_EQ(c.max_normal, 0);
+}
+
+TEST(Instance, TransformedInstanceEqualsTheObjectsTransformedInPlace) {
+  for (const char* t : {"translate: [0.3, -0.2, 0.7]", "rotate: {axis: [1, 2, 0.5], angle: 37}",
+                        "transform: [{scale: [1.5, 0.7, 1.2]}, {rotate: [10, 20, 30]}, {translate: [0.1, 0.2, -0.3]}]",
+                        "scale: [-1, 1, 1]", "matrix: [[1, 0.3, 0, 0.2], [0, 1, 0, 0], [0.1, 0, 0.8, -0.1]]"}) {
+    const Compared c = compare(direct(t), instanced(t), 7);
+    EXPECT_GT(c.both, 1000) << t;
+    EXPECT_LE(c.disagree, 4) << t;
+    EXPECT_LT(c.max_t, 1e-9) << t;
+    EXPECT_LT(c.max_normal, 1e-7) << t;
+  }
+}
+
+TEST(Instance, EveryAcceleratorAgrees) {
+  const std::string t = "transform: [{rotate: {axis: [0, 1, 0], angle: 25}}, {scale: 1.3}, {translate: [0.2, 0, 0]}]";
+  const RenderScene reference = instanced(t, AccelKind::Bvh);
+  for (AccelKind k : {AccelKind::Naive, AccelKind::KdTree, AccelKind::Octree}) {
+    const Compared c = compare(reference, instanced(t, k), 11);
+    EXPECT_EQ(c.disagree, 0) << accel_name(k);
+    EXPECT_LT(c.max_t, 1e-12) << accel_name(k);
+  }
+}
+
+TEST(Instance, ShadowRaysSeeInstancesAsTheObjects) {
+  const std::string t = "transform: [{rotate: [0, 40, 0]}, {translate: [0.1, 0, 0.2]}]";
+  const RenderScene x = direct(t), y = instanced(t);
+  const SceneView vx = x.view(), vy = y.view();
+  ASSERT_FALSE(vx.opaque);  // glass: crossings are counted, not just any hit
+  test::Random rng(3);
+  int blocked = 0, tinted = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 from = rng.point(-2, 2) + Vec3(0, 0.8, 0), to = rng.point(-2, 2) * 3 + Vec3(0, 4, 0);
+    const Real d = length(to - from);
+    const Ray ray{from, (to - from) / d};
+    const Vec3 a = transmittance(vx, ray, d), b = transmittance(vy, ray, d);
+    EXPECT_NEAR(a.x, b.x, 1e-12);
+    EXPECT_NEAR(a.y, b.y, 1e-12);
+    EXPECT_NEAR(a.z, b.z, 1e-12);
+    blocked += a == Vec3(0);
+    tinted += a.x > 0 && a.x < 1;
+  }
+  EXPECT_GT(blocked, 100);
+  EXPECT_GT(tinted, 50);
+  // All opaque: the any-hit path.
+  const std::string opaque_group =
+      "groups:\n  g:\n    - {type: box, corners: [[-1, 0, -1], [1, 1, 1]]}\nobjects:\n"
+      "  - {type: instance, of: g, translate: [0, 2, 0]}\n";
+  const RenderScene o = compile(parse_scene(kHead + opaque_group, "o.yaml", "."));
+  ASSERT_TRUE(o.view().opaque);
+  EXPECT_EQ(transmittance(o.view(), Ray{{0, 0, 0}, {0, 1, 0}}, 10), Vec3(0));
+  EXPECT_EQ(transmittance(o.view(), Ray{{0, 0, 0}, {0, 1, 0}}, 1.5), Vec3(1));
+  EXPECT_EQ(transmittance(o.view(), Ray{{3, 0, 0}, {0, 1, 0}}, 10), Vec3(1));
+}
+
+TEST(Instance, TheGroupIsHeldOnce) {
+  std::string objects;
+  for (int i = 0; i < 500; ++i)
+    objects += "  - {type: instance, of: g, transform: [{rotate: {axis: [0, 1, 0], angle: " + std::to_string(i) +
+               "}}, {translate: [" + std::to_string(10 * (i % 25)) + ", 0, " + std::to_string(10 * (i / 25)) + "]}]}\n";
+  const RenderScene rs = compile(parse_scene(kHead + "groups:\n  g:\n" + group_objects("    ", "") + "objects:\n" + objects,
+                                             "many.yaml", "."));
+  EXPECT_EQ(rs.instances.size(), 500u);
+  ASSERT_EQ(rs.groups.size(), 1u);
+  EXPECT_EQ(rs.groups[0].triangles.size(), 1u);
+  EXPECT_TRUE(rs.triangles.empty());
+  EXPECT_TRUE(rs.solids.empty());
+  EXPECT_LE(sizeof(kernel::Instance), 128u);
+  // Instance 137 is found where it was placed: straight down onto the top of its sphere.
+  const Mat3 r = Mat3::rotation(Vec3(0, 1, 0), 137);
+  const Vec3 centre = r * Vec3(-1, 0.5, 0) + Vec3(10 * (137 % 25), 0, 10 * (137 / 25));
+  const Hit h = closest_hit(rs.view(), Ray{centre + Vec3(0, 10, 0), {0, -1, 0}}, 0, kInfinity);
+  ASSERT_EQ(h.kind, ShapeKind::Instance);
+  EXPECT_NEAR(h.t, 9.5, 1e-12);
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    compile(parse_scene(kHead + text, "bad.yaml", "."));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Instance, BadGroupsAreErrorsAtTheirPlace) {
+  EXPECT_EQ(error_of("objects:\n  - {type: instance, of: nothing}\n"),
+            "bad.yaml:10:26: unknown group 'nothing' (the scene defines no groups)");
+  EXPECT_EQ(error_of("groups:\n  g: [{type: instance, of: g}]\nobjects:\n  - {type: instance, of: g}\n"),
+            "bad.yaml:10:28: group 'g' places an instance of itself (a cycle)");
+  EXPECT_EQ(error_of("groups:\n  a: [{type: sphere, center: [0, 0, 0], radius: 1}]\n  b: [{type: instance, of: a}]\n"
+                     "objects:\n  - {type: instance, of: b}\n")
+                .substr(0, 60),
+            "bad.yaml:11:14: instances cannot be nested: group 'b' places");
+  EXPECT_EQ(error_of("groups:\n  g: [{type: plane, normal: [0, 1, 0]}]\nobjects:\n  - {type: instance, of: g}\n"),
+            "bad.yaml:10:7: a plane cannot be part of group 'g': it is unbounded (place it in objects)");
+  EXPECT_EQ(error_of("groups:\n  g: []\nobjects:\n  - {type: instance, of: g}\n"), "bad.yaml:10:6: group 'g' has no objects");
+  EXPECT_EQ(error_of("groups:\n  g: [{type: sphere, center: [0, 0, 0], radius: 1}]\nobjects:\n"
+                     "  - {type: instance, of: g, matrix: [[1, 0, 0], [0, 1, 0], [1, 0, 0]]}\n"),
+            "bad.yaml:12:37: matrix is singular (its determinant is 0): it flattens the object");
+}
+
+}  // namespace
+}  // namespace strahl
