@@ -84,8 +84,6 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
       break;
 #endif
   }
-  if (prims.sphere_count > 0 && prims.sphere_count == prims.size())
-    a.sphere_blocks = build_sphere_blocks(prims.spheres, prims.sphere_count);
   a.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return a;
 }

@@ -17,7 +17,6 @@
 #include "strahl/accel/kdtree.h"
 #include "strahl/accel/naive.h"
 #include "strahl/accel/octree.h"
-#include "strahl/accel/sphere_block.h"
 #include "strahl/accel/wide_bvh.h"
 #if defined(STRAHL_HAVE_EMBREE)
 #include "strahl/accel/embree_accel.h"
@@ -56,10 +55,6 @@ struct AccelView {
   // the queries run the naive loop over them, the same search without the traversal's and the
   // blocks' bookkeeping.
   bool one_leaf = false;
-  // Spheres only, tested one by one (one leaf, or the naive loop): the queries take them eight at
-  // a time (accel/sphere_block.h); null otherwise.
-  const SphereBlock* sphere_blocks = nullptr;
-  std::uint32_t sphere_block_count = 0;
 };
 
 // Owns whichever structure was built. It holds primitive indices, not pointers, so the scene that
@@ -72,7 +67,6 @@ struct Accel {
 #if defined(STRAHL_HAVE_EMBREE)
   EmbreeAccel embree;
 #endif
-  std::vector<SphereBlock> sphere_blocks;  // a scene of spheres only (build_accel)
   AccelBuildStats stats;
 
   AccelView view(const PrimitiveSet& prims) const {
@@ -88,11 +82,6 @@ struct Accel {
     v.one_leaf = (kind == AccelKind::Bvh && bvh.root_leaf_count > 0) ||
                  (kind == AccelKind::KdTree && !kdtree.nodes.empty() && kdtree.nodes[0].is_leaf()) ||
                  (kind == AccelKind::Octree && !octree.nodes.empty() && octree.nodes[0].is_leaf());
-    if ((v.one_leaf || kind == AccelKind::Naive) && !sphere_blocks.empty() &&
-        prims.sphere_count == prims.size()) {
-      v.sphere_blocks = sphere_blocks.data();
-      v.sphere_block_count = std::uint32_t(sphere_blocks.size());
-    }
     return v;
   }
 };
@@ -128,20 +117,6 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
   if (a.kind == AccelKind::Embree) return embree_nearest_hit(a, ray, t_min, t_max);
 #endif
   NearestHit result;
-  if (a.sphere_block_count > 0) {  // the one-by-one loop's answer, eight discriminants at a time
-    Real t_far = t_max;
-    for (std::uint32_t blk = 0; blk < a.sphere_block_count; ++blk)
-      for (unsigned m = sphere_block_candidates(a.sphere_blocks[blk], ray); m != 0; m &= m - 1) {
-        const std::uint32_t prim = blk * kSphereBlockWidth + std::uint32_t(wide_bvh_detail::lowest_bit(m));
-        const Real t = kernel::intersect(a.prims.spheres[prim], ray, t_min, t_far);
-        if (t < t_far) {
-          t_far = t;
-          result.prim = prim;
-          result.hit = {t, 0, 0};
-        }
-      }
-    return result;
-  }
   if (a.kind == AccelKind::Bvh && !a.one_leaf) {  // leaf copies: no visitor, no indirection
     wide_bvh_nearest(a.bvh, a.prims, ray, t_min, t_max, result.prim, result.hit);
     return result;
@@ -173,14 +148,6 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
 #if defined(STRAHL_HAVE_EMBREE) && !defined(__CUDACC__)
   if (a.kind == AccelKind::Embree) return embree_occluded(a, ray, t_min, t_max);
 #endif
-  if (a.sphere_block_count > 0) {
-    for (std::uint32_t blk = 0; blk < a.sphere_block_count; ++blk)
-      for (unsigned m = sphere_block_candidates(a.sphere_blocks[blk], ray); m != 0; m &= m - 1) {
-        const std::uint32_t prim = blk * kSphereBlockWidth + std::uint32_t(wide_bvh_detail::lowest_bit(m));
-        if (kernel::intersect(a.prims.spheres[prim], ray, t_min, t_max) < kInfinity) return true;
-      }
-    return false;
-  }
   if (!a.one_leaf) {
     if (a.kind == AccelKind::Bvh) return wide_bvh_occluded(a.bvh, a.prims, ray, t_min, t_max);
     if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims, ray, t_min, t_max);
@@ -211,16 +178,6 @@ STRAHL_HOST_DEVICE inline void for_each_crossing(const AccelView& a, const Ray& 
     return;
   }
 #endif
-  if (a.sphere_block_count > 0) {
-    if (!(t_min < t_max)) return;
-    for (std::uint32_t blk = 0; blk < a.sphere_block_count; ++blk)
-      for (unsigned m = sphere_block_candidates(a.sphere_blocks[blk], ray); m != 0; m &= m - 1) {
-        const std::uint32_t prim = blk * kSphereBlockWidth + std::uint32_t(wide_bvh_detail::lowest_bit(m));
-        const int n = kernel::crossings(a.prims.spheres[prim], ray, t_min, t_max);
-        if (n > 0 && cross(prim, n)) return;
-      }
-    return;
-  }
   const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real leaf_lo, Real leaf_hi, Real& t_far) {
     const Real lo = leaf_lo > t_min ? leaf_lo : t_min;
