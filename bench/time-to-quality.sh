@@ -54,6 +54,16 @@ for variant in 0 1; do
       fi
     done
   done
+  # One sample per pixel, then refinement where a pixel stands out from its neighbours.
+  for thr in 0.2 0.1 0.07 0.05; do
+    t=$(wall "$build/bin/strahl" "$scene" "${size[@]}" --sampler adaptive --spp 16 --adaptive-min 1 \
+          --adaptive-threshold $thr -q -o s.pfm)
+    e=$(rmse ref.pfm s.pfm)
+    printf "strahl  adaptive min  1 threshold %-5s  %7.2f s  rmse %s  (spp 16)\n" "$thr" "$t" "$e"
+    if below "$e" && { [ -z "$best_s" ] || awk -v a="$t" -v b="${best_s%% *}" 'BEGIN { exit !(a < b) }'; }; then
+      best_s="$(printf %.3f "$t") s (adaptive min 1 threshold $thr spp 16, rmse $e)"
+    fi
+  done
   for spp in 4 16 64; do
     t=$(wall "$build/bin/strahl" "$scene" "${size[@]}" --sampler stratified --spp $spp -q -o s.pfm)
     e=$(rmse ref.pfm s.pfm)

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <functional>
 
 #include "strahl/image/metrics.h"
 #include "strahl/render/adaptive.h"
@@ -162,6 +163,110 @@ TEST(Adaptive, RelativeErrorIsTheStandardErrorOverTheMean) {
   EXPECT_NEAR(relative_error(p), std::sqrt(1.0 / 12), 1e-12);
   EXPECT_EQ(relative_error(PixelStats{0, 0, 8}), 0) << "black pixels are converged";
   EXPECT_TRUE(std::isinf(relative_error(PixelStats{1, 1, 1})));
+}
+
+// A synthetic film for the planner: pixel (x, row)'s sample s sees a disc of radius 7 (0.8 inside,
+// 0.1 outside, at a jittered position within the pixel) and, left of x = 6, noise of ±0.05.
+struct SyntheticFilm {
+  int w, h;
+  Film film;
+  std::vector<std::uint32_t> counts;
+  bool second_disc = false;                                 // and a shaded disc on the left
+  std::function<double(int, int, std::uint32_t)> value;  // replaces all that when set
+  SyntheticFilm(int w_, int h_) : w(w_), h(h_), film(w_, h_, Filter{}), counts(std::size_t(w_) * std::size_t(h_), 0) {}
+  static double jitter(std::uint64_t k) {
+    k = (k ^ (k >> 31)) * 0x7fb5d329728ea185ull;
+    k = (k ^ (k >> 27)) * 0x81dadef4bc2dd44dull;
+    return double(k >> 11) * 0x1.0p-53;
+  }
+  void take(const std::vector<std::uint32_t>& add) {
+    TileWork t;
+    t.rect = {0, 0, w, h};
+    film.begin_tile(t);
+    for (int row = 0; row < h; ++row)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t p = std::size_t(row) * std::size_t(w) + std::size_t(x);
+        for (std::uint32_t k = 0; k < add[p]; ++k) {
+          const std::uint64_t key = (p << 20) + counts[p] + k;
+          const double fx = x + jitter(3 * key), fy = row + jitter(3 * key + 1);
+          double v = std::hypot(fx - 0.6 * w, fy - 0.5 * h) < 7 ? 0.8 : 0.1;
+          if (second_disc && std::hypot(fx - 0.2 * w, fy - 0.7 * h) < 0.2 * h) v = 0.1 + 0.04 * std::sin(fx * fy);
+          if (value) v = value(x, row, counts[p] + k);
+          if (x < 6) v += 0.1 * (jitter(3 * key + 2) - 0.5);
+          film.layout().add_sample(t, x, row, CameraSample{}, Vec3(Real(v)));
+        }
+        counts[p] += add[p];
+      }
+    film.merge(t);
+  }
+};
+
+// With one sample a pixel's error is its largest relative contrast to a neighbour with samples.
+TEST(Adaptive, OneSampleUsesTheContrastToItsNeighbours) {
+  SyntheticFilm f(40, 24);
+  std::vector<std::uint32_t> add(f.counts.size(), 1), next(f.counts.size(), 0);
+  f.take(add);
+  const auto mean = [&](int x, int row) { return f.film.stats(x, row).sum / f.film.stats(x, row).n; };
+  double e = 0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) e = std::max(e, std::abs(mean(20, 12) - mean(20 + dx, 12 + dy)));
+  EXPECT_EQ(contrast_error(f.film, 20, 12), e / std::max(mean(20, 12), 0.01));
+  EXPECT_EQ(pixel_error(f.film, 20, 12), contrast_error(f.film, 20, 12));
+  // Flat pixels far from the disc and the noise stop at one sample; the disc's rim refines.
+  AdaptivePlanner planner;
+  planner.plan(f.film, f.counts, 16, 0.3, next);
+  int rim = 0;
+  for (int row = 0; row < f.h; ++row)
+    for (int x = 0; x < f.w; ++x) {
+      const double r = std::hypot(x + 0.5 - 0.6 * f.w, row + 0.5 - 0.5 * f.h);
+      const std::uint32_t a = next[std::size_t(row) * std::size_t(f.w) + std::size_t(x)];
+      if (x >= 8 && (r < 3 || r > 11)) {
+        EXPECT_EQ(a, 0u) << x << ", " << row;
+      }
+      rim += a > 0 && r > 5.5 && r < 8.5;
+    }
+  EXPECT_GT(rim, 30);
+}
+
+// Pass by pass, the planner's incremental plan equals examining every pixel.
+TEST(AdaptivePlanner, IncrementalPlanEqualsAFullPlan) {
+  for (const std::uint32_t min : {1u, 4u})
+    for (const double threshold : {0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 1.0}) {
+      SyntheticFilm f(97, 61);
+      f.second_disc = true;
+      std::vector<std::uint32_t> add(f.counts.size(), min), full(f.counts.size(), 0);
+      AdaptivePlanner incremental, every_pixel;
+      int passes = 0;
+      for (;;) {
+        f.take(add);
+        const std::uint64_t a = incremental.plan(f.film, f.counts, 64, threshold, add);
+        const std::uint64_t b = every_pixel.plan(f.film, f.counts, 64, threshold, full, true);
+        ASSERT_EQ(a, b) << "min " << min << " threshold " << threshold << " pass " << passes;
+        ASSERT_EQ(add, full) << "min " << min << " threshold " << threshold << " pass " << passes;
+        if (a == 0) break;
+        ++passes;
+      }
+      if (threshold < 0.5) {
+        EXPECT_GE(passes, 3) << "min " << min << " threshold " << threshold;
+      }
+    }
+  // A change two pixels away: pixel (10, 10) stands out, so the 5×5 block around it refines; the
+  // block's edge pixel (12, 10) then sees the bright value too, which makes (13, 10) (one sample)
+  // contrast with it, so (14, 10), two pixels from any change, must refine now.
+  SyntheticFilm f(24, 20);
+  f.value = [](int x, int row, std::uint32_t s) {
+    return row == 10 && (x == 10 || (x == 12 && s >= 1)) ? 0.8 : 0.1;
+  };
+  std::vector<std::uint32_t> add(f.counts.size(), 1), full(f.counts.size(), 0);
+  AdaptivePlanner incremental, every_pixel;
+  for (int pass = 0; pass < 2; ++pass) {
+    f.take(add);
+    EXPECT_EQ(f.counts[10 * 24 + 13], 1u);  // no change nearer than (12, 10)
+    incremental.plan(f.film, f.counts, 64, 0.5, add);
+    every_pixel.plan(f.film, f.counts, 64, 0.5, full, true);
+    ASSERT_EQ(add, full) << "pass " << pass;
+  }
+  EXPECT_GT(add[10 * 24 + 14], 0u);
 }
 
 // Passes of 1, 1, 2, 4, … samples add up to the same image as one pass of all of them.

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "strahl/render/intersect_scene.h"
@@ -187,6 +188,31 @@ TEST(Instance, TheGroupIsHeldOnce) {
   const Hit h = closest_hit(rs.view(), Ray{centre + Vec3(0, 10, 0), {0, -1, 0}}, 0, kInfinity);
   ASSERT_EQ(h.kind, ShapeKind::Instance);
   EXPECT_NEAR(h.t, 9.5, 1e-12);
+}
+
+// A copied scene's view points into the copy's groups, not the original's (which is gone), and
+// view() changes nothing in the scene (it is called from every render thread).
+TEST(Instance, ACopiedSceneViewsItsOwnGroups) {
+  auto original = std::make_unique<RenderScene>(
+      compile(parse_scene(kHead + "groups:\n  g:\n" + group_objects("    ", "") + "objects:\n" +
+                              "  - {type: instance, of: g, translate: [0, 0, 5]}\n",
+                          "copy.yaml", ".")));
+  const Ray down{{-1, 10, 5}, {0, -1, 0}};
+  const Hit expected = closest_hit(original->view(), down, 0, kInfinity);
+  ASSERT_EQ(expected.kind, ShapeKind::Instance);
+  const RenderScene copy = *original;
+  RenderScene assigned;
+  assigned = *original;
+  original.reset();
+  for (const RenderScene* rs : {&copy, static_cast<const RenderScene*>(&assigned)}) {
+    const SceneView v = rs->view();
+    ASSERT_EQ(v.groups[0].accel.prims.spheres, rs->groups[0].spheres.data());
+    ASSERT_EQ(v.groups[0].vertex_normals, rs->groups[0].vertex_normals.data());
+    const Hit h = closest_hit(v, down, 0, kInfinity);
+    EXPECT_EQ(h.kind, ShapeKind::Instance);
+    EXPECT_EQ(h.t, expected.t);
+    EXPECT_EQ(rs->view().groups, v.groups);  // a second view() rebuilds nothing
+  }
 }
 
 std::string error_of(const std::string& text) {

@@ -7,8 +7,13 @@
 // and a pixel keeps refining — its count doubles in the next pass, up to the maximum — while
 // e > threshold, or while one of its 8 neighbours does (so that thin features whose first
 // samples all missed them, next to pixels that saw them, are sampled too). Every pixel starts with
-// the minimum count. Decisions read only the film's per-pixel statistics after a whole pass, so
-// they are deterministic.
+// the minimum count. A pixel with a single sample has no variance to go by; there its neighbours'
+// samples stand in for more of its own (the edge detection of POV-Ray's adaptive anti-aliasing):
+//
+//     e = max over the 8 neighbours j with samples of |mean − mean_j| / max(mean, 0.01),
+//
+// so `adaptive_min 1` spends one sample on flat regions and refines where the image changes.
+// Decisions read only the film's per-pixel statistics after a whole pass, so they are deterministic.
 
 #include <algorithm>
 #include <cmath>
@@ -26,28 +31,120 @@ inline double relative_error(const PixelStats& s) {
   return std::sqrt(variance / n) / std::max(mean, 0.01);
 }
 
-// Samples each pixel gets in the next pass (into `add`, row-major from the top); returns their sum.
-inline std::uint64_t plan_adaptive_pass(const Film& film, const std::vector<std::uint32_t>& counts,
-                                        std::uint32_t max_spp, double threshold, std::vector<std::uint32_t>& add) {
-  const int w = film.width(), h = film.height();
-  std::vector<std::uint8_t> over(counts.size(), 0);
-  for (int row = 0; row < h; ++row)
-    for (int x = 0; x < w; ++x) over[std::size_t(row) * w + x] = relative_error(film.stats(x, row)) > threshold;
-  std::uint64_t total = 0;
-  for (int row = 0; row < h; ++row)
-    for (int x = 0; x < w; ++x) {
-      const std::size_t i = std::size_t(row) * w + x;
-      bool refine = false;
-      for (int dy = -1; dy <= 1 && !refine; ++dy)
-        for (int dx = -1; dx <= 1 && !refine; ++dx) {
-          const int nx = x + dx, ny = row + dy;
-          if (nx >= 0 && nx < w && ny >= 0 && ny < h && over[std::size_t(ny) * w + nx]) refine = true;
-        }
-      const std::uint32_t c = counts[i];
-      add[i] = refine && c < max_spp ? std::min(std::max(c, 1u), max_spp - c) : 0;
-      total += add[i];
+// The error of a pixel with one sample (x, row): its largest relative contrast to a neighbour.
+inline double contrast_error(const Film& film, int x, int row) {
+  const PixelStats& s = film.stats(x, row);
+  const double mean = s.sum / s.n;
+  double e = 0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int nx = x + dx, ny = row + dy;
+      if ((dx == 0 && dy == 0) || nx < 0 || nx >= film.width() || ny < 0 || ny >= film.height()) continue;
+      const PixelStats& o = film.stats(nx, ny);
+      if (o.n > 0) e = std::max(e, std::abs(mean - o.sum / o.n));
     }
-  return total;
+  return e / std::max(mean, 0.01);
 }
+
+inline double pixel_error(const Film& film, int x, int row) {
+  const PixelStats& s = film.stats(x, row);
+  return s.n == 1 ? contrast_error(film, x, row) : relative_error(s);
+}
+
+// Samples each pixel gets in the next pass (into `add`, row-major from the top); returns their sum.
+// A pixel refines when it or one of its 8 neighbours is over the threshold, and it has fewer than
+// max_spp samples: it doubles its count (at least 1 more), up to max_spp.
+//
+// The plan of a pass changes only near the pixels the previous pass sampled: a pixel's error reads
+// its own and its neighbours' statistics, its decision its own and its neighbours' errors. So the
+// planner keeps every pixel's error flag and the counts it last saw, and re-examines only pixels
+// within two of a pixel whose count changed; every other pixel was not refined last time and is
+// not now (had it been, its count would have changed). The answers are those of examining every
+// pixel every pass (AdaptivePlanner.IncrementalPlanEqualsAFullPlan), at a cost that follows the
+// samples taken rather than the image size — the late passes refine a few dozen pixels.
+class AdaptivePlanner {
+ public:
+  // `full`: examine every pixel (what the incremental plan must equal; tests).
+  std::uint64_t plan(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
+                     double threshold, std::vector<std::uint32_t>& add, bool full = false) {
+    const int w = film.width(), h = film.height();
+    const std::size_t n = counts.size();
+    if (seen_.size() != n || full) {
+      seen_.assign(n, ~std::uint32_t(0));  // every pixel changed
+      over_.assign(n, 0);
+      mark_.assign(n, 0);
+    }
+    // mark_ of the pixels next to a change 2 (their errors are recomputed), of the pixels next to
+    // those 1 (their decisions are taken again); touched_ lists them, to clear them afterwards.
+    touched_.clear();
+    std::size_t changed = 0;
+    for (std::size_t p = 0; p < n; ++p) changed += counts[p] != seen_[p];
+    if (changed > n / 8) return plan_every_pixel(film, counts, max_spp, threshold, add);
+    const auto around = [&](std::size_t p, std::uint8_t level) {
+      const int x = int(p % std::size_t(w)), row = int(p / std::size_t(w));
+      for (int ny = std::max(0, row - 1); ny <= std::min(h - 1, row + 1); ++ny)
+        for (int nx = std::max(0, x - 1); nx <= std::min(w - 1, x + 1); ++nx) {
+          const std::size_t q = std::size_t(ny) * std::size_t(w) + std::size_t(nx);
+          if (mark_[q] == 0) touched_.push_back(std::uint32_t(q));
+          if (mark_[q] < level) mark_[q] = level;
+        }
+    };
+    for (std::size_t p = 0; p < n; ++p)
+      if (counts[p] != seen_[p]) {
+        seen_[p] = counts[p];
+        around(p, 2);
+      }
+    const std::size_t next_to_change = touched_.size();
+    for (std::size_t k = 0; k < next_to_change; ++k) {
+      const std::size_t p = touched_[k];
+      if (mark_[p] != 2) continue;
+      over_[p] = pixel_error(film, int(p % std::size_t(w)), int(p / std::size_t(w))) > threshold;
+      around(p, 1);
+    }
+    // Pixels not touched were not refined last time (their counts did not change) and nothing near
+    // them changed: they are not refined now.
+    std::fill(add.begin(), add.end(), 0u);
+    std::uint64_t total = 0;
+    for (const std::uint32_t p : touched_) {
+      mark_[p] = 0;
+      add[p] = more(int(p % std::uint32_t(w)), int(p / std::uint32_t(w)), w, h, counts[p], max_spp);
+      total += add[p];
+    }
+    return total;
+  }
+
+ private:
+  // The samples pixel (x, row), which has c, takes next: it doubles its count (at least 1 more, at
+  // most up to max_spp) when it or one of its 8 neighbours is over the threshold.
+  std::uint32_t more(int x, int row, int w, int h, std::uint32_t c, std::uint32_t max_spp) const {
+    bool refine = false;
+    for (int ny = std::max(0, row - 1); ny <= std::min(h - 1, row + 1) && !refine; ++ny)
+      for (int nx = std::max(0, x - 1); nx <= std::min(w - 1, x + 1) && !refine; ++nx)
+        refine = over_[std::size_t(ny) * std::size_t(w) + std::size_t(nx)] != 0;
+    return refine && c < max_spp ? std::min(std::max(c, 1u), max_spp - c) : 0;
+  }
+
+  // The plan when much changed (the first pass): every error, then every decision.
+  std::uint64_t plan_every_pixel(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
+                                 double threshold, std::vector<std::uint32_t>& add) {
+    const int w = film.width(), h = film.height();
+    seen_ = counts;
+    for (int row = 0; row < h; ++row)
+      for (int x = 0; x < w; ++x) over_[std::size_t(row) * std::size_t(w) + std::size_t(x)] = pixel_error(film, x, row) > threshold;
+    std::uint64_t total = 0;
+    for (int row = 0; row < h; ++row)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t p = std::size_t(row) * std::size_t(w) + std::size_t(x);
+        add[p] = more(x, row, w, h, counts[p], max_spp);
+        total += add[p];
+      }
+    return total;
+  }
+
+  std::vector<std::uint32_t> seen_;  // the counts at the last plan
+  std::vector<std::uint8_t> over_;   // error > threshold, as of the last plan
+  std::vector<std::uint8_t> mark_;   // all 0 between plans
+  std::vector<std::uint32_t> touched_;
+};
 
 }  // namespace strahl

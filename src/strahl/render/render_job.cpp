@@ -63,6 +63,7 @@ RenderJob::RenderJob(const SceneView& view, const SamplingSettings& sampling, Jo
   tiles_y_ = (height_ + tile_ - 1) / tile_;
   max_spp_ = std::uint32_t(effective_spp(sampling.sampler, sampling.spp));
   adaptive_ = sampling.sampler == SamplerKind::Adaptive;
+  if (adaptive_) planner_ = std::make_unique<AdaptivePlanner>();
   progressive_ = adaptive_ || options_.time_limit > 0 || options_.checkpoint_interval > 0 || options_.progressive;
   const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
   counts_.assign(pixels, 0);
@@ -126,7 +127,7 @@ bool RenderJob::plan_next_pass() {
   if (take_pass()) return true;  // the rest of a pass split by max_pass_samples
   const std::size_t pixels = counts_.size();
   if (adaptive_) {
-    plan_adaptive_pass(film_, counts_, max_spp_, sampling_.adaptive_threshold, pending_);
+    planner_->plan(film_, counts_, max_spp_, sampling_.adaptive_threshold, pending_);
     // Samples the render may still take in all: an upper bound that shrinks pass by pass.
     std::uint64_t bound = done_.load();
     for (std::size_t p = 0; p < pixels; ++p)

@@ -32,6 +32,8 @@
 
 namespace strahl {
 
+class AdaptivePlanner;
+
 // Called with (samples done, samples in all) after each delivered tile, from whichever thread
 // delivered it; must be thread-safe. With a time limit the units are millionths of the whole
 // (the larger of the fraction of samples and the fraction of the time used).
@@ -141,6 +143,7 @@ class RenderJob {
   PixelSampler sampler_;
   JobOptions options_;
   Film film_;
+  std::unique_ptr<AdaptivePlanner> planner_;  // render/adaptive.h (adaptive sampling only)
   int width_ = 0, height_ = 0, tile_ = 1, tiles_x_ = 0, tiles_y_ = 0;
   std::uint32_t max_spp_ = 1;
   bool adaptive_ = false, progressive_ = false;

@@ -11,6 +11,37 @@
 
 namespace strahl {
 
+struct RenderScene;
+
+// The compiled groups of instances (scene/instances.h) and, beside them, the view of each (its
+// structure and vertex normals: pointers into that group's arrays) that SceneView::groups points
+// to. The views are built when a group is added and rebuilt when the groups are copied (the copy's
+// arrays live elsewhere), so RenderScene::view() only reads them and is safe from any thread.
+class InstanceGroups {
+ public:
+  InstanceGroups() = default;
+  InstanceGroups(const InstanceGroups& other);
+  InstanceGroups& operator=(const InstanceGroups& other);
+  InstanceGroups(InstanceGroups&&) noexcept = default;  // moved arrays keep their addresses
+  InstanceGroups& operator=(InstanceGroups&&) noexcept = default;
+  ~InstanceGroups() = default;
+
+  void push_back(RenderScene&& group);
+  // Defined below RenderScene (which must be complete; nvcc instantiates in-class bodies at once).
+  std::size_t size() const;
+  bool empty() const;
+  const RenderScene& operator[](std::size_t i) const;
+  const RenderScene& front() const;
+  std::vector<RenderScene>::const_iterator begin() const;
+  std::vector<RenderScene>::const_iterator end() const;
+  const InstanceGroupView* views() const { return views_.data(); }
+
+ private:
+  void rebuild_views();
+  std::vector<RenderScene> scenes_;
+  std::vector<InstanceGroupView> views_;
+};
+
 struct RenderScene {
   std::vector<kernel::Sphere> spheres;
   std::vector<kernel::Plane> planes;
@@ -43,12 +74,11 @@ struct RenderScene {
   // Instances (scene/instances.h): each group compiled once (its own arrays and structure; only
   // spheres, triangles, vertex normals, solids and accel are used), the instances' records, their
   // world boxes and the BVH over them.
-  std::vector<RenderScene> groups;
+  InstanceGroups groups;
   std::vector<Bounds> group_bounds;  // object space
   std::vector<kernel::Instance> instances;
   std::vector<Bounds> instance_bounds;
   Bvh instance_bvh;
-  mutable std::vector<InstanceGroupView> group_views;  // rebuilt by view()
   std::vector<Material> materials;
   std::vector<Light> lights;
   Camera camera;
@@ -88,12 +118,10 @@ struct RenderScene {
     v.moving_triangles = moving_triangles.data();
     v.moving_triangle_count = static_cast<std::uint32_t>(moving_triangles.size());
     v.moving_bvh = moving_bvh.view();
-    group_views.clear();
-    for (const RenderScene& g : groups) group_views.push_back({g.accel.view(g.primitives()), g.vertex_normals.data()});
     v.instances = instances.data();
     v.instance_count = static_cast<std::uint32_t>(instances.size());
     v.instance_bvh = instance_bvh.view();
-    v.groups = group_views.data();
+    v.groups = groups.views();
     v.shutter_open = camera.shutter_open;
     v.inv_shutter = camera.shutter_close > camera.shutter_open ? 1 / (camera.shutter_close - camera.shutter_open) : 0;
     v.materials = materials.data();
@@ -107,5 +135,32 @@ struct RenderScene {
     return v;
   }
 };
+
+inline std::size_t InstanceGroups::size() const { return scenes_.size(); }
+inline bool InstanceGroups::empty() const { return scenes_.empty(); }
+inline const RenderScene& InstanceGroups::operator[](std::size_t i) const { return scenes_[i]; }
+inline const RenderScene& InstanceGroups::front() const { return scenes_.front(); }
+inline std::vector<RenderScene>::const_iterator InstanceGroups::begin() const { return scenes_.cbegin(); }
+inline std::vector<RenderScene>::const_iterator InstanceGroups::end() const { return scenes_.cend(); }
+
+inline InstanceGroups::InstanceGroups(const InstanceGroups& other) : scenes_(other.scenes_) { rebuild_views(); }
+
+inline InstanceGroups& InstanceGroups::operator=(const InstanceGroups& other) {
+  if (this != &other) {
+    scenes_ = other.scenes_;
+    rebuild_views();
+  }
+  return *this;
+}
+
+inline void InstanceGroups::push_back(RenderScene&& group) {
+  scenes_.push_back(std::move(group));
+  rebuild_views();  // a reallocation moved the groups; their arrays stayed where they were, but be plain about it
+}
+
+inline void InstanceGroups::rebuild_views() {
+  views_.clear();
+  for (const RenderScene& g : scenes_) views_.push_back({g.accel.view(g.primitives()), g.vertex_normals.data()});
+}
 
 }  // namespace strahl
