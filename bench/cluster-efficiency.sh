@@ -14,17 +14,9 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-cat > "$work/bunny.yaml" << SCENE
-camera: {position: [0, 0.12, 0.32], look_at: [-0.02, 0.09, 0], up: [0, 1, 0], fov: 40}
-render: {width: 1280, height: 720, spp: 4, sampler: stratified}
-materials:
-  floor: {color: 0.6, ambient: 0.1, diffuse: 0.7, specular: 0.3, shininess: 50}
-  bunny: {color: [0.8, 0.7, 0.5], ambient: 0.1, diffuse: 0.7, specular: 0.6, shininess: 100}
-lights: [{type: point, position: [0.5, 1, 1], intensity: 1}]
-objects:
-  - {type: plane, normal: [0, 1, 0], distance: 0.033, material: floor}
-  - {type: mesh, file: $bunny, material: bunny}
-SCENE
+# shellcheck source=bench/bunny-scene.sh
+. "$here/bunny-scene.sh"
+bunny_scene "$bunny" "{width: 1280, height: 720, spp: 4, sampler: stratified}" > "$work/bunny.yaml"
 
 render_seconds() { sed -n 's/^time .*render \([0-9.]*\) s.*/\1/p' "$1"; }
 median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }

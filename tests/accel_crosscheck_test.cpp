@@ -26,6 +26,7 @@
 #include "strahl/scene/expression_compiler.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/scene_file.h"
+#include "shape_soup.h"
 #include "test_random.h"
 
 namespace strahl {
@@ -33,9 +34,7 @@ namespace {
 
 constexpr AccelKind kAllKinds[] = {AccelKind::Naive, AccelKind::Bvh, AccelKind::KdTree, AccelKind::Octree};
 
-struct Prims {
-  std::vector<kernel::Sphere> spheres;
-  std::vector<kernel::Triangle> triangles;
+struct Prims : test::ShapeSoup {
   // Solids (geometry/solid.h), after the triangles in the id space.
   std::vector<kernel::Solid> solids;
   std::vector<kernel::Box> boxes;
@@ -53,14 +52,6 @@ struct Prims {
             solids.data(),
             std::uint32_t(solids.size()),
             {boxes.data(), cones.data(), disks.data(), tori.data(), quadrics.data(), implicits.data(), nullptr}};
-  }
-  void sphere(const Vec3& c, Real r) { spheres.push_back({c, r, 0}); }
-  void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
-    kernel::Triangle t;
-    t.v0 = a;
-    t.v1 = b;
-    t.v2 = c;
-    triangles.push_back(t);
   }
 };
 

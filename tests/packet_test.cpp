@@ -16,6 +16,7 @@
 #include "strahl/accel/accel.h"
 #include "strahl/accel/packet.h"
 #include "strahl/camera/camera.h"
+#include "shape_soup.h"
 #include "test_random.h"
 
 namespace strahl {
@@ -23,21 +24,7 @@ namespace {
 
 using test::Random;
 
-struct Prims {
-  std::vector<kernel::Sphere> spheres;
-  std::vector<kernel::Triangle> triangles;
-  PrimitiveSet set() const {
-    return {spheres.data(), std::uint32_t(spheres.size()), triangles.data(), std::uint32_t(triangles.size()),
-            nullptr, 0, {}};
-  }
-  void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
-    kernel::Triangle t;
-    t.v0 = a;
-    t.v1 = b;
-    t.v2 = c;
-    triangles.push_back(t);
-  }
-};
+using Prims = test::ShapeSoup;
 
 // A 24×24 grid of unit-spaced quads in the plane z = 0 (x, y ∈ [−1, 1]: shared edges and vertices
 // on exact binary fractions), a bumpy grid above it, random triangles and spheres.

@@ -10,6 +10,8 @@
 #include <cmath>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/csg.h"
+#include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
@@ -18,12 +20,13 @@ namespace strahl {
 namespace {
 
 struct Extras {
-  bool triangle = false, area_light = false, checker = false, lens = false;
+  bool triangle = false, area_light = false, checker = false, lens = false, solids = false;
 };
 
 // scenes/lecture-whitted.yaml (mirror, filtering glass, shadows) with every position and length
 // multiplied by `s` and shifted by `offset`; `extras` adds a triangle, a rect area light, a
-// checkered floor and a thin lens, each carrying lengths of its own.
+// checkered floor, a thin lens and solids (a box, a torus, a box with a sphere cut out of it), each
+// carrying lengths of its own.
 Scene transformed_whitted(Real s, const Vec3& offset, Extras extras = {}) {
   const Scene src = load_scene(fs::path(STRAHL_SOURCE_DIR) / "scenes" / "lecture-whitted.yaml");
   Scene out;
@@ -53,6 +56,15 @@ Scene transformed_whitted(Real s, const Vec3& offset, Extras extras = {}) {
   if (extras.triangle)
     out.add(Triangle(Vec3(0.5, 0.05, -0.4) * s + offset, Vec3(0.9, 0.05, -0.2) * s + offset,
                      Vec3(0.7, 0.5, -0.3) * s + offset, material_with_color(Vec3(0.9, 0.6, 0.1))));
+  if (extras.solids) {
+    const auto at = [&](const Vec3& p) { return p * s + offset; };
+    out.add(Box(at({0.55, 0, 0.35}), at({0.75, 0.15, 0.55}), material_with_color(Vec3(0.2, 0.8, 0.3))));
+    out.add(Torus(at({-0.05, 0.05, 0.6}), 0.12 * s, 0.04 * s, material_with_color(Vec3(0.9, 0.3, 0.2))));
+    std::vector<std::unique_ptr<SceneObject>> parts;
+    parts.push_back(std::make_unique<Box>(at({0.6, 0, -0.5}), at({0.9, 0.3, -0.2}), Material{}));
+    parts.push_back(std::make_unique<Sphere>(at({0.75, 0.3, -0.35}), 0.12 * s, Material{}));
+    out.add(Csg(CsgOperation::Difference, std::move(parts), material_with_color(Vec3(0.3, 0.3, 0.9))));
+  }
   for (Light light : src.lights()) {
     light.position = light.position * s + offset;
     out.add(light);
@@ -101,8 +113,11 @@ void expect_same_image(const Image& img, const Image& reference, const std::stri
 TEST(Scale, EveryPowerOfTenInTheProvenRangeRendersTheSameImage) {
   using validate::kMaxScaleExponent;
   static_assert(kMaxScaleExponent == 30, "docs/scene-format.md quotes the range");
-  const Extras all{true, true, true, true};
+  const Extras all{true, true, true, true, true};
   const Image reference = test::render_image(transformed_whitted(1, Vec3(0), all), 2);
+  // The solids are in view (a sweep over an image without them would prove nothing about them).
+  const Image without_solids = test::render_image(transformed_whitted(1, Vec3(0), {true, true, true, true, false}), 2);
+  EXPECT_GT(pixels_differing(reference, without_solids, 1e-3f), int(reference.pixels().size()) / 20);
   for (int k = -kMaxScaleExponent; k <= kMaxScaleExponent; ++k) {
     const Real s = std::pow(Real(10), Real(k));
     expect_same_image(test::render_image(transformed_whitted(s, Vec3(0), all), 2), reference, describe(s, Vec3(0)));

@@ -161,7 +161,9 @@ def test_ctrl_c_stops_a_long_load(tmp_path):
             pytest.fail(f"the load went on for {ended - fired[0]:.2f} s after the interrupt and returned")
         pytest.skip("the load ended before the interrupt")
     timer.join()
-    assert stopped - fired[0] < 1.0, f"took {stopped - fired[0]:.2f} s to stop"
+    # Within 3 s: a load that ignores the flag takes 7.5 s here; an interruptible one stops in
+    # ~0.1 s, but 1.2 s was seen with the test suite running beside it on 2 cores.
+    assert stopped - fired[0] < 3.0, f"took {stopped - fired[0]:.2f} s to stop"
     # The flag is cleared again: the next load works.
     (tmp_path / "small.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
     assert strahl.Mesh.load(tmp_path / "small.obj").indices.tolist() == [[0, 1, 2]]

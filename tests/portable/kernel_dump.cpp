@@ -20,6 +20,7 @@
 
 #include "strahl/accel/accel.h"
 #include "strahl/accel/packet.h"
+#include "../shape_soup.h"
 #include "strahl/render/pixel.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/scene.h"
@@ -30,25 +31,7 @@ namespace {
 
 std::uint64_t bits(Real x) { return std::bit_cast<std::uint64_t>(x); }
 
-struct Soup {
-  std::vector<kernel::Sphere> spheres;
-  std::vector<kernel::Triangle> triangles;
-  PrimitiveSet set() const {
-    PrimitiveSet p;
-    p.spheres = spheres.data();
-    p.sphere_count = std::uint32_t(spheres.size());
-    p.triangles = triangles.data();
-    p.triangle_count = std::uint32_t(triangles.size());
-    return p;
-  }
-  void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
-    kernel::Triangle t;
-    t.v0 = a;
-    t.v1 = b;
-    t.v2 = c;
-    triangles.push_back(t);
-  }
-};
+using Soup = test::ShapeSoup;
 
 // Awkward on purpose: duplicated, needle-thin and axis-aligned triangles on a lattice (shared
 // edges and vertices, triangles in the planes a builder splits at), overlapping spheres.

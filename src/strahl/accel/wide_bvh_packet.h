@@ -505,6 +505,32 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_packet(const WideBvhView& b
   }
 }
 
+// A packet query's state: the lanes' boxes, and what the triangle tests need, made when the first
+// leaf is reached (a packet that misses every box never needs it).
+template <int N>
+struct PacketQuery {
+  PacketBoxes<N> boxes;
+  kernel::TriangleBlockRay block_rays[N];
+  PacketTriangles<N> triangles;
+  std::uint32_t active;
+  const Ray* rays;
+  const Real *t_min, *t_max;
+  bool ready = false;
+
+  STRAHL_HOST_DEVICE PacketQuery(const WideBvhView& bvh, std::uint32_t active_, const Ray* rays_, const Real* t_min_,
+                                 const Real* t_max_)
+      : active(active_), rays(rays_), t_min(t_min_), t_max(t_max_) {
+    set_lanes(boxes, active, bvh, rays, t_min, t_max);
+  }
+  STRAHL_HOST_DEVICE void prepare() {
+    if (ready) return;
+    for (int i = 0; i < N; ++i)
+      if ((active >> i) & 1u) block_rays[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
+    set_triangle_lanes(triangles, active, block_rays, t_min, t_max);
+    ready = true;
+  }
+};
+
 }  // namespace wide_bvh_packet_detail
 
 // The nearest hit of each active lane (bit i of `active`) in (t_min[i], t_max[i]), N = 8 or 16:
@@ -517,22 +543,13 @@ STRAHL_HOST_DEVICE inline void wide_bvh_nearest_packet(const WideBvhView& bvh, c
   static_assert(N == 8 || N == 16);
   using namespace wide_bvh_packet_detail;
   active &= (1u << N) - 1;
-  PacketBoxes<N> p;
-  set_lanes(p, active, bvh, rays, t_min, t_max);
-  // What the triangle tests need, made when the first leaf is reached (a packet that misses every
-  // box never needs it).
-  kernel::TriangleBlockRay br[N];
-  PacketTriangles<N> q;
-  bool ready = false;
-  const auto prepare = [&] {
-    for (int i = 0; i < N; ++i)
-      if ((active >> i) & 1u) br[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
-    set_triangle_lanes(q, active, br, t_min, t_max);
-    ready = true;
-  };
+  PacketQuery<N> query(bvh, active, rays, t_min, t_max);
+  PacketBoxes<N>& p = query.boxes;
+  PacketTriangles<N>& q = query.triangles;
+  const kernel::TriangleBlockRay* br = query.block_rays;
   std::uint32_t found = 0;
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, std::uint32_t lanes) -> std::uint32_t {
-    if (!ready) prepare();
+    query.prepare();
     std::uint32_t changed = 0;
 #if defined(STRAHL_PACKET_AVX512)
     if (q.uniform && triangles_only(first, count)) {
@@ -581,22 +598,13 @@ STRAHL_HOST_DEVICE inline std::uint32_t wide_bvh_occluded_packet(const WideBvhVi
   static_assert(N == 8 || N == 16);
   using namespace wide_bvh_packet_detail;
   active &= (1u << N) - 1;
-  PacketBoxes<N> p;
-  set_lanes(p, active, bvh, rays, t_min, t_max);
-  // What the triangle tests need, made when the first leaf is reached (a packet that misses every
-  // box never needs it).
-  kernel::TriangleBlockRay br[N];
-  PacketTriangles<N> q;
-  bool ready = false;
-  const auto prepare = [&] {
-    for (int i = 0; i < N; ++i)
-      if ((active >> i) & 1u) br[i] = kernel::triangle_block_ray(rays[i], kernel::ray_shear(rays[i].direction));
-    set_triangle_lanes(q, active, br, t_min, t_max);
-    ready = true;
-  };
+  PacketQuery<N> query(bvh, active, rays, t_min, t_max);
+  PacketBoxes<N>& p = query.boxes;
+  [[maybe_unused]] PacketTriangles<N>& q = query.triangles;  // the AVX-512 leaves read it
+  const kernel::TriangleBlockRay* br = query.block_rays;
   std::uint32_t occluded = 0;
   auto leaf = [&](const WideBvhLeaf* first, std::uint32_t count, std::uint32_t lanes) -> std::uint32_t {
-    if (!ready) prepare();
+    query.prepare();
     std::uint32_t done = 0;
 #if defined(STRAHL_PACKET_AVX512)
     if (q.uniform && triangles_only(first, count)) {

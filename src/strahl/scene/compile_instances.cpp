@@ -6,6 +6,7 @@
 #include <string>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/shape_bounds.h"
 #include "strahl/scene/validate.h"
 #include "strahl/util/cancel.h"
 
@@ -60,13 +61,7 @@ void compile_groups(const Scene& scene, RenderScene& out) {
     }
 #endif
     g.accel = build_accel(kind, g.primitives());
-    Bounds b;
-    const PrimitiveSet prims = g.primitives();
-    for (std::uint32_t p = 0; p < prims.size(); ++p) {
-      const Bounds pb = primitive_bounds(prims, p);
-      b.extend(pb.lo);
-      b.extend(pb.hi);
-    }
+    const Bounds b = bounds_of(g.primitives());
     out.groups.push_back(std::move(g));
     out.group_bounds.push_back(b);
   }

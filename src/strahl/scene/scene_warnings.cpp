@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "strahl/scene/shape_bounds.h"
 #include "strahl/scene/validate.h"
 #include "strahl/shading/area_light.h"
 
@@ -13,27 +14,10 @@ namespace {
 // The box around every bounded shape (spheres, triangles, bounded solids), moving ones over
 // their whole path.
 Bounds bounded_shapes(const RenderScene& s) {
-  Bounds b;
-  const PrimitiveSet prims = s.primitives();
-  for (std::uint32_t i = 0; i < prims.size(); ++i) {
-    const Bounds p = primitive_bounds(prims, i);
-    b.extend(p.lo);
-    b.extend(p.hi);
-  }
-  for (const kernel::MovingSphere& m : s.moving_spheres) {
-    const Bounds p = kernel::swept_bounds(m);
-    b.extend(p.lo);
-    b.extend(p.hi);
-  }
-  for (const kernel::MovingTriangle& m : s.moving_triangles) {
-    const Bounds p = kernel::swept_bounds(m);
-    b.extend(p.lo);
-    b.extend(p.hi);
-  }
-  for (const Bounds& p : s.instance_bounds) {
-    b.extend(p.lo);
-    b.extend(p.hi);
-  }
+  Bounds b = bounds_of(s.primitives());
+  for (const kernel::MovingSphere& m : s.moving_spheres) extend(b, kernel::swept_bounds(m));
+  for (const kernel::MovingTriangle& m : s.moving_triangles) extend(b, kernel::swept_bounds(m));
+  for (const Bounds& p : s.instance_bounds) extend(b, p);
   return b;
 }
 
