@@ -11,6 +11,12 @@
 // argument kept for equal values, so −0 and +0 do not depend on the C library);
 // clamp(v, lo, hi) = min(max(v, lo), hi). A whole-number constant exponent 2 or 3 multiplies
 // (x·x, (x·x)·x): exact, and far cheaper than pow.
+//
+// evaluate() runs a second form of the same program, derived from it by fuse(): the top of the
+// stack lives in a register, and a binary operation whose right operand is x, y, z or a constant
+// reads it directly instead of pushing it (`x 0.15 Sub` becomes `x Sub·c0.15`). The same IEEE
+// operations on the same operands in the same order: the values are identical to the postfix
+// program's bit for bit (evaluate_postfix(), kept as the reference), in about half the time.
 
 #include <cmath>
 #include <cstdint>
@@ -47,11 +53,33 @@ struct Instruction {
   std::uint8_t arg = 0;  // Const: index into Expression::constants
 };
 
+// The fused program's operations (see above). Push*: the register goes onto the stack and takes
+// the leaf; Unary: the register's function (arg: the Op); Binary: the popped value ∘ the register
+// (arg: the Op); the rest: the register ∘ the leaf named, for the four arithmetic operations.
+enum class FusedOp : std::uint8_t {
+  PushX, PushY, PushZ, PushConst,
+  Unary, Square, Binary, Add, Sub, Mul, Clamp,
+  AddX, AddY, AddZ, AddConst,
+  SubX, SubY, SubZ, SubConst,
+  MulX, MulY, MulZ, MulConst,
+  DivX, DivY, DivZ, DivConst,
+  // push (leaf ∓ constant)²: the terms of a distance, (x − a)² (`x a Sub Square`)
+  PushSquaredXMinus, PushSquaredYMinus, PushSquaredZMinus,
+  PushSquaredXPlus, PushSquaredYPlus, PushSquaredZPlus,
+};
+
+struct FusedInstruction {
+  FusedOp op = FusedOp::PushConst;
+  std::uint8_t arg = 0;  // *Const: index into Expression::constants; Unary, Binary: the Op
+};
+
 struct Expression {
   std::uint16_t length = 0;      // instructions used
   std::uint8_t stack_depth = 0;  // the deepest the stack gets (for tests; evaluate() needs no check)
   std::uint8_t constant_count = 0;
+  std::uint16_t fused_length = 0;  // 0: fuse() has not run, evaluate() runs `code`
   Instruction code[kMaxExpressionLength];
+  FusedInstruction fused[kMaxExpressionLength];  // fuse(code): never longer
   Real constants[kMaxExpressionConstants] = {};
 };
 
@@ -95,8 +123,8 @@ STRAHL_HOST_DEVICE inline Real apply_binary(Op op, Real a, Real b) {
 
 STRAHL_HOST_DEVICE inline Real apply_clamp(Real v, Real lo, Real hi) { return expression_min(expression_max(v, lo), hi); }
 
-// f(p). The stack pointer `top` indexes the topmost value.
-STRAHL_HOST_DEVICE inline Real evaluate(const Expression& e, const Vec3& p) {
+// f(p) by the postfix program. The stack pointer `top` indexes the topmost value.
+STRAHL_HOST_DEVICE inline Real evaluate_postfix(const Expression& e, const Vec3& p) {
   Real stack[kMaxExpressionStack];
   int top = -1;
   for (int i = 0; i < e.length; ++i) {
@@ -122,6 +150,93 @@ STRAHL_HOST_DEVICE inline Real evaluate(const Expression& e, const Vec3& p) {
     }
   }
   return stack[0];
+}
+
+// Writes e.fused from e.code (the compiler calls it once; host or device).
+STRAHL_HOST_DEVICE inline void fuse(Expression& e) {
+  int n = 0;
+  for (int i = 0; i < e.length; ++i) {
+    const Instruction in = e.code[i];
+    FusedInstruction out;
+    const bool leaf = op_arity(in.op) == 0;
+    const Op next = i + 1 < e.length ? e.code[i + 1].op : Op::Const;
+    const bool coordinate = in.op == Op::X || in.op == Op::Y || in.op == Op::Z;
+    if (coordinate && i + 3 < e.length && e.code[i + 1].op == Op::Const &&
+        (e.code[i + 2].op == Op::Sub || e.code[i + 2].op == Op::Add) && e.code[i + 3].op == Op::Square) {
+      const bool minus = e.code[i + 2].op == Op::Sub;
+      out.op = FusedOp(int(minus ? FusedOp::PushSquaredXMinus : FusedOp::PushSquaredXPlus) + int(in.op));
+      out.arg = e.code[i + 1].arg;
+      i += 3;
+    } else if (leaf && (next == Op::Add || next == Op::Sub || next == Op::Mul || next == Op::Div)) {
+      // register ∘ leaf: Add, Sub, Mul, Div are four consecutive groups of X, Y, Z, Const.
+      const int group = next == Op::Add ? 0 : next == Op::Sub ? 1 : next == Op::Mul ? 2 : 3;
+      out.op = FusedOp(int(FusedOp::AddX) + 4 * group + int(in.op));  // Op::X..Const are 0..3
+      out.arg = in.arg;
+      ++i;  // the operation is consumed
+    } else if (leaf) {
+      out.op = FusedOp(int(FusedOp::PushX) + int(in.op));
+      out.arg = in.arg;
+    } else if (in.op == Op::Square) {
+      out.op = FusedOp::Square;
+    } else if (in.op == Op::Add || in.op == Op::Sub || in.op == Op::Mul) {
+      out.op = in.op == Op::Add ? FusedOp::Add : in.op == Op::Sub ? FusedOp::Sub : FusedOp::Mul;
+    } else if (in.op == Op::Clamp) {
+      out.op = FusedOp::Clamp;
+    } else {
+      out.op = op_arity(in.op) == 1 ? FusedOp::Unary : FusedOp::Binary;
+      out.arg = std::uint8_t(in.op);
+    }
+    e.fused[n++] = out;
+  }
+  e.fused_length = std::uint16_t(n);
+}
+
+// f(p), by the fused program (the postfix one where fuse() has not run). The register `v` is the
+// top of the stack; stack[top] the value below it (stack[0] holds the register's initial 0).
+STRAHL_HOST_DEVICE inline Real evaluate(const Expression& e, const Vec3& p) {
+  if (e.fused_length == 0) return evaluate_postfix(e, p);
+  Real stack[kMaxExpressionStack];
+  int top = -1;
+  Real v = 0;
+  for (int i = 0; i < e.fused_length; ++i) {
+    const FusedInstruction in = e.fused[i];
+    switch (in.op) {
+      case FusedOp::PushX: stack[++top] = v; v = p.x; break;
+      case FusedOp::PushY: stack[++top] = v; v = p.y; break;
+      case FusedOp::PushZ: stack[++top] = v; v = p.z; break;
+      case FusedOp::PushConst: stack[++top] = v; v = e.constants[in.arg]; break;
+      case FusedOp::Unary: v = apply_unary(Op(in.arg), v); break;
+      case FusedOp::Square: v = v * v; break;
+      case FusedOp::Binary: v = apply_binary(Op(in.arg), stack[top--], v); break;
+      case FusedOp::Add: v = stack[top--] + v; break;
+      case FusedOp::Sub: v = stack[top--] - v; break;
+      case FusedOp::Mul: v = stack[top--] * v; break;
+      case FusedOp::Clamp: v = apply_clamp(stack[top - 1], stack[top], v); top -= 2; break;
+      case FusedOp::AddX: v = v + p.x; break;
+      case FusedOp::AddY: v = v + p.y; break;
+      case FusedOp::AddZ: v = v + p.z; break;
+      case FusedOp::AddConst: v = v + e.constants[in.arg]; break;
+      case FusedOp::SubX: v = v - p.x; break;
+      case FusedOp::SubY: v = v - p.y; break;
+      case FusedOp::SubZ: v = v - p.z; break;
+      case FusedOp::SubConst: v = v - e.constants[in.arg]; break;
+      case FusedOp::MulX: v = v * p.x; break;
+      case FusedOp::MulY: v = v * p.y; break;
+      case FusedOp::MulZ: v = v * p.z; break;
+      case FusedOp::MulConst: v = v * e.constants[in.arg]; break;
+      case FusedOp::DivX: v = v / p.x; break;
+      case FusedOp::DivY: v = v / p.y; break;
+      case FusedOp::DivZ: v = v / p.z; break;
+      case FusedOp::DivConst: v = v / e.constants[in.arg]; break;
+      case FusedOp::PushSquaredXMinus: stack[++top] = v; v = p.x - e.constants[in.arg]; v = v * v; break;
+      case FusedOp::PushSquaredYMinus: stack[++top] = v; v = p.y - e.constants[in.arg]; v = v * v; break;
+      case FusedOp::PushSquaredZMinus: stack[++top] = v; v = p.z - e.constants[in.arg]; v = v * v; break;
+      case FusedOp::PushSquaredXPlus: stack[++top] = v; v = p.x + e.constants[in.arg]; v = v * v; break;
+      case FusedOp::PushSquaredYPlus: stack[++top] = v; v = p.y + e.constants[in.arg]; v = v * v; break;
+      case FusedOp::PushSquaredZPlus: stack[++top] = v; v = p.z + e.constants[in.arg]; v = v * v; break;
+    }
+  }
+  return v;
 }
 
 }  // namespace strahl::kernel

@@ -48,7 +48,7 @@ static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && siz
               "a kernel struct changed: hash its new fields in scene_hash.cpp and update the size here");
 static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof(kernel::Cone) == 80 &&
                   sizeof(kernel::Disk) == 56 && sizeof(kernel::Torus) == 64 && sizeof(kernel::Quadric) == 136 &&
-                  sizeof(kernel::Implicit) == 1168 && sizeof(kernel::Csg) == 64 &&
+                  sizeof(kernel::Implicit) == 1680 && sizeof(kernel::Csg) == 64 &&
                   sizeof(kernel::CsgInstruction) == 4 && sizeof(kernel::PlacedSolid) == 160,
               "a solid's struct changed: hash its new fields in scene_hash.cpp and update the size here");
 // A new array in the render-ready scene must be hashed too (with Embree: its scene handle).
@@ -203,6 +203,7 @@ void hash(Hasher& h, const kernel::Implicit& x) {
   }
   h.add(x.f.constant_count);
   for (int i = 0; i < x.f.constant_count; ++i) h.add(x.f.constants[i]);
+  // (x.f.fused is derived from x.f.code by fuse(): nothing of its own to hash.)
   h.add(x.bound);
   h.add(x.lo);
   h.add(x.hi);

@@ -1,5 +1,6 @@
-// Parse tree → postfix program: constant folding, x^2 / x^3 as multiplications, operand order
-// chosen for a shallow stack, and the bounds of geometry/expression.h enforced.
+// Parse tree → postfix program (and its fused form, kernel::fuse()): constant folding, x^2 / x^3
+// as multiplications, operand order chosen for a shallow stack, and the bounds of
+// geometry/expression.h enforced.
 
 #include "strahl/scene/expression_compiler.h"
 
@@ -27,6 +28,7 @@ class Compiler {
            std::to_string(kernel::kMaxExpressionStack) + ")");
     emit(tree_.root);
     out_.stack_depth = std::uint8_t(depth);
+    kernel::fuse(out_);
     return out_;
   }
 
