@@ -480,6 +480,37 @@ TEST(AccelCrossCheck, SolidsMatchNaive) {
   EXPECT_GT(c.hits, 10000);
 }
 
+// A few solids apart from each other get leaves of their own behind their boxes (each costs a test
+// of its own: the SAH does not pack them into one leaf as it does the lecture's five spheres).
+// (SolidsMatchNaive checks the answers of such trees.)
+TEST(AccelCrossCheck, FewSolidsAreNotOneLeaf) {
+  Prims s;
+  auto handle = [&](kernel::SolidKind kind, std::size_t index) {
+    s.solids.push_back({kind, std::uint32_t(index), 0});
+  };
+  s.boxes.push_back({Vec3(0.3, 0, 0), Vec3(0.5, 0.2, 0.2)});
+  handle(kernel::SolidKind::Box, 0);
+  for (int i = 0; i < 2; ++i) {
+    kernel::Cone c;
+    c.base = Vec3(-0.35, 0, i ? 0.3 : -0.15);
+    c.axis = Vec3(0, 1, 0);
+    c.height = i ? 0.3 : 0.45;
+    c.base_radius = i ? 0.15 : 0.2;
+    c.cap_radius = i ? 0 : 0.2;
+    s.cones.push_back(c);
+    handle(kernel::SolidKind::Cone, s.cones.size() - 1);
+  }
+  s.tori.push_back({Vec3(0.05, 0.08, 0), Vec3(0, 1, 0), 0.22, 0.08});
+  handle(kernel::SolidKind::Torus, 0);
+  const Accel a = build_accel(AccelKind::Bvh, s.set());
+  EXPECT_EQ(a.bvh.root_leaf_count, 0u);
+  EXPECT_EQ(a.stats.leaves, 4u);
+
+  Prims spheres;  // the lecture's five: one leaf
+  for (int i = 0; i < 5; ++i) spheres.sphere(Vec3(Real(i), 0, 0), 0.4);
+  EXPECT_GT(build_accel(AccelKind::Bvh, spheres.set()).bvh.root_leaf_count, 0u);
+}
+
 // Piles of identical and coplanar primitives: builds must terminate with sane sizes, queries agree.
 TEST(AccelCrossCheck, DegenerateSceneMatchesNaive) {
   Random rng(5);

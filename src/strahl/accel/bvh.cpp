@@ -38,10 +38,16 @@ struct Builder {
   std::vector<std::uint32_t>& index;
   std::vector<BvhNode>& nodes;
   const BvhBuildOptions& options;
+  // Primitives from this index on are solids (accel/primitive.h puts them last): each costs a
+  // test of its own (a cone's quadratic, a torus's quartic, an implicit surface's search), not
+  // a share of a block test, so the SAH does not pack them into one leaf behind one box.
+  std::uint32_t first_costly = ~std::uint32_t(0);
   std::atomic<std::uint32_t> next_node{1};
 
-  // SAH cost of a leaf of n primitives, in primitive (block) tests.
-  Real leaf_cost(std::uint32_t n) const { return Real((n + options.leaf_block - 1) / options.leaf_block); }
+  // SAH cost of a leaf of n primitives of which `costly` are solids, in primitive (block) tests.
+  Real leaf_cost(std::uint32_t n, std::uint32_t costly = 0) const {
+    return Real((n - costly + options.leaf_block - 1) / options.leaf_block + costly);
+  }
 
   void build(std::uint32_t at, std::uint32_t begin, std::uint32_t end, std::size_t depth) {
     Bounds bounds, centroid_bounds;
@@ -52,17 +58,20 @@ struct Builder {
     BvhNode& node = nodes[at];
     node.bounds = bounds;
     const std::uint32_t count = end - begin;
+    std::uint32_t costly = 0;
+    for (std::uint32_t i = begin; i < end; ++i) costly += index[i] >= first_costly;
     const auto make_leaf = [&] {
       node.offset = begin;
       node.count = std::uint16_t(count);
     };
-    // Tiny scenes (the lecture's five spheres) are one leaf: see traverse().
+    // Tiny scenes (the lecture's five spheres) are one leaf: see traverse(). Not when they hold
+    // solids, whose own tests cost more than a box test.
     const std::uint32_t max_leaf = options.max_leaf;
-    if (count <= 2 || (at == 0 && count <= max_leaf)) return make_leaf();
+    if (count <= 1 || (costly == 0 && (count <= 2 || (at == 0 && count <= max_leaf)))) return make_leaf();
 
     // Binned SAH: the best of kBins − 1 candidate planes on each axis, all axes in one pass.
     std::array<std::array<Bounds, kBins>, 3> bin_bounds;
-    std::array<std::array<std::uint32_t, kBins>, 3> bin_count{};
+    std::array<std::array<std::uint32_t, kBins>, 3> bin_count{}, bin_costly{};
     Vec3 scale;
     for (int axis = 0; axis < 3; ++axis) {
       const Real extent = centroid_bounds.hi[axis] - centroid_bounds.lo[axis];
@@ -77,6 +86,7 @@ struct Builder {
         const int b = bin_of(centroids[p], axis);
         bin_bounds[axis][b] = merge(bin_bounds[axis][b], prim_bounds[p]);
         ++bin_count[axis][b];
+        bin_costly[axis][b] += p >= first_costly;
       }
     }
     Real best_cost = kInfinity;
@@ -84,21 +94,25 @@ struct Builder {
     for (int axis = 0; axis < 3; ++axis) {
       if (scale[axis] == 0) continue;
       std::array<Real, kBins> right_area{};
-      std::array<std::uint32_t, kBins> right_count{};
+      std::array<std::uint32_t, kBins> right_count{}, right_costly{};
       Bounds acc;
-      std::uint32_t n = 0;
+      std::uint32_t n = 0, nc = 0;
       for (int b = kBins - 1; b > 0; --b) {
         acc = merge(acc, bin_bounds[axis][b]);
         n += bin_count[axis][b];
+        nc += bin_costly[axis][b];
         right_area[b] = surface_area(acc);
         right_count[b] = n;
+        right_costly[b] = nc;
       }
       acc = Bounds{};
-      n = 0;
+      n = nc = 0;
       for (int b = 0; b < kBins - 1; ++b) {
         acc = merge(acc, bin_bounds[axis][b]);
         n += bin_count[axis][b];
-        const Real cost = surface_area(acc) * leaf_cost(n) + right_area[b + 1] * leaf_cost(right_count[b + 1]);
+        nc += bin_costly[axis][b];
+        const Real cost = surface_area(acc) * leaf_cost(n, nc) +
+                          right_area[b + 1] * leaf_cost(right_count[b + 1], right_costly[b + 1]);
         if (n > 0 && right_count[b + 1] > 0 && cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -110,7 +124,7 @@ struct Builder {
     const Real split_cost = area > 0 ? Real(options.traversal_cost) + best_cost / area : kInfinity;
     // A leaf when splitting does not pay and the leaf stays small. Coinciding centroids (no SAH
     // split) are split in halves below, so leaves never exceed max_leaf.
-    if (count <= max_leaf && (best_axis < 0 || leaf_cost(count) <= split_cost)) return make_leaf();
+    if (count <= max_leaf && (best_axis < 0 || leaf_cost(count, costly) <= split_cost)) return make_leaf();
 
     std::uint32_t mid = begin + count / 2;
     std::uint8_t axis = 0;
@@ -158,7 +172,10 @@ void count_nodes(const std::vector<BvhNode>& nodes, AccelBuildStats& stats) {
 
 }  // namespace
 
-Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, const BvhBuildOptions& options) {
+namespace {
+
+Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, const BvhBuildOptions& options,
+              std::uint32_t first_costly) {
   const auto start = std::chrono::steady_clock::now();
   const auto n = static_cast<std::uint32_t>(bounds.size());
   Bvh bvh;
@@ -174,7 +191,7 @@ Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, con
       }
     });
     bvh.nodes.resize(2 * std::size_t(n) - 1);
-    Builder builder{bounds, centroids, bvh.prims, bvh.nodes, options};
+    Builder builder{bounds, centroids, bvh.prims, bvh.nodes, options, first_costly};
     builder.build(0, 0, n, 1);
     bvh.nodes.resize(builder.next_node.load());
     bvh.nodes.shrink_to_fit();
@@ -187,13 +204,19 @@ Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, con
   return bvh;
 }
 
+}  // namespace
+
+Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, const BvhBuildOptions& options) {
+  return build_bvh(bounds, stats_out, options, ~std::uint32_t(0));
+}
+
 Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out, const BvhBuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<Bounds> bounds(prims.size());
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, prims.size(), 1024), [&](const auto& r) {
     for (std::uint32_t i = r.begin(); i != r.end(); ++i) bounds[i] = primitive_bounds(prims, i);
   });
-  Bvh bvh = build_bvh(bounds, stats_out, options);
+  Bvh bvh = build_bvh(bounds, stats_out, options, prims.first_solid());
   if (stats_out) stats_out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bvh;
 }

@@ -160,9 +160,12 @@ struct ImplicitQuery {
     if (evaluations++ == kMaxImplicitEvaluations) ++stats.exhausted;  // counted once per query
     return true;
   }
-  // The secant slope between two samples, for the max_gradient check.
+  // The secant slope between two samples, for the max_gradient check (divides only when it is
+  // steeper than any met so far).
   STRAHL_HOST_DEVICE void slope(const RaySample& a, const RaySample& b) {
-    const Real g = std::fabs(b.f - a.f) / (speed * (b.t - a.t));
+    const Real df = std::fabs(b.f - a.f), dt = speed * (b.t - a.t);
+    if (!(df > stats.max_gradient * dt)) return;
+    const Real g = df / dt;
     if (g > stats.max_gradient) stats.max_gradient = g;
   }
 };
@@ -175,6 +178,7 @@ STRAHL_HOST_DEVICE inline bool changes_side(const RaySample& a, const RaySample&
 // look at; the current interval runs from `a` to the top.
 STRAHL_HOST_DEVICE inline bool lipschitz_bracket(ImplicitQuery& q, RaySample a, const RaySample& b, Bracket& out) {
   const Real L = q.s.max_gradient * q.speed;  // per unit of t
+  const Real inv_L = Real(1) / L;
   const Real shortest = q.s.accuracy / q.speed;
   RaySample stack[kMaxBisectionDepth];
   int n = 0;
@@ -189,8 +193,17 @@ STRAHL_HOST_DEVICE inline bool lipschitz_bracket(ImplicitQuery& q, RaySample a, 
       --n;
       continue;
     }
-    const Real mid = a.t + Real(0.5) * len;
-    if (len <= shortest || n == kMaxBisectionDepth || !(mid > a.t && mid < e.t) || q.out_of_budget()) {
+    // No root lies within |f(a)|/L of a nor within |f(e)|/L of e: split in the middle of what is
+    // left (plain bisection where L does not hold or f is not finite). Without a change of side,
+    // a pair of roots closer together than `accuracy` cannot be told apart: the interval is done
+    // once what is left is that short.
+    Real mid = a.t + Real(0.5) * len, open = len;
+    const Real lo = a.t + std::fabs(a.f) * inv_L, hi = e.t - std::fabs(e.f) * inv_L;
+    if (lo < hi) {
+      mid = lo + Real(0.5) * (hi - lo);
+      if (!change) open = hi - lo;
+    }
+    if (open <= shortest || n == kMaxBisectionDepth || !(mid > a.t && mid < e.t) || q.out_of_budget()) {
       if (change) {
         out = {a, e};
         return true;
