@@ -193,7 +193,7 @@ STRAHL_HOST_DEVICE inline void fuse(Expression& e) {
 
 // f(p), by the fused program (the postfix one where fuse() has not run). The register `v` is the
 // top of the stack; stack[top] the value below it (stack[0] holds the register's initial 0).
-STRAHL_HOST_DEVICE inline Real evaluate(const Expression& e, const Vec3& p) {
+STRAHL_HOST_DEVICE STRAHL_DEVICE_NOINLINE Real evaluate(const Expression& e, const Vec3& p) {
   if (e.fused_length == 0) return evaluate_postfix(e, p);
   Real stack[kMaxExpressionStack];
   int top = -1;

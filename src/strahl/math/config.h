@@ -28,6 +28,15 @@
 #define STRAHL_NOINLINE
 #endif
 
+// For big kernel functions called from many places (the expression interpreter): one copy in
+// device code, where ptxas's time grows faster than the functions it is given; the host compiler
+// inlines them as it sees fit.
+#if defined(__CUDA_ARCH__)
+#define STRAHL_DEVICE_NOINLINE __noinline__
+#else
+#define STRAHL_DEVICE_NOINLINE inline
+#endif
+
 namespace strahl {
 
 // Radiance, geometry and ray parameters use this type everywhere; double keeps

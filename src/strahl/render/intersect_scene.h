@@ -56,7 +56,7 @@ STRAHL_HOST_DEVICE inline bool attenuate(const Material& m, Vec3& transmittance)
 
 // Light reaching a point along a shadow ray of length `distance` (a unit ray towards the light):
 // 0 when an opaque surface lies in between, the product of the crossings' transmittances otherwise.
-STRAHL_HOST_DEVICE inline Vec3 transmittance(const SceneView& s, const Ray& ray, Real distance) {
+STRAHL_HOST_DEVICE STRAHL_DEVICE_NOINLINE Vec3 transmittance(const SceneView& s, const Ray& ray, Real distance) {
   Vec3 tr{1};
   for (std::uint32_t i = 0; i < s.plane_count; ++i) {
     if (kernel::intersect(s.planes[i], ray, 0, distance) < kInfinity &&
