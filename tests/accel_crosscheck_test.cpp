@@ -530,6 +530,56 @@ TEST(AccelCrossCheck, DegenerateSceneMatchesNaive) {
   }
 }
 
+// A handful of spheres fit one leaf: the BVH, kd-tree and octree then answer nearest_hit and
+// occluded with a plain loop over the spheres (accel.h), which must give the naive visitor's
+// answers bit for bit — the same sphere, the same t, on rays from outside, from inside, grazing,
+// through coincident and overlapping spheres, with finite and infinite t_max.
+TEST(AccelCrossCheck, OneLeafOfSpheresMatchesNaive) {
+  Random rng(77);
+  int one_leaf = 0;
+  for (int scene = 0; scene < 40; ++scene) {
+    Prims prims;
+    const int n = 1 + scene % 6;
+    for (int i = 0; i < n; ++i) prims.sphere(rng.point(-1, 1), rng.uniform(0.05, 0.8));
+    if (scene % 5 == 0) prims.sphere(prims.spheres[0].center, prims.spheres[0].radius);  // a twin: ties
+    const Accel naive = build_accel(AccelKind::Naive, prims.set());
+    const AccelView nv = naive.view(prims.set());
+    ASSERT_FALSE(nv.one_leaf);
+    for (AccelKind k : {AccelKind::Bvh, AccelKind::KdTree, AccelKind::Octree}) {
+      const Accel a = build_accel(k, prims.set());
+      const AccelView av = a.view(prims.set());
+      if (k == AccelKind::Bvh) {
+        ASSERT_TRUE(av.one_leaf) << prims.spheres.size();  // the path under test
+      }
+      one_leaf += av.one_leaf;
+      int hits = 0, blocked = 0;
+      for (int r = 0; r < 400; ++r) {
+        Query q;
+        const kernel::Sphere& target = prims.spheres[std::size_t(r) % prims.spheres.size()];
+        q.ray.origin = r % 7 == 0 ? target.center : rng.point(-3, 3);  // every 7th from inside
+        q.ray.direction = r % 3 == 0 ? normalize(target.center + rng.direction() * target.radius - q.ray.origin)
+                                     : rng.direction();
+        q.t_min = r % 4 == 0 ? rng.uniform(0, 1) : 0;
+        q.t_max = r % 2 == 0 ? kInfinity : rng.uniform(0.1, 4);
+        const NearestHit want = nearest_hit(nv, q.ray, q.t_min, q.t_max);
+        const NearestHit got = nearest_hit(av, q.ray, q.t_min, q.t_max);
+        ASSERT_EQ(std::memcmp(&got.hit.t, &want.hit.t, sizeof(Real)), 0) << accel_name(k) << " ray " << r;
+        if (want.hit.t < kInfinity) {
+          ASSERT_EQ(got.prim, want.prim) << accel_name(k) << " ray " << r;
+        }
+        ASSERT_EQ(got.hit.b1, want.hit.b1);
+        const bool o = occluded(av, q.ray, q.t_min, q.t_max);
+        ASSERT_EQ(o, occluded(nv, q.ray, q.t_min, q.t_max)) << accel_name(k) << " ray " << r;
+        hits += want.hit.t < kInfinity;
+        blocked += o;
+      }
+      EXPECT_GT(hits, 100);
+      EXPECT_GT(blocked, 100);
+    }
+  }
+  EXPECT_GT(one_leaf, 40);  // the kd-tree's and octree's single leaves too
+}
+
 TEST(AccelCrossCheck, EmptyAndSinglePrimitiveScenes) {
   const Query q{{{0, 0, -5}, {0, 0, 1}}, 0, kInfinity};
   for (AccelKind k : kAllKinds) {

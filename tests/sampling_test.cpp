@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <set>
 #include <vector>
@@ -16,6 +17,35 @@
 
 namespace strahl {
 namespace {
+
+// Grid and stratified sides that are powers of two take shifts, masks and exact reciprocals
+// (PixelSequence::side_shift) instead of divisions: every sample, in every round, with lens and
+// time used, must be the general path's bit for bit; and the shift is set for exactly those sides.
+TEST(PixelSampler, PowerOfTwoSidesMatchTheDivisions) {
+  for (SamplerKind kind : {SamplerKind::Grid, SamplerKind::Stratified}) {
+    for (std::uint32_t side = 1; side <= 33; ++side) {
+      PixelSampler sampler;
+      sampler.kind = kind;
+      sampler.side = side;
+      sampler.seed = side * 7;
+      PixelSequence fast = sampler.pixel(5, 3, 3 * 640 + 5);
+      const bool pow2 = (side & (side - 1)) == 0;
+      ASSERT_EQ(fast.side_shift >= 0, pow2) << side;
+      if (pow2) {
+        ASSERT_EQ(1u << fast.side_shift, side);
+      }
+      PixelSequence general = fast;
+      general.side_shift = -1;
+      for (const bool lens_time : {false, true}) {
+        fast.uses_lens = fast.uses_time = general.uses_lens = general.uses_time = lens_time;
+        for (std::uint32_t k = 0; k < 3 * side * side + 2; ++k) {
+          const CameraSample a = fast.sample(k), b = general.sample(k);
+          ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << sampler_name(kind) << " side " << side << " sample " << k;
+        }
+      }
+    }
+  }
+}
 
 constexpr int kSamples = 200000;
 constexpr int kThetaBins = 10, kPhiBins = 20;

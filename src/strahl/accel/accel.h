@@ -129,6 +129,20 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
     spatial_nearest(a.octree, a.prims, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
+  if (a.one_leaf && a.prims.size() == a.prims.sphere_count) {
+    // One leaf of spheres only (the lecture's scenes): the naive loop's tests in its order,
+    // without the visitor's dispatch on the primitive's kind.
+    Real t_far = t_max;
+    for (std::uint32_t i = 0; i < a.prims.sphere_count; ++i) {
+      const Real t = kernel::intersect(a.prims.spheres[i], ray, t_min, t_far);
+      if (t < t_far) {
+        t_far = t;
+        result.prim = i;
+        result.hit = {t, 0, 0};
+      }
+    }
+    return result;
+  }
   const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
     const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far);
@@ -152,6 +166,11 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
     if (a.kind == AccelKind::Bvh) return wide_bvh_occluded(a.bvh, a.prims, ray, t_min, t_max);
     if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims, ray, t_min, t_max);
     if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims, ray, t_min, t_max);
+  }
+  if (a.one_leaf && a.prims.size() == a.prims.sphere_count) {  // as nearest_hit: spheres in one leaf
+    for (std::uint32_t i = 0; i < a.prims.sphere_count; ++i)
+      if (kernel::intersect(a.prims.spheres[i], ray, t_min, t_max) < kInfinity) return true;
+    return false;
   }
   bool found = false;
   const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);

@@ -36,11 +36,20 @@ STRAHL_HOST_DEVICE inline Real ray_offset(const Ray& ray, Real t, const Vec3& p,
          kRayPathEpsilon * (max_abs_component(ray.origin) + t);
 }
 
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& s, const Ray& ray, const Hit& hit) {
+// Storage for a SurfacePoint that surface_at fills field by field: without the zeroing of its
+// 13 members (a `rep stos` per hit, ~2 % of the lecture scene's render time).
+union SurfacePointSlot {
   SurfacePoint sp;
+  STRAHL_HOST_DEVICE SurfacePointSlot() {}
+};
+
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& s, const Ray& ray, const Hit& hit) {
+  SurfacePointSlot slot;
+  SurfacePoint& sp = slot.sp;
   sp.p = ray.at(hit.t);
   sp.time = ray.time;
-  sp.offset = ray_offset(ray, hit.t, sp.p, 0);  // kinds that know their own magnitude refine it
+  // Every kind sets the normals, texcoord, material and offset below (kinds that know their own
+  // magnitude pass it to ray_offset; the others use 0, computed only for them).
   switch (hit.kind) {
     case ShapeKind::Sphere: {
       const kernel::Sphere& sphere = s.spheres[hit.index];
@@ -107,6 +116,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
       sp.geometric_normal = sp.normal = kernel::normal_at(s.accel.prims.shapes, solid, int(hit.b1), sp.p);
       sp.texcoord = sp.p;
       sp.material = solid.material;
+      sp.offset = ray_offset(ray, hit.t, sp.p, 0);
       break;
     }
     case ShapeKind::Instance: {
@@ -118,7 +128,11 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
       sp.offset = ray_offset(ray, hit.t, sp.p, is.magnitude);
       break;
     }
-    case ShapeKind::None: break;
+    case ShapeKind::None:
+      sp.geometric_normal = sp.normal = sp.texcoord = Vec3(0);
+      sp.material = 0;
+      sp.offset = ray_offset(ray, hit.t, sp.p, 0);
+      break;
   }
   return sp;
 }

@@ -63,6 +63,7 @@ STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_element(std::uint32_t i, 
     i &= w;
     i ^= i >> 5;
   } while (i >= n);
+  if ((n & (n - 1)) == 0) return (i + seed) & (n - 1);  // n a power of two: the same as % n
   return (i + seed) % n;
 }
 

@@ -94,6 +94,10 @@ inline constexpr const char* kFilterNames = "box, tent, gaussian, mitchell";
 struct PixelSequence {
   SamplerKind kind = SamplerKind::Grid;
   std::uint32_t side = 1;
+  // log2(side) when side is a power of two (1, 2, 4, 8, …), else −1: the strata's row and column
+  // and the sample's round then come by shifts and masks instead of integer divisions, and the
+  // divisions by side by multiplications with its exact reciprocal (the same values, bit for bit).
+  int side_shift = 0;
   std::uint64_t seed = 0, pixel = 0, key = 0;  // key: what hash() mixes (0 when no hash is needed)
   std::uint64_t stream = 0;  // pixel_key(seed, pixel): the per-sample random numbers are keyed_bits(stream, …)
   int x = 0, y = 0;
@@ -111,6 +115,10 @@ struct PixelSequence {
   STRAHL_HOST_DEVICE Vec2 stratum_2d(std::uint32_t k, std::uint32_t order, Vec2 jitter) const {
     if (side == 1) return jitter;  // (0 + j) / 1, without the divisions
     const std::uint32_t s = permutation_element(k, side * side, order);
+    if (side_shift >= 0) {
+      const Real inv = Real(1) / Real(side);  // exact: a power of two
+      return {(Real(s & (side - 1)) + jitter.x) * inv, (Real(s >> side_shift) + jitter.y) * inv};
+    }
     return {(Real(s % side) + jitter.x) / Real(side), (Real(s / side) + jitter.y) / Real(side)};
   }
   STRAHL_HOST_DEVICE Vec2 sobol_2d(std::uint32_t index, std::uint32_t pair) const {
@@ -127,7 +135,9 @@ struct PixelSequence {
       case SamplerKind::Grid:
       case SamplerKind::Stratified: {
         const std::uint32_t count = side * side;
-        const std::uint32_t k = count == 1 ? 0 : index % count, round = count == 1 ? index : index / count;
+        const bool pow2 = side_shift >= 0;
+        const std::uint32_t k = count == 1 ? 0 : pow2 ? index & (count - 1) : index % count;
+        const std::uint32_t round = count == 1 ? index : pow2 ? index >> (2 * side_shift) : index / count;
         const bool jitter = kind == SamplerKind::Stratified;
         const auto u = [&](std::uint32_t dim) { return to_unit(keyed_bits(stream, index, dim)); };
         // Each round visits the strata in new orders (purposes 3·round + {0, 1, 2}); one stratum
@@ -139,7 +149,10 @@ struct PixelSequence {
         };
         film = stratum_2d(k, order(0), jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
         if (uses_lens) lens = stratum_2d(k, order(1), {u(kDimLens), u(kDimLens + 1)});
-        if (uses_time) time = (Real(permutation_element(k, count, order(2))) + u(kDimTime)) / Real(count);
+        if (uses_time) {
+          const Real t = Real(permutation_element(k, count, order(2))) + u(kDimTime);
+          time = pow2 ? t * (Real(1) / Real(count)) : t / Real(count);  // 1/count exact for powers of two
+        }
         break;
       }
       case SamplerKind::Random: {
@@ -177,6 +190,9 @@ struct PixelSampler {
     PixelSequence p;
     p.kind = kind;
     p.side = side;
+    p.side_shift = -1;
+    for (int b = 0; b < 16 && p.side_shift < 0; ++b)
+      if (side == (1u << b)) p.side_shift = b;
     p.seed = seed;
     p.pixel = pixel_index;
     p.x = x;
