@@ -29,7 +29,7 @@
 #include "shape_soup.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::accel_crosscheck_test {
 namespace {
 
 constexpr AccelKind kAllKinds[] = {AccelKind::Naive, AccelKind::Bvh, AccelKind::KdTree, AccelKind::Octree};
@@ -980,4 +980,4 @@ TEST(AccelCrossCheck, RendersIdenticalImages) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::accel_crosscheck_test

@@ -12,7 +12,7 @@
 #include "strahl/scene/obj_loader.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::accel_test {
 namespace {
 
 // A small deterministic generator (the same numbers on every platform).
@@ -210,4 +210,4 @@ TEST(Accel, NamesRoundTrip) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::accel_test

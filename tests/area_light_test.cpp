@@ -14,7 +14,7 @@
 #include "strahl/shading/glossy.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::area_light_test {
 namespace {
 
 using test::chi_square;
@@ -258,4 +258,4 @@ TEST(AreaLightShading, StratifiedSamplesAreDeterministic) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::area_light_test

@@ -15,7 +15,7 @@
 #include "child_process.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::bad_input_test {
 namespace {
 
 const fs::path kCorpus = fs::path(STRAHL_SOURCE_DIR) / "tests" / "bad-input";
@@ -199,4 +199,4 @@ TEST_F(BadInput, UnwritableOutputDirectoryIsRefusedBeforeRendering) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::bad_input_test

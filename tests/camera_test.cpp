@@ -8,7 +8,7 @@
 #include "strahl/scene/scene.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::camera_test {
 namespace {
 
 using test::deg;
@@ -213,4 +213,4 @@ TEST(Camera, InvalidDescriptionsAreRejected) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::camera_test

@@ -13,7 +13,7 @@
 #include "strahl/version.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::cli_test {
 namespace {
 
 const char* kGoodScene = R"(camera: {position: [0, 1, 3], look_at: [0, 0, 0], fov: 40}
@@ -329,4 +329,4 @@ TEST_F(Cli, SamplingSceneKeys) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::cli_test

@@ -20,7 +20,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::csg_test {
 namespace {
 
 using kernel::SolidCrossing;
@@ -406,4 +406,4 @@ TEST(Csg, DisjointIntersectionWarnsAndRendersNothing) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::csg_test

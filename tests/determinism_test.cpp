@@ -9,7 +9,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::determinism_test {
 namespace {
 
 RenderScene whitted_scene() {
@@ -96,4 +96,4 @@ TEST(Determinism, ProgressReachesTheTotalOnce) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::determinism_test

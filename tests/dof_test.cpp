@@ -7,7 +7,7 @@
 
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::dof_test {
 namespace {
 
 TEST(ThinLens, ApertureZeroIsThePinholeRay) {
@@ -118,4 +118,4 @@ TEST(ThinLens, OutOfFocusPointBlursByTheCircleOfConfusion) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::dof_test

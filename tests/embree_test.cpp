@@ -31,7 +31,7 @@
 #include "strahl/render/surface_point.h"
 #include "strahl/scene/scene_file.h"
 
-namespace strahl {
+namespace strahl::embree_test {
 namespace {
 
 constexpr Real kRelT = 1e-6;
@@ -329,4 +329,4 @@ TEST(Embree, MeshSceneRendersAsWithTheBvh) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::embree_test

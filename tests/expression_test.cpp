@@ -19,7 +19,7 @@
 #include "strahl/scene/expression_compiler.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::expression_test {
 namespace {
 
 using kernel::Expression;
@@ -371,4 +371,4 @@ TEST(Expression, ParameterNames) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::expression_test

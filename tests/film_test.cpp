@@ -15,7 +15,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::film_test {
 namespace {
 
 Image render_with(const RenderScene& rs, int threads, int tile, RenderStats* stats = nullptr) {
@@ -344,4 +344,4 @@ TEST(Aov, DepthNormalAlbedoAndIdOfAKnownScene) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::film_test

@@ -10,7 +10,7 @@
 #include "fuzz/fuzz_entries.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::fuzz_regression_test {
 namespace {
 
 using Entry = fuzz::Outcome (*)(const std::uint8_t*, std::size_t);
@@ -51,4 +51,4 @@ TEST(FuzzRegression, ValidSeedsAreAccepted) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::fuzz_regression_test

@@ -12,7 +12,7 @@
 #include "strahl/image/metrics.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::image_io_test {
 namespace {
 
 // A non-square image whose every value differs, including HDR values above 1 and tiny ones.
@@ -216,4 +216,4 @@ TEST(ImageMetrics, RmseAndPsnr) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::image_io_test

@@ -12,7 +12,7 @@
 #include "strahl/util/error.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::image_limits_test {
 namespace {
 
 std::string refusal(const fs::path& path, int w, int h) {
@@ -113,4 +113,4 @@ TEST(ImageLimits, LyingPfmHeaderIsRefusedWithoutTheMemory) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::image_limits_test

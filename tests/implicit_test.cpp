@@ -11,7 +11,7 @@
 #include "strahl/scene/expression_compiler.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::implicit_test {
 namespace {
 
 using kernel::Implicit;
@@ -236,4 +236,4 @@ TEST(Implicit, EvaluationBudget) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::implicit_test

@@ -19,7 +19,7 @@
 #include "test_helpers.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::instance_test {
 namespace {
 
 const std::string kHead =
@@ -242,4 +242,4 @@ TEST(Instance, BadGroupsAreErrorsAtTheirPlace) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::instance_test

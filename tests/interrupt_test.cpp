@@ -11,7 +11,7 @@
 #include "strahl/image/image_io.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::interrupt_test {
 namespace {
 
 void interrupt_render(int sig, const char* name) {
@@ -130,4 +130,4 @@ TEST(Interrupt, SigtermStopsAnExponentialSceneInTime) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::interrupt_test

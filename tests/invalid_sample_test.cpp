@@ -11,7 +11,7 @@
 #include "strahl/image/image_io.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::invalid_sample_test {
 namespace {
 
 Scene overflowing_scene() {
@@ -58,4 +58,4 @@ objects:
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::invalid_sample_test

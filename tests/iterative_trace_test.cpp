@@ -12,7 +12,7 @@
 #include "test_helpers.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::iterative_trace_test {
 namespace {
 
 // Lecture 2.5's recursion, as render/whitted.h had it before it became a loop.
@@ -202,4 +202,4 @@ TEST(IterativeTrace, MediumStackUndoRestoresEveryState) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::iterative_trace_test

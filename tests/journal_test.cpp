@@ -18,7 +18,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::journal_test {
 namespace {
 
 TileWork random_tile(std::mt19937& rng, bool wide) {
@@ -210,4 +210,4 @@ TEST(SceneHash, SameSceneSameHashAnyChangeAnother) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::journal_test

@@ -6,7 +6,7 @@
 
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::lecture_api_test {
 namespace {
 
 TEST(LectureApi, SlideCodeBuildsTheScene) {
@@ -126,4 +126,4 @@ TEST(LectureApi, InvalidMaterialsAndSettingsAreRejected) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::lecture_api_test

@@ -12,7 +12,7 @@
 #include "child_process.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::memory_test {
 namespace {
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -147,4 +147,4 @@ TEST(Memory, AnOverlongListIsRefusedBeforeItsTreeIsBuilt) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::memory_test

@@ -9,7 +9,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::motion_blur_test {
 namespace {
 
 // Fraction of the shutter [0, 1] during which a sphere moving c(t) = c0 + t·Δ covers the ray
@@ -301,4 +301,4 @@ TEST(DistributedEffects, DeterministicAcrossThreadsAndTiles) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::motion_blur_test

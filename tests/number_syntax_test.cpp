@@ -10,7 +10,7 @@
 #include "strahl/util/number_syntax.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::number_syntax_test {
 namespace {
 
 using IStatus = number::Integer::Status;
@@ -134,4 +134,4 @@ TEST(NumberSyntax, RangeMessagesOfCompiledScenesPrintWholeNumbers) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::number_syntax_test

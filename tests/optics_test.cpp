@@ -10,7 +10,7 @@
 #include "strahl/shading/optics.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::optics_test {
 namespace {
 
 using test::deg;
@@ -178,4 +178,4 @@ TEST(Optics, SchlickFromTheDenseSideUsesTheTransmittedAngleAndIsOnePastCritical)
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::optics_test

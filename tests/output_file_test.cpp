@@ -12,7 +12,7 @@
 #include "strahl/util/error.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::output_file_test {
 namespace {
 
 std::size_t entries(const fs::path& dir) {
@@ -99,4 +99,4 @@ TEST(OutputFile, AFailedWriteInTheCliNamesTheReasonAndKeepsTheOldImage) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::output_file_test

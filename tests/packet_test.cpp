@@ -19,7 +19,7 @@
 #include "shape_soup.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::packet_test {
 namespace {
 
 using test::Random;
@@ -357,4 +357,4 @@ TEST(Packet, EmbreePacketsMatchEmbreeSingleRays) {
 #endif
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::packet_test

@@ -17,7 +17,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::placement_test {
 namespace {
 
 RenderScene scene_of(const std::string& objects, AccelKind accel = AccelKind::Bvh) {
@@ -179,4 +179,4 @@ TEST(Placement, SingularScaleIsRefused) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::placement_test

@@ -8,7 +8,7 @@
 #include "strahl/render/surface_point.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::plane_test {
 namespace {
 
 kernel::Plane make_plane(const Vec3& normal, Real d) {
@@ -126,4 +126,4 @@ TEST(Plane, NearerSphereOccludesPlane) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::plane_test

@@ -23,6 +23,7 @@
 #include "strahl/scene/ply_loader.h"
 #include "strahl/strahl.h"
 
+namespace ply_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -622,3 +623,4 @@ TEST_F(PlyTest, SceneMeshErrors) {
 }
 
 }  // namespace
+}  // namespace ply_test

@@ -15,7 +15,7 @@
 #include "strahl/util/error.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::polygon_test {
 namespace {
 
 // Twice the signed area in the xy plane.
@@ -177,4 +177,4 @@ TEST(Polygon, ObjFaceTooConcaveToSplitNamesItsLine) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::polygon_test

@@ -8,7 +8,7 @@
 
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::recursion_test {
 namespace {
 
 using test::deg;
@@ -410,4 +410,4 @@ TEST(Recursion, MaxDepthOneShowsOnlyLocalColour) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::recursion_test

@@ -17,7 +17,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::render_job_test {
 namespace {
 
 RenderScene whitted(SamplerKind kind, int spp, FilterKind filter = FilterKind::Box, Real radius = 0.5,
@@ -166,4 +166,4 @@ TEST(RenderJob, ExternalFlagStopsTheRender) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::render_job_test

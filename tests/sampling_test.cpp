@@ -15,7 +15,7 @@
 #include "strahl/sampling/pixel_sampler.h"
 #include "strahl/sampling/warp.h"
 
-namespace strahl {
+namespace strahl::sampling_test {
 namespace {
 
 // Grid and stratified sides that are powers of two take shifts, masks and exact reciprocals
@@ -321,4 +321,4 @@ TEST(Filter, PartitionsOfUnity) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::sampling_test

@@ -16,7 +16,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::scale_test {
 namespace {
 
 struct Extras {
@@ -220,4 +220,4 @@ TEST(Scale, SceneMovedFarFromTheOriginRendersTheSame) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::scale_test

@@ -12,7 +12,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::scene_file_test {
 namespace {
 
 // The error message of parsing `text` as "test.yaml" (empty if it parses).
@@ -417,4 +417,4 @@ TEST(SceneFile, ShippedScenesLoad) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::scene_file_test

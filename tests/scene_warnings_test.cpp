@@ -9,7 +9,7 @@
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::scene_warnings_test {
 namespace {
 
 const std::string kHead = "camera: {position: [0, 1, 3], look_at: [0, 0, 0], fov: 40}\nrender: {width: 16, height: 12}\n";
@@ -112,4 +112,4 @@ TEST(SceneWarnings, ReachTheUserAsOneLineEachAndTheRenderGoesOn) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::scene_warnings_test

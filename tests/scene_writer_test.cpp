@@ -15,7 +15,7 @@
 #include "strahl/scene/scene_writer.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::scene_writer_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -185,4 +185,4 @@ TEST(SceneWriter, MeshesReadBackFromTheirObjFiles) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::scene_writer_test

@@ -11,7 +11,7 @@
 
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::shading_test {
 namespace {
 
 const Vec3 kP(0, 0, -2);
@@ -369,4 +369,4 @@ TEST(Shading, SupersamplingAveragesSubpixelRays) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::shading_test

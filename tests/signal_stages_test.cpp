@@ -16,7 +16,7 @@
 #include "strahl/image/image_io.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::signal_stages_test {
 namespace {
 
 const char* kScene =
@@ -133,4 +133,4 @@ TEST(SignalStages, EachSignalAtEachStageDoesWhatTheDocsSay) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::signal_stages_test

@@ -21,7 +21,7 @@
 #include "strahl/scene/solids.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::solid_test {
 namespace {
 
 using kernel::Solid;
@@ -386,9 +386,9 @@ TEST(Solids, InsideAgreesWithAnalyticMembershipAndCrossingParity) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::solid_test
 
-namespace strahl {
+namespace strahl::solid_test {
 namespace {
 
 // x² + y² + z² − 1 in a sphere of radius 1.2 has |∇f| = 2|p| ≤ 2.4: at max_gradient 2.4 it
@@ -435,10 +435,10 @@ TEST(ImplicitSolid, MaxGradientWarningAndNoHoles) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::solid_test
 
 #if defined(STRAHL_HAVE_EMBREE)
-namespace strahl {
+namespace strahl::solid_test {
 namespace {
 
 // Embree has no user geometry for solids yet: a scene with solids is built as the BVH and renders
@@ -456,10 +456,10 @@ TEST(Solids, EmbreeFallsBackToTheBvh) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::solid_test
 #endif
 
-namespace strahl {
+namespace strahl::solid_test {
 namespace {
 
 // A shadow ray through a transparent (non-filtering) solid is attenuated once per crossing: twice
@@ -492,4 +492,4 @@ TEST(Solids, ShadowRaysAttenuatedByEveryCrossing) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::solid_test

@@ -9,7 +9,7 @@
 #include "strahl/render/surface_point.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::sphere_test {
 namespace {
 
 // The kernel sphere exactly as compile() produces it from the C++ API.
@@ -164,4 +164,4 @@ TEST(Sphere, InvalidRadiusIsRejectedByCompile) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::sphere_test

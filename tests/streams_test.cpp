@@ -10,7 +10,7 @@
 #include "strahl/image/image_io.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::streams_test {
 namespace {
 
 using test::Stream;
@@ -125,4 +125,4 @@ TEST(ProtectStreams, ReopensClosedStandardDescriptors) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::streams_test

@@ -16,7 +16,7 @@
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
 
-namespace strahl {
+namespace strahl::transform_keys_test {
 namespace {
 
 Scene scene_text(const std::string& objects) {
@@ -193,4 +193,4 @@ TEST(TransformKeys, BadTransformsNameTheirPlace) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::transform_keys_test

@@ -15,7 +15,7 @@
 #include "strahl/accel/triangle_block.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::triangle_block_test {
 namespace {
 
 using test::Random;
@@ -214,4 +214,4 @@ TEST(TriangleBlock, EmptyAndOtherLanesNeverHit) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::triangle_block_test

@@ -10,7 +10,7 @@
 #include "strahl/scene/obj_loader.h"
 #include "test_helpers.h"
 
-namespace strahl {
+namespace strahl::triangle_test {
 namespace {
 
 kernel::Triangle make_triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -317,4 +317,4 @@ TEST_F(MeshTest, MissingOrBrokenObjFileIsAnError) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::triangle_test

@@ -21,7 +21,7 @@
 #include "text.h"
 #include "view_renderer.h"
 
-namespace strahl {
+namespace strahl::view_test {
 namespace {
 
 using view::ViewAxes;
@@ -416,4 +416,4 @@ TEST(ViewRenderer, StillFrameIsTheRenderersImage) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::view_test

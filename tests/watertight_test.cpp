@@ -15,7 +15,7 @@
 #include "strahl/geometry/triangle.h"
 #include "test_random.h"
 
-namespace strahl {
+namespace strahl::watertight_test {
 namespace {
 
 using test::Random;
@@ -236,4 +236,4 @@ TEST(Watertight, TinySphereFarAwayIsHitThroughItsCentreAndRim) {
 }
 
 }  // namespace
-}  // namespace strahl
+}  // namespace strahl::watertight_test
