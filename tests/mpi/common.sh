@@ -7,26 +7,11 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_hwloc_base_binding_policy=none
 # No shared-memory transport warnings in containers without /dev/shm space.
 export OMPI_MCA_btl_vader_single_copy_mechanism=none
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-failures=0
-
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+. "$(dirname "${BASH_SOURCE[0]}")/../checks.sh"
 
 # mpirun_strahl NP ARGS...: strahl-mpi on NP ranks, at most 60 s.
 mpirun_strahl() {
   local np=$1
   shift
   timeout -k 5 60 mpirun -np "$np" "$MPI_BIN" "$@"
-}
-
-finish() {
-  if [ "$failures" -gt 0 ]; then
-    echo "$failures check(s) failed"
-    exit 1
-  fi
-  echo "all checks passed"
 }

@@ -3,22 +3,7 @@
 set -u
 VIEW=$1 CLI=$2 SRC=$3
 shift 3
-WORK=$(mktemp -d)
-trap 'rm -rf "$WORK"' EXIT
-failures=0
-
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
-
-finish() {
-  if [ "$failures" -gt 0 ]; then
-    echo "$failures check(s) failed"
-    exit 1
-  fi
-  echo "all checks passed"
-}
+. "$(dirname "${BASH_SOURCE[0]}")/../checks.sh"
 
 # view_offscreen ARGS...: strahl-view on SDL's offscreen video driver (no display needed), at most 120 s.
 view_offscreen() {
