@@ -20,7 +20,8 @@ struct Sphere {
 
 // Nearest root of the ray with the sphere in the open interval (t_min, t_max), or kInfinity.
 // Rays starting inside the sphere hit it from within (the far root).
-STRAHL_HOST_DEVICE inline Real intersect(const Sphere& s, const Ray& ray, Real t_min, Real t_max) {
+// Forced inline: it is the whole loop body of the one-leaf sphere queries (accel.h).
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Real intersect(const Sphere& s, const Ray& ray, Real t_min, Real t_max) {
   const Vec3 f = ray.origin - s.center;
   const Real b = -dot(f, ray.direction);          // t of the point on the ray nearest the centre
   const Vec3 l = f + ray.direction * b;           // centre → that point

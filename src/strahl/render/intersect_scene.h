@@ -39,8 +39,9 @@ STRAHL_HOST_DEVICE inline Hit closest_hit(const SceneView& s, const Ray& ray, Re
       hit.b2 = nearest.hit.b2;
     }
   }
-  closest_moving_hit(s, ray, t_min, hit);
-  closest_instance_hit(s, ray, t_min, hit);
+  // Each guarded here as well as inside: a scene without moving shapes or instances pays no call.
+  if (s.moving_sphere_count + s.moving_triangle_count > 0) closest_moving_hit(s, ray, t_min, hit);
+  if (s.instance_count > 0) closest_instance_hit(s, ray, t_min, hit);
   if (!hit.found()) hit.t = kInfinity;
   return hit;
 }
@@ -70,7 +71,9 @@ STRAHL_HOST_DEVICE STRAHL_DEVICE_NOINLINE Vec3 transmittance(const SceneView& s,
   }
   // Nothing transparent: the first surface found blocks the light (any-hit, no crossings to count).
   if (s.opaque && s.moving_sphere_count + s.moving_triangle_count == 0)
-    return occluded(s.accel, ray, 0, distance) || instance_occluded(s, ray, 0, distance) ? Vec3(0) : tr;
+    return occluded(s.accel, ray, 0, distance) || (s.instance_count > 0 && instance_occluded(s, ray, 0, distance))
+               ? Vec3(0)
+               : tr;
   bool blocked = false;
   auto cross = [&](std::uint32_t prim, int crossings) {
     const Material& m = s.materials[primitive_material(s.accel.prims, prim)];

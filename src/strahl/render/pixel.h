@@ -13,7 +13,9 @@ STRAHL_HOST_DEVICE inline PixelSequence pixel_sequence(const SceneView& s, const
   const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
   PixelSequence p = sampler.pixel(x, y, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x));
   p.uses_lens = s.camera.lens_radius > 0;
-  p.uses_time = s.camera.shutter_close != s.camera.shutter_open;
+  // Time matters only to moving shapes (ray.time is read nowhere else): a static scene's samples
+  // leave it at 0 without computing it, whatever the shutter interval.
+  p.uses_time = s.camera.shutter_close != s.camera.shutter_open && s.moving_sphere_count + s.moving_triangle_count > 0;
   return p;
 }
 

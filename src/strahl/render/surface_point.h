@@ -31,7 +31,7 @@ STRAHL_HOST_DEVICE inline Real vertex_magnitude(const Vec3& a, const Vec3& b, co
 // involved — p's coordinates, the primitive's (`magnitude`: |centre| + radius, the vertices, |d|)
 // and the path o + t·d that found p — and with nothing absolute, so that scaling a scene by any
 // factor in the supported range (docs/scene-format.md, "Units and scale") scales the offsets too.
-STRAHL_HOST_DEVICE inline Real ray_offset(const Ray& ray, Real t, const Vec3& p, Real magnitude) {
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Real ray_offset(const Ray& ray, Real t, const Vec3& p, Real magnitude) {
   return kRayEpsilon * std::fmax(max_abs_component(p), magnitude) +
          kRayPathEpsilon * (max_abs_component(ray.origin) + t);
 }
