@@ -227,6 +227,44 @@ TEST(Implicit, SurfaceAndBoundTogether) {
   EXPECT_EQ(n, 2);
 }
 
+// Shadow rays: any_crossing() stops at the first change of side it sees, unrefined; its answer
+// is intersect()'s, for rays from anywhere, from the surface itself, and for t_max just before or
+// just after the nearest root (where a change of side seen over an interval reaching past t_max
+// must not count).
+TEST(Implicit, AnyCrossingAgreesWithTheNearestHit) {
+  const char* functions[] = {"sqrt(x^2 + y^2 + z^2) - 1 + 0.05*sin(20*y)",
+                             "(sqrt(x^2 + z^2) - 1)^2 + y^2 - 0.09",  // a torus: up to four roots
+                             "x^2 + y^2 + z^2 - 1"};
+  const Real gradients[] = {2.2, 2.5, 3};
+  test::Random rng(13);
+  int hits = 0, misses = 0;
+  for (int fi = 0; fi < 3; ++fi)
+    for (RootMethod method : {RootMethod::Lipschitz, RootMethod::SphereTrace, RootMethod::March}) {
+      const Implicit s = in_sphere(make(functions[fi], method, gradients[fi], 1e-4, 0.01), 1.5);
+      for (int i = 0; i < 400; ++i) {
+        ImplicitStats stats;
+        Ray ray{rng.point(-2, 2), rng.direction()};
+        if (i % 2 == 1) {  // from a surface point, off it by 1e-9, as a shadow ray leaves
+          const Real t = kernel::intersect(s, ray, 0, kInfinity, stats).t;
+          if (!(t < kInfinity)) continue;
+          const Vec3 p = ray.at(t);
+          ray = spawn_ray(p, kernel::normal_at(s, p, false), rng.direction());
+        }
+        const Real first = kernel::intersect(s, ray, 0, kInfinity, stats).t;
+        const Real ends[] = {kInfinity, rng.uniform(0, 4), first * (1 - 1e-6), first * (1 + 1e-6)};
+        for (Real t_max : ends) {
+          if (!(t_max < kInfinity) && t_max != kInfinity) continue;
+          const bool nearest = kernel::intersect(s, ray, 0, t_max, stats).t < kInfinity;
+          EXPECT_EQ(kernel::any_crossing(s, ray, 0, t_max, stats), nearest)
+              << functions[fi] << " method " << int(method) << " ray " << i << " t_max " << t_max;
+          (nearest ? hits : misses)++;
+        }
+      }
+    }
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(misses, 1000);
+}
+
 // f = 0 everywhere: no interval can be ruled out; the query stops at its budget, counted once.
 TEST(Implicit, EvaluationBudget) {
   const Implicit s = make("0*x", RootMethod::Lipschitz, 1, 1e-6);

@@ -175,7 +175,8 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
   bool found = false;
   const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
-    found = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far).t < kInfinity;
+    found = a.prims.is_triangle(prim) ? intersect_primitive(a.prims, prim, ray, shear, t_min, t_far).t < kInfinity
+                                      : hits_other(a.prims, prim, ray, t_min, t_far);
     return found;
   };
   traverse(a, ray, t_min, t_max, visit);

@@ -42,6 +42,14 @@ STRAHL_HOST_DEVICE inline kernel::TriangleHit intersect_other(const PrimitiveSet
   return {c.t, Real(c.part), 0};
 }
 
+// Does a non-triangle primitive have any hit in (t_min, t_max)? (any-hit queries: a solid need
+// not find which of its crossings is the nearest.)
+STRAHL_HOST_DEVICE inline bool hits_other(const PrimitiveSet& p, std::uint32_t prim, const Ray& ray, Real t_min,
+                                          Real t_max) {
+  if (p.is_sphere(prim)) return kernel::intersect(p.spheres[prim], ray, t_min, t_max) < kInfinity;
+  return kernel::any_crossing(p.shapes, p.solid(prim), ray, t_min, t_max);
+}
+
 STRAHL_HOST_DEVICE inline Bounds primitive_bounds(const PrimitiveSet& p, std::uint32_t prim) {
   Bounds b;
   if (p.is_sphere(prim)) {

@@ -248,8 +248,8 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool blocks_any(const TriangleBlock* firs
     if (b.other != 0)
       for (int k = 0; k < kTriangleBlockWidth; ++k)
         if (((b.other >> k) & 1u) &&
-            (prims.is_sphere(b.prim[k]) ? intersect(prims.spheres[b.prim[k]], br.ray, t_min, t_far)
-                                        : intersect_other(prims, b.prim[k], br.ray, t_min, t_far).t) < kInfinity)
+            (prims.is_sphere(b.prim[k]) ? intersect(prims.spheres[b.prim[k]], br.ray, t_min, t_far) < kInfinity
+                                        : any_crossing(prims.shapes, prims.solid(b.prim[k]), br.ray, t_min, t_far)))
           return true;
   }
   return false;

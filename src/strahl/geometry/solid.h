@@ -28,6 +28,14 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE inline SolidCrossing intersect(const SolidArr
   return first;
 }
 
+// Is any crossing in (t_min, t_max)? (shadow rays: intersect().t < kInfinity, where an implicit
+// leaf need not find which root is the first.)
+STRAHL_HOST_DEVICE STRAHL_NOINLINE inline bool any_crossing(const SolidArrays& a, const Solid& s, const Ray& ray,
+                                                            Real t_min, Real t_max) {
+  if (s.kind != SolidKind::Csg) return leaf_any_crossing(a, s, ray, t_min, t_max);
+  return intersect(a, s, ray, t_min, t_max).t < kInfinity;
+}
+
 // How many times (t_min, t_max) crosses the surface.
 STRAHL_HOST_DEVICE STRAHL_NOINLINE inline int crossings(const SolidArrays& a, const Solid& s, const Ray& ray,
                                                         Real t_min, Real t_max) {

@@ -232,6 +232,24 @@ STRAHL_HOST_DEVICE inline void for_each_leaf_crossing(const SolidArrays& a, cons
     if (list.c[i].t > t_min && list.c[i].t < t_max && visit(list.c[i])) return;
 }
 
+// Any crossing of a leaf's surface in (t_min, t_max)? An implicit surface answers without
+// refining a root (any_crossing()); every other shape by its crossings.
+STRAHL_HOST_DEVICE inline bool leaf_any_crossing(const SolidArrays& a, const Solid& leaf, const Ray& world_ray,
+                                                 Real t_min, Real t_max) {
+  const bool placed = leaf.kind == SolidKind::Placed;
+  const Solid& s = placed ? a.placed[leaf.index].shape : leaf;
+  if (s.kind == SolidKind::Implicit) {
+    const Ray ray = placed ? object_ray(a.placed[leaf.index].to_object, world_ray) : world_ray;
+    ImplicitStats stats;
+    const bool hit = any_crossing(a.implicits[s.index], ray, t_min, t_max, stats);
+    if (a.tallies != nullptr) tally(a.tallies[s.index], stats);
+    return hit;
+  }
+  bool hit = false;
+  for_each_leaf_crossing(a, leaf, world_ray, t_min, t_max, [&](const SolidCrossing&) { return hit = true; });
+  return hit;
+}
+
 // Outward unit normal at a surface point of part `part`.
 STRAHL_HOST_DEVICE inline Vec3 shape_normal_at(const SolidArrays& a, const Solid& s, int part, const Vec3& p) {
   switch (s.kind) {
