@@ -239,6 +239,32 @@ TEST(Expression, RandomTreesAgreeWithDirectEvaluation) {
   EXPECT_GT(finite, 3000 * 8 / 2);  // most values are ordinary numbers, not NaN or infinities
 }
 
+// Squared terms added to what comes before them, and sqrt/sin/cos, have fused operations of
+// their own: the distance of the shapes-pov isosurface is four operations, and every such
+// program gives the postfix program's values bit for bit.
+TEST(Expression, SquaredTermsAddWithoutAPush) {
+  const struct {
+    const char* text;
+    int fused;
+  } cases[] = {
+      {"sqrt((x - 0.15)^2 + (y - 0.6)^2 + (z + 1)^2) - 0.55 + 0.03*sin(20*y)", 10},
+      {"(x - 1)^2 + (y + 2)^2", 2},
+      {"cos(x) + (y - 1)^2 + (x + 2)^2 - (z - 3)^2", 7},
+      {"(z + 0.5)^2 * 3 + sin((x - 2)^2)", 5},
+  };
+  test::Random points(7);
+  for (const auto& c : cases) {
+    const Expression e = compile_expression(c.text);
+    EXPECT_EQ(e.fused_length, c.fused) << c.text;
+    for (int k = 0; k < 2000; ++k) {
+      const Vec3 p = points.point(-3, 3);
+      const Real want = kernel::evaluate_postfix(e, p), got = kernel::evaluate(e, p);
+      ASSERT_TRUE(same(want, got)) << c.text << " at (" << p.x << ", " << p.y << ", " << p.z << "): " << want
+                                   << " != " << got;
+    }
+  }
+}
+
 Real eval(const std::string& text, Vec3 p = Vec3(0), const ExpressionParameters& params = {}) {
   return kernel::evaluate(compile_expression(text, params), p);
 }
