@@ -265,6 +265,35 @@ TEST(Implicit, AnyCrossingAgreesWithTheNearestHit) {
   EXPECT_GT(misses, 1000);
 }
 
+// The Illinois polish at a root its first secant step all but hits (f linear): the next sample
+// goes half the tolerance in from that end and closes the bracket, instead of the bisection
+// from the other end that regula falsi falls back to there (32 samples).
+TEST(Implicit, PolishClosesOnARootItHasAlmostHit) {
+  const Implicit s = make("x - 0.3", RootMethod::Lipschitz, 1, 1e-4);
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  ImplicitStats stats;
+  kernel::ImplicitQuery q{s, ray, stats};
+  kernel::Bracket br{q.sample(0.25), q.sample(0.35)};
+  const Real t = kernel::refine(q, br);
+  EXPECT_NEAR(t, 0.3, 1e-12);
+  EXPECT_LE(q.evaluations, 2 + 3);
+}
+
+// A ray leaving a surface (f(a) = 1e-9, rising at slope 1 against L = 2): the Lipschitz
+// search steps away from it, 2·accuracy first and then geometrically, instead of halving the
+// whole range down to `accuracy` and coming back up (15 samples).
+TEST(Implicit, LipschitzSearchStepsAwayFromASurface) {
+  const Implicit s = make("sqrt(x^2 + y^2 + z^2) - 1", RootMethod::Lipschitz, 2, 1e-4);
+  const Ray ray{{1 + 1e-9, 0, 0}, {1, 0, 0}};
+  ImplicitStats stats;
+  kernel::ImplicitQuery q{s, ray, stats};
+  kernel::Bracket br;
+  EXPECT_FALSE(kernel::lipschitz_bracket(q, q.sample(0), q.sample(0.999), br));
+  EXPECT_LE(q.evaluations, 2 + 9);
+  ImplicitStats any_stats;
+  EXPECT_FALSE(kernel::any_crossing(s, ray, 0, kInfinity, any_stats));
+}
+
 // f = 0 everywhere: no interval can be ruled out; the query stops at its budget, counted once.
 TEST(Implicit, EvaluationBudget) {
   const Implicit s = make("0*x", RootMethod::Lipschitz, 1, 1e-6);
