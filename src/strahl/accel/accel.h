@@ -112,6 +112,36 @@ struct NearestHit {
   kernel::TriangleHit hit;  // t = kInfinity: none
 };
 
+// The structure is one leaf of spheres only (the lecture's scenes): the queries below run the
+// naive loop's tests in its order, without the visitor's dispatch on the primitive's kind. The
+// scene queries (render/intersect_scene.h) call these loops directly, without the call and the
+// dispatch on the structure's kind.
+STRAHL_HOST_DEVICE inline bool is_sphere_leaf(const AccelView& a) {
+  return a.one_leaf && a.prims.size() == a.prims.sphere_count;
+}
+
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE NearestHit sphere_leaf_nearest(const PrimitiveSet& p, const Ray& ray, Real t_min,
+                                                                      Real t_max) {
+  NearestHit result;
+  Real t_far = t_max;
+  for (std::uint32_t i = 0; i < p.sphere_count; ++i) {
+    const Real t = kernel::intersect(p.spheres[i], ray, t_min, t_far);
+    if (t < t_far) {
+      t_far = t;
+      result.prim = i;
+      result.hit = {t, 0, 0};
+    }
+  }
+  return result;
+}
+
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_leaf_occluded(const PrimitiveSet& p, const Ray& ray, Real t_min,
+                                                                 Real t_max) {
+  for (std::uint32_t i = 0; i < p.sphere_count; ++i)
+    if (kernel::intersect(p.spheres[i], ray, t_min, t_max) < kInfinity) return true;
+  return false;
+}
+
 STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& ray, Real t_min, Real t_max) {
 #if defined(STRAHL_HAVE_EMBREE) && !defined(__CUDACC__)
   if (a.kind == AccelKind::Embree) return embree_nearest_hit(a, ray, t_min, t_max);
@@ -129,20 +159,7 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
     spatial_nearest(a.octree, a.prims, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
-  if (a.one_leaf && a.prims.size() == a.prims.sphere_count) {
-    // One leaf of spheres only (the lecture's scenes): the naive loop's tests in its order,
-    // without the visitor's dispatch on the primitive's kind.
-    Real t_far = t_max;
-    for (std::uint32_t i = 0; i < a.prims.sphere_count; ++i) {
-      const Real t = kernel::intersect(a.prims.spheres[i], ray, t_min, t_far);
-      if (t < t_far) {
-        t_far = t;
-        result.prim = i;
-        result.hit = {t, 0, 0};
-      }
-    }
-    return result;
-  }
+  if (is_sphere_leaf(a)) return sphere_leaf_nearest(a.prims, ray, t_min, t_max);
   const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
     const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far);
@@ -167,11 +184,7 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
     if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims, ray, t_min, t_max);
     if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims, ray, t_min, t_max);
   }
-  if (a.one_leaf && a.prims.size() == a.prims.sphere_count) {  // as nearest_hit: spheres in one leaf
-    for (std::uint32_t i = 0; i < a.prims.sphere_count; ++i)
-      if (kernel::intersect(a.prims.spheres[i], ray, t_min, t_max) < kInfinity) return true;
-    return false;
-  }
+  if (is_sphere_leaf(a)) return sphere_leaf_occluded(a.prims, ray, t_min, t_max);
   bool found = false;
   const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {

@@ -22,7 +22,8 @@ STRAHL_HOST_DEVICE inline Hit closest_hit(const SceneView& s, const Ray& ray, Re
     const kernel::SolidCrossing c = kernel::intersect(s.accel.prims.shapes, s.solids[i], ray, t_min, hit.t);
     if (c.t < hit.t) { hit.t = c.t; hit.kind = ShapeKind::Solid; hit.index = i; hit.b1 = c.part; }
   }
-  const NearestHit nearest = nearest_hit(s.accel, ray, t_min, hit.t);
+  const NearestHit nearest = is_sphere_leaf(s.accel) ? sphere_leaf_nearest(s.accel.prims, ray, t_min, hit.t)
+                                                     : nearest_hit(s.accel, ray, t_min, hit.t);
   if (nearest.hit.t < hit.t) {
     hit.t = nearest.hit.t;
     if (s.accel.prims.is_sphere(nearest.prim)) {
@@ -70,10 +71,11 @@ STRAHL_HOST_DEVICE STRAHL_DEVICE_NOINLINE Vec3 transmittance(const SceneView& s,
       if (!attenuate(s.materials[s.solids[i].material], tr)) return Vec3(0);
   }
   // Nothing transparent: the first surface found blocks the light (any-hit, no crossings to count).
-  if (s.opaque && s.moving_sphere_count + s.moving_triangle_count == 0)
-    return occluded(s.accel, ray, 0, distance) || (s.instance_count > 0 && instance_occluded(s, ray, 0, distance))
-               ? Vec3(0)
-               : tr;
+  if (s.opaque && s.moving_sphere_count + s.moving_triangle_count == 0) {
+    const bool blocked = is_sphere_leaf(s.accel) ? sphere_leaf_occluded(s.accel.prims, ray, 0, distance)
+                                                 : occluded(s.accel, ray, 0, distance);
+    return blocked || (s.instance_count > 0 && instance_occluded(s, ray, 0, distance)) ? Vec3(0) : tr;
+  }
   bool blocked = false;
   auto cross = [&](std::uint32_t prim, int crossings) {
     const Material& m = s.materials[primitive_material(s.accel.prims, prim)];
