@@ -14,6 +14,10 @@ target_compile_options(strahl_optimise INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-fno-
 # a·b − c·d being computed the same way, with both products rounded, for the two triangles that
 # share an edge. GCC contracts across statements by default in C++ where the CPU has FMA.
 target_compile_options(strahl_optimise INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-ffp-contract=off>)
+# Floating-point operations never trap here (strahl enables no FP exceptions), so GCC may compute
+# both sides of a select: the loops over a packet's lanes (accel/packet.h, render/packet_radiance.h)
+# vectorise only so. No value changes: this flag licenses no reassociation or contraction.
+target_compile_options(strahl_optimise INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-fno-trapping-math>)
 if(STRAHL_NATIVE)
   target_compile_options(strahl_optimise INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-march=native>)
 endif()

@@ -44,6 +44,7 @@ namespace strahl {
 using Real = double;
 
 inline constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+inline constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
 inline constexpr Real kPi = Real(3.14159265358979323846);
 
 // Offset of secondary-ray origins from a surface, relative to the magnitudes the hit point was

@@ -129,6 +129,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
       break;
     }
     case ShapeKind::None:
+    default:  // (every kind is above; this tells the compiler so)
       sp.geometric_normal = sp.normal = sp.texcoord = Vec3(0);
       sp.material = 0;
       sp.offset = ray_offset(ray, hit.t, sp.p, 0);

@@ -47,16 +47,26 @@ STRAHL_HOST_DEVICE inline Real specular_power(Real x, Real e) {
   return std::pow(x, e);
 }
 
+// The shadow ray from surface point `sp` towards a light in unit direction `to_light`.
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Ray shadow_ray(const SurfacePoint& sp, const Vec3& to_light) {
+  return spawn_ray(sp, to_light, sp.time);
+}
+
 // Light of intensity `intensity` arriving from unit direction `to_light` over `distance`:
-// Lambert + Blinn-Phong, times the shadow ray's transmittance.
+// Lambert + Blinn-Phong, times the shadow ray's transmittance — traced here, or, where `known` is
+// given, the transmittance of that same shadow ray traced before (render/packet_radiance.h).
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Vec3 shade_from(const SceneView& s, const SurfacePoint& sp, const Vec3& n, const Vec3& view,
                                           const Vec3& c, const Material& m, const Vec3& to_light, Real distance,
-                                          const Vec3& intensity, RayCounters& counters) {
+                                          const Vec3& intensity, RayCounters& counters, const Vec3* known = nullptr) {
   const Real n_dot_l = dot(n, to_light);
   if (n_dot_l <= 0) return Vec3(0);  // light behind the surface
-  ++counters.shadow;
-  const Ray shadow_ray = spawn_ray(sp, to_light, sp.time);
-  const Vec3 tr = transmittance(s, shadow_ray, distance);
+  Vec3 tr;
+  if (known != nullptr) {
+    tr = *known;
+  } else {
+    ++counters.shadow;
+    tr = transmittance(s, shadow_ray(sp, to_light), distance);
+  }
   if (is_black(tr)) return Vec3(0);  // in shadow: ambient only
   const Vec3 h = normalize(to_light + view);
   const Real n_dot_h = dot(n, h);
@@ -82,8 +92,21 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const Sce
   return sum * (Real(1) / (k * k));
 }
 
+// The packet front end (render/packet_radiance.h) handles scenes with up to this many lights.
+inline constexpr int kMaxPacketLights = 4;
+
+// What the packet front end found of point light i at a surface point: sample_light()'s answer
+// and, where dot(n, to_light) > 0, the transmittance of the shadow ray it traced.
+struct KnownLight {
+  LightSample sample;
+  Vec3 transmittance;
+};
+
+// `known`, where given, holds known[i] for each point light i (the packet front end's); else
+// local_illumination samples the lights and traces the shadow rays itself.
 STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
-                                                  const Vec3& view, RayCounters& counters, SampleStream& rng) {
+                                                  const Vec3& view, RayCounters& counters, SampleStream& rng,
+                                                  const KnownLight* known = nullptr) {
   const Material& m = s.materials[sp.material];
   const Vec3 c = surface_color(m, sp.texcoord);
   const Real opacity = 1 - m.transparency;
@@ -91,6 +114,12 @@ STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const Surf
   for (std::uint32_t i = 0; i < s.light_count; ++i) {
     const Light& light = s.lights[i];
     if (!light.is_area()) {
+      if (known != nullptr) {
+        const LightSample& ls = known[i].sample;
+        result += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance, counters,
+                             &known[i].transmittance);
+        continue;
+      }
       const LightSample ls = sample_light(light, sp.p);
       result += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance, counters);
       continue;
@@ -126,6 +155,23 @@ STRAHL_HOST_DEVICE inline int nearest_emitter(const SceneView& s, const Ray& ray
 
 // The deepest ray tree trace() follows: scenes allow max_depth up to this (camera rays are depth 1).
 inline constexpr int kMaxTraceDepth = 64;
+
+// What the packet front end has already found for a camera ray, as trace()'s first step would
+// find it: the nearest hit, the area light met first (−1: none), and, where the ray hit a surface
+// and no emitter, its surface point and what it found of each point light (area lights' entries
+// unset).
+struct FirstHit {
+  Hit hit;
+  int emitter;
+  SurfacePoint sp;
+  KnownLight lights[kMaxPacketLights];
+};
+
+// Uninitialised storage for FirstHit (its Vec3 members would be zeroed, sixteen per packet).
+union FirstHitSlot {
+  FirstHit first;
+  STRAHL_HOST_DEVICE FirstHitSlot() {}
+};
 
 // A hit of the ray tree whose local colour is known and one of whose children (the reflected ray,
 // then the refracted one) is being traced: what it needs to add the child's radiance and to
@@ -179,7 +225,11 @@ STRAHL_HOST_DEVICE inline bool start_refracted(const SceneView& s, TraceFrame& f
 // local + k_r·reflected + T·tint·refracted added in that order, so the random numbers (area lights,
 // glossy directions) are drawn in the same order and the sums are the same as a recursive
 // trace()'s, bit for bit.
-STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng) {
+//
+// `first`, where given, is the camera ray's first step already taken by the packet front end
+// (the same hit, surface point and shadow rays): trace() goes on from there.
+STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng,
+                                     const FirstHit* first = nullptr) {
   TraceFrameSlot stack[kMaxTraceDepth - 1];  // hits at depths 1 … max_depth − 1 (deeper ones spawn no rays)
   int top = 0;                               // frames in use: `ray` is at depth top + 1
   const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
@@ -192,20 +242,22 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
   for (;;) {
     // `ray`'s own colour, unless it spawns a child: then its frame is pushed and the child traced.
     Vec3 color;
-    const Hit hit = closest_hit(s, ray, 0, kInfinity);
-    const int emitter = s.area_light_count > 0 ? nearest_emitter(s, ray, hit.t) : -1;
+    const FirstHit* known = first;
+    first = nullptr;
+    const Hit hit = known != nullptr ? known->hit : closest_hit(s, ray, 0, kInfinity);
+    const int emitter = known != nullptr ? known->emitter : s.area_light_count > 0 ? nearest_emitter(s, ray, hit.t) : -1;
     if (emitter >= 0) {
       color = s.lights[emitter].radiance;
     } else if (!hit.found()) {
       color = s.settings.background;
     } else {
-      const SurfacePoint sp = surface_at(s, ray, hit);
+      const SurfacePoint sp = known != nullptr ? known->sp : surface_at(s, ray, hit);
       const Material& m = s.materials[sp.material];
       // Does the ray arrive at the front (outside) of the surface? Normals then face the viewer.
       const bool front = dot(ray.direction, sp.geometric_normal) < 0;
       const Vec3 n = front ? sp.normal : -sp.normal;
       const Vec3 view = -ray.direction;
-      color = local_illumination(s, sp, n, view, counters, rng);
+      color = local_illumination(s, sp, n, view, counters, rng, known != nullptr ? known->lights : nullptr);
       if (top + 1 < max_depth) {
         Real kr = m.reflectivity;
         Real kt = m.transparency;

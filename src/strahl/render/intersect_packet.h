@@ -1,0 +1,134 @@
+#pragma once
+// The scene queries of intersect_scene.h for a packet of N rays at once (lane i taking part when
+// bit i of `active` is set): the nearest hit of camera rays and the transmittance of shadow rays.
+// Lane for lane the answers are those of closest_hit() and transmittance(): planes and unbounded
+// solids one lane after the other, the acceleration structure through its packet query
+// (accel/packet.h: the BVH's packet traversal, the one-leaf sphere loop side by side), moving
+// shapes and instances lane by lane. The only difference is the one packet.h names: a ray through
+// an edge shared by two triangles at exactly the same t may report the other triangle.
+
+#include "strahl/accel/packet.h"
+#include "strahl/render/intersect_scene.h"
+
+namespace strahl {
+
+// closest_hit(s, rays[i], 0, kInfinity) for each active lane, into hits[i].
+template <int N>
+STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint32_t active, const Ray* rays, Hit* hits) {
+  Real t_min[N], t_max[N];
+  for (int i = 0; i < N; ++i) {
+    hits[i] = Hit{};
+    t_min[i] = 0;
+  }
+  for (std::uint32_t k = 0; k < s.plane_count; ++k) {
+    for (int i = 0; i < N; ++i) {
+      const Real t = kernel::intersect(s.planes[k], rays[i], 0, hits[i].t);
+      if (t < hits[i].t) { hits[i].t = t; hits[i].kind = ShapeKind::Plane; hits[i].index = k; }
+    }
+  }
+  for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k) {
+    for (std::uint32_t m = active; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      const kernel::SolidCrossing c = kernel::intersect(s.accel.prims.shapes, s.solids[k], rays[i], 0, hits[i].t);
+      if (c.t < hits[i].t) { hits[i].t = c.t; hits[i].kind = ShapeKind::Solid; hits[i].index = k; hits[i].b1 = c.part; }
+    }
+  }
+  for (int i = 0; i < N; ++i) t_max[i] = hits[i].t;
+  NearestHit nearest[N];
+  nearest_hit_packet<N>(s.accel, active, rays, t_min, t_max, nearest);
+  for (std::uint32_t m = active; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    Hit& hit = hits[i];
+    if (nearest[i].hit.t < hit.t) {
+      const std::uint32_t prim = nearest[i].prim;
+      hit.t = nearest[i].hit.t;
+      if (s.accel.prims.is_sphere(prim)) {
+        hit.kind = ShapeKind::Sphere;
+        hit.index = prim;
+      } else if (s.accel.prims.is_solid(prim)) {
+        hit.kind = ShapeKind::Solid;
+        hit.index = prim - s.accel.prims.first_solid();
+        hit.b1 = nearest[i].hit.b1;
+      } else {
+        hit.kind = ShapeKind::Triangle;
+        hit.index = prim - s.accel.prims.sphere_count;
+        hit.b1 = nearest[i].hit.b1;
+        hit.b2 = nearest[i].hit.b2;
+      }
+    }
+    if (s.moving_sphere_count + s.moving_triangle_count > 0) closest_moving_hit(s, rays[i], 0, hit);
+    if (s.instance_count > 0) closest_instance_hit(s, rays[i], 0, hit);
+    if (!hit.found()) hit.t = kInfinity;
+  }
+}
+
+// transmittance(s, rays[i], distance[i]) for each active lane, into tr[i].
+template <int N>
+STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uint32_t active, const Ray* rays,
+                                                    const Real* distance, Vec3* tr) {
+  const bool moving = s.moving_sphere_count + s.moving_triangle_count > 0;
+  if (!s.opaque && !moving && s.instance_count == 0 && is_sphere_leaf(s.accel)) {
+    // Crossings to count and attenuate by, in transmittance()'s order — planes, unbounded solids,
+    // then the spheres of the one leaf in index order (for_each_crossing's naive loop) — with
+    // the lanes side by side at each sphere.
+    bool blocked[N];
+    for (int i = 0; i < N; ++i) tr[i] = Vec3(1), blocked[i] = !((active >> i) & 1u);
+    const auto cross = [&](int i, const Material& material, int n) {
+      for (int c = 0; c < n && !blocked[i]; ++c) blocked[i] = !attenuate(material, tr[i]);
+    };
+    for (std::uint32_t k = 0; k < s.plane_count; ++k)
+      for (int i = 0; i < N; ++i)
+        if (!blocked[i] && kernel::intersect(s.planes[k], rays[i], 0, distance[i]) < kInfinity)
+          cross(i, s.materials[s.planes[k].material], 1);
+    for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k)
+      for (int i = 0; i < N; ++i)
+        if (!blocked[i]) cross(i, s.materials[s.solids[k].material], kernel::crossings(s.accel.prims.shapes, s.solids[k], rays[i], 0, distance[i]));
+    const PacketRays<N> r(rays);
+    Real t_min[N];
+    int n[N];
+    for (int i = 0; i < N; ++i) t_min[i] = 0;
+    for (std::uint32_t k = 0; k < s.accel.prims.sphere_count; ++k) {
+      sphere_crossings_lanes<N>(s.accel.prims.spheres[k], r, t_min, distance, n);
+      const Material& material = s.materials[s.accel.prims.spheres[k].material];
+      for (int i = 0; i < N; ++i)
+        if (n[i] > 0 && !blocked[i]) cross(i, material, n[i]);
+    }
+    for (std::uint32_t m = active; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      if (blocked[i]) tr[i] = Vec3(0);
+    }
+    return;
+  }
+  if (!(s.opaque && !moving)) {
+    // Crossings to count and attenuate by: the single-ray query, lane by lane.
+    for (std::uint32_t m = active; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      tr[i] = transmittance(s, rays[i], distance[i]);
+    }
+    return;
+  }
+  // Nothing transparent: any surface in between blocks the light (transmittance()'s any-hit case).
+  std::uint32_t blocked = 0;
+  for (std::uint32_t k = 0; k < s.plane_count; ++k)
+    for (int i = 0; i < N; ++i)
+      if (kernel::intersect(s.planes[k], rays[i], 0, distance[i]) < kInfinity) blocked |= 1u << i;
+  for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k)
+    for (std::uint32_t m = active & ~blocked; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      if (kernel::crossings(s.accel.prims.shapes, s.solids[k], rays[i], 0, distance[i]) > 0) blocked |= 1u << i;
+    }
+  Real t_min[N];
+  for (int i = 0; i < N; ++i) t_min[i] = 0;
+  blocked |= occluded_packet<N>(s.accel, active & ~blocked, rays, t_min, distance);
+  if (s.instance_count > 0)
+    for (std::uint32_t m = active & ~blocked; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      if (instance_occluded(s, rays[i], 0, distance[i])) blocked |= 1u << i;
+    }
+  for (std::uint32_t m = active; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    tr[i] = ((blocked >> i) & 1u) ? Vec3(0) : Vec3(1);
+  }
+}
+
+}  // namespace strahl

@@ -1,0 +1,130 @@
+#pragma once
+// Camera samples in packets: up to N consecutive samples of one pixel (coherent rays: they leave
+// the same eye through one pixel) take their first step together — the camera rays' nearest hits,
+// then, light by light, the shadow rays from those hits — through the packet queries of
+// intersect_packet.h, whose planes and sphere loops run the lanes side by side and whose BVH
+// fetches each node once per packet. Each sample then goes on alone in the one integrator,
+// trace() (render/whitted.h), from that first step (FirstHit): shading, reflected and refracted
+// rays. The radiance of each sample is sample_radiance()'s bit for bit (same hits, same shadow
+// rays, same arithmetic; the counters the same too), except where a camera ray meets two
+// triangles at exactly the same t (accel/packet.h).
+
+#include "strahl/render/integrator.h"
+#include "strahl/render/intersect_packet.h"
+#include "strahl/sampling/pixel_sampler.h"
+
+namespace strahl {
+
+// Whether the packet front end handles the scene's lights (shadow[] has room for each).
+STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) { return s.light_count <= kMaxPacketLights; }
+
+// Samples first … first + count − 1 (count ≤ N) of pixel sequence p: their camera samples into
+// cs[], their radiance (guarded as sample_radiance's) into L[].
+template <int N>
+STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSequence& p, std::uint32_t first,
+                                               int count, CameraSample* cs, Vec3* L, RayCounters& counters) {
+  const std::uint32_t active = count >= 32 ? ~0u : (1u << count) - 1;
+  // The camera rays: directions side by side (Camera::directions, generate_ray's arithmetic).
+  Real film_x[N], film_y[N], dx[N], dy[N], dz[N];
+  for (int i = 0; i < count; ++i) {
+    cs[i] = p.sample(first + std::uint32_t(i));
+    film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y;
+  }
+  for (int i = count; i < N; ++i) film_x[i] = film_x[0], film_y[i] = film_y[0];  // inactive lanes: nobody reads them
+  s.camera.directions<N>(film_x, film_y, dx, dy, dz);
+  Ray rays[N];
+  const Camera& camera = s.camera;
+  for (int i = 0; i < N; ++i) {
+    rays[i] = Ray{camera.eye, Vec3(dx[i], dy[i], dz[i])};
+    rays[i].time = camera.shutter_open + cs[i < count ? i : 0].time * (camera.shutter_close - camera.shutter_open);
+    if (camera.lens_radius > 0) camera.through_lens(rays[i], cs[i < count ? i : 0].lens);
+  }
+  counters.camera += std::uint64_t(count);
+
+  Hit hits[N];
+  closest_hit_packet<N>(s, active, rays, hits);
+
+  // trace()'s first step up to the shadow rays, lane by lane: emitter, surface point, normal; the
+  // points, normals and offsets also side by side for the shadow rays (0 in lanes that do not shade).
+  FirstHitSlot slots[N];
+  Real px[N] = {}, py[N] = {}, pz[N] = {}, nx[N] = {}, ny[N] = {}, nz[N] = {}, gx[N] = {}, gy[N] = {}, gz[N] = {};
+  Real offset[N] = {};
+  std::uint32_t lit = 0;  // lanes that hit a surface (and no emitter): they shade
+  for (int i = 0; i < count; ++i) {
+    FirstHit& f = slots[i].first;
+    f.hit = hits[i];
+    f.emitter = s.area_light_count > 0 ? nearest_emitter(s, rays[i], f.hit.t) : -1;
+    if (f.emitter >= 0 || !f.hit.found()) continue;
+    f.sp = surface_at(s, rays[i], f.hit);
+    const SurfacePoint& sp = f.sp;
+    const bool front = dot(rays[i].direction, sp.geometric_normal) < 0;
+    const Vec3 n = front ? sp.normal : -sp.normal;
+    px[i] = sp.p.x, py[i] = sp.p.y, pz[i] = sp.p.z;
+    nx[i] = n.x, ny[i] = n.y, nz[i] = n.z;
+    gx[i] = sp.geometric_normal.x, gy[i] = sp.geometric_normal.y, gz[i] = sp.geometric_normal.z;
+    offset[i] = sp.offset;
+    lit |= 1u << i;
+  }
+
+  // The shadow rays to each point light, as local_illumination() casts them (sample_light,
+  // shadow_ray: the same arithmetic, side by side), in one packet per light.
+  for (std::uint32_t k = 0; k < s.light_count; ++k) {
+    const Light& light = s.lights[k];
+    if (light.is_area()) continue;
+    Real lx[N], ly[N], lz[N], distance[N];
+    if (light.kind == LightKind::Directional) {
+      for (int i = 0; i < N; ++i)
+        lx[i] = -light.direction.x, ly[i] = -light.direction.y, lz[i] = -light.direction.z, distance[i] = kInfinity;
+    } else {
+      for (int i = 0; i < N; ++i) {
+        const Real ex = light.position.x - px[i], ey = light.position.y - py[i], ez = light.position.z - pz[i];
+        const Real dist = std::sqrt(ex * ex + ey * ey + ez * ez);
+        const Real inv = Real(1) / dist;  // d / dist (vec3.h's operator/)
+        lx[i] = ex * inv, ly[i] = ey * inv, lz[i] = ez * inv, distance[i] = dist;
+      }
+    }
+    Real ox[N], oy[N], oz[N], n_dot_l[N];
+    for (int i = 0; i < N; ++i) {
+      n_dot_l[i] = nx[i] * lx[i] + ny[i] * ly[i] + nz[i] * lz[i];
+      const Real side = lx[i] * gx[i] + ly[i] * gy[i] + lz[i] * gz[i] >= 0 ? Real(1) : Real(-1);
+      const Real o = side * offset[i];
+      ox[i] = px[i] + gx[i] * o, oy[i] = py[i] + gy[i] * o, oz[i] = pz[i] + gz[i] * o;
+    }
+    std::uint32_t cast = 0;  // shade_from() casts no ray where dot(n, to_light) <= 0
+    for (std::uint32_t m = lit; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      if (!(n_dot_l[i] <= 0)) cast |= 1u << i;
+    }
+    Ray shadow[N];
+    Vec3 tr[N];
+    for (std::uint32_t m = lit; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      slots[i].first.lights[k].sample = LightSample{Vec3(lx[i], ly[i], lz[i]), distance[i]};
+    }
+    if (cast == 0) continue;
+    for (int i = 0; i < N; ++i) shadow[i] = Ray{Vec3(ox[i], oy[i], oz[i]), Vec3(lx[i], ly[i], lz[i]), rays[i].time};
+    for (std::uint32_t m = cast; m != 0; m &= m - 1) ++counters.shadow;
+    transmittance_packet<N>(s, cast, shadow, distance, tr);
+    for (std::uint32_t m = cast; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      slots[i].first.lights[k].transmittance = tr[i];
+    }
+  }
+
+  for (int i = 0; i < count; ++i) {
+    SampleStream rng{p.stream, first + std::uint32_t(i)};
+    const FirstHit& f = slots[i].first;
+    if ((lit >> i) & 1u) {
+      const Material& m = s.materials[f.sp.material];
+      if (!(m.reflectivity > 0) && !(m.transparency > 0)) {
+        // trace() would spawn no ray here: its colour is the local illumination alone.
+        const Vec3 n(nx[i], ny[i], nz[i]);
+        L[i] = guard_sample(local_illumination(s, f.sp, n, -rays[i].direction, counters, rng, f.lights), counters);
+        continue;
+      }
+    }
+    L[i] = guard_sample(trace(s, rays[i], counters, rng, &f), counters);
+  }
+}
+
+}  // namespace strahl
