@@ -47,15 +47,16 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
   // trace()'s first step up to the shadow rays, lane by lane: emitter, surface point, normal; the
   // points, normals and offsets also side by side for the shadow rays (0 in lanes that do not shade).
   FirstHitSlot slots[N];
-  Real px[N] = {}, py[N] = {}, pz[N] = {}, nx[N] = {}, ny[N] = {}, nz[N] = {}, gx[N] = {}, gy[N] = {}, gz[N] = {};
-  Real offset[N] = {};
+  Real px[N], py[N], pz[N], nx[N], ny[N], nz[N], gx[N], gy[N], gz[N], offset[N];
   std::uint32_t lit = 0;  // lanes that hit a surface (and no emitter): they shade
-  for (int i = 0; i < count; ++i) {
+  for (int i = 0; i < N; ++i) {
+    px[i] = py[i] = pz[i] = nx[i] = ny[i] = nz[i] = gx[i] = gy[i] = gz[i] = offset[i] = 0;
+    if (i >= count) continue;
     FirstHit& f = slots[i].first;
     f.hit = hits[i];
     f.emitter = s.area_light_count > 0 ? nearest_emitter(s, rays[i], f.hit.t) : -1;
     if (f.emitter >= 0 || !f.hit.found()) continue;
-    f.sp = surface_at(s, rays[i], f.hit);
+    surface_at(s, rays[i], f.hit, f.sp);
     const SurfacePoint& sp = f.sp;
     const bool front = dot(rays[i].direction, sp.geometric_normal) < 0;
     const Vec3 n = front ? sp.normal : -sp.normal;

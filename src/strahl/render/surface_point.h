@@ -43,9 +43,9 @@ union SurfacePointSlot {
   STRAHL_HOST_DEVICE SurfacePointSlot() {}
 };
 
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& s, const Ray& ray, const Hit& hit) {
-  SurfacePointSlot slot;
-  SurfacePoint& sp = slot.sp;
+// The surface point of `hit` on `ray`, written into `sp` (where it is to be kept: a copy of a
+// SurfacePoint just written field by field stalls on store forwarding).
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void surface_at(const SceneView& s, const Ray& ray, const Hit& hit, SurfacePoint& sp) {
   sp.p = ray.at(hit.t);
   sp.time = ray.time;
   // Every kind sets the normals, texcoord, material and offset below (kinds that know their own
@@ -135,7 +135,12 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& 
       sp.offset = ray_offset(ray, hit.t, sp.p, 0);
       break;
   }
-  return sp;
+}
+
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE SurfacePoint surface_at(const SceneView& s, const Ray& ray, const Hit& hit) {
+  SurfacePointSlot slot;
+  surface_at(s, ray, hit, slot.sp);
+  return slot.sp;
 }
 
 }  // namespace strahl
