@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -161,6 +162,151 @@ TEST(Packet, CoherentBundlesMatchSingleRays) {
   EXPECT_GT(c8.hits, rays.size() / 4);
   EXPECT_EQ(c16.hits, c8.hits);
   EXPECT_LE(c8.ties + c16.ties, rays.size() / 1000);
+}
+
+// set_lanes() (SIMD where built) gives every active lane exactly set_lane()'s figures (ray_boxes(),
+// round_down / round_up of the interval), bit for bit: random rays, zero and tiny components,
+// origins far out, and interval ends that are exact floats, ±0, subnormal, beyond float, ±∞.
+template <int N>
+void check_set_lanes(std::uint64_t seed) {
+  using namespace wide_bvh_packet_detail;
+  Random rng(seed);
+  const Real ends[] = {0.0, -0.0, 1.0, 0.1, 1e-300, -1e-300, 1e-40, -1e-40, 3e38, 4e38, -4e38, 1e300, -1e300,
+                       kInfinity, -kInfinity, Real(std::numeric_limits<float>::max()),
+                       Real(std::numeric_limits<float>::denorm_min()), 0x1.000001p0, -0x1.000001p0, 5.5};
+  const int n_ends = int(sizeof ends / sizeof ends[0]);
+  WideBvhView view;
+  for (int a = 0; a < 3; ++a) view.extent[a] = float(rng.log_uniform(1e-3, 1e3));
+  for (int trial = 0; trial < 2000; ++trial) {
+    Ray rays[N];
+    Real t_min[N], t_max[N];
+    for (int i = 0; i < N; ++i) {
+      Real d[3], o[3];
+      for (int a = 0; a < 3; ++a) {
+        const int kind = int(rng.uniform(0, 6));
+        d[a] = kind == 0 ? 0.0 : kind == 1 ? -0.0 : kind == 2 ? rng.uniform(-1, 1) * 1e-40 : rng.uniform(-1, 1);
+        if (trial % 3 == 0) d[a] = a == 1 ? -std::fabs(d[a]) - 0.5 : std::fabs(d[a]);  // signs shared by the lanes
+        o[a] = rng.coin() ? rng.uniform(-2, 2) : rng.uniform(-1, 1) * rng.log_uniform(1e-3, 1e40);
+      }
+      rays[i] = Ray{Vec3(o[0], o[1], o[2]), Vec3(d[0], d[1], d[2])};
+      t_min[i] = rng.coin() ? ends[int(rng.uniform(0, n_ends))] : rng.uniform(-1, 1) * rng.log_uniform(1e-45, 1e45);
+      t_max[i] = rng.coin() ? ends[int(rng.uniform(0, n_ends))] : rng.uniform(-1, 1) * rng.log_uniform(1e-45, 1e45);
+    }
+    const std::uint32_t active = trial % 2 ? std::uint32_t(rng.uniform(1, double(1u << N))) : (1u << N) - 1;
+    PacketBoxes<N> p, q;
+    set_lanes(p, active, view, rays, t_min, t_max);
+    int any_sign = 0, all_sign = 7;  // the signs the lanes share
+    for (int i = 0; i < N; ++i)
+      if ((active >> i) & 1u) {
+        const Vec3& d = rays[i].direction;
+        const int sign = (std::signbit(d.x) ? 1 : 0) | (std::signbit(d.y) ? 2 : 0) | (std::signbit(d.z) ? 4 : 0);
+        any_sign |= sign;
+        all_sign &= sign;
+      }
+    ASSERT_EQ(p.signs, any_sign == all_sign ? all_sign : -1) << "trial " << trial;
+    for (int i = 0; i < N; ++i) {
+      if (((active >> i) & 1u) == 0) continue;
+      set_lane(q, i, view, rays[i], t_min[i], t_max[i]);
+      const auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+      for (int a = 0; a < 3; ++a) {
+        ASSERT_TRUE(same(p.inv[a][i], q.inv[a][i])) << "trial " << trial << " lane " << i << " axis " << a;
+        ASSERT_TRUE(same(p.near_offset[a][i], q.near_offset[a][i])) << "trial " << trial << " lane " << i;
+        ASSERT_TRUE(same(p.far_offset[a][i], q.far_offset[a][i])) << "trial " << trial << " lane " << i;
+      }
+      ASSERT_TRUE(same(p.t_min[i], q.t_min[i])) << "t_min " << t_min[i] << ": " << p.t_min[i] << " vs " << q.t_min[i];
+      ASSERT_TRUE(same(p.t_max[i], q.t_max[i])) << "t_max " << t_max[i] << ": " << p.t_max[i] << " vs " << q.t_max[i];
+    }
+  }
+}
+
+TEST(Packet, SetLanesMatchesSetLane) {
+  check_set_lanes<8>(51);
+  check_set_lanes<16>(52);
+}
+
+// The frustum pre-test (wide_bvh_packet.h frustum_children()) never drops a child some lane
+// meets: random boxes (and empty slots) against packets of random, coherent and degenerate rays,
+// before and after some lanes' t_max are lowered. Every child child_test() finds met by a lane
+// must pass the frustum, else traversal would miss leaves.
+template <int N>
+void check_frustum(std::uint64_t seed) {
+  using namespace wide_bvh_packet_detail;
+  Random rng(seed);
+  std::size_t passed = 0, met = 0, culled = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    WideBvhNode n;
+    WideBvhView view;
+    for (int a = 0; a < 3; ++a) view.extent[a] = 0;
+    for (int k = 0; k < kWideBvhWidth; ++k) {
+      n.count[k] = 1;
+      n.child[k] = rng.uniform(0, 1) < 0.1 ? kWideBvhEmpty : std::uint32_t(k);
+      const Vec3 c = rng.point(-2, 2);
+      const Real size = rng.log_uniform(1e-4, 1);
+      for (int a = 0; a < 3; ++a) {
+        const Real h = size * rng.uniform(0, 1);
+        n.lo[a][k] = n.child[k] == kWideBvhEmpty ? std::numeric_limits<float>::infinity() : float(c[a] - h);
+        n.hi[a][k] = n.child[k] == kWideBvhEmpty ? -std::numeric_limits<float>::infinity() : float(c[a] + h);
+        if (n.child[k] != kWideBvhEmpty)
+          view.extent[a] = std::max({view.extent[a], std::fabs(n.lo[a][k]), std::fabs(n.hi[a][k])});
+      }
+    }
+    Ray rays[N];
+    Real t_min[N], t_max[N];
+    const int kind = trial % 4;
+    const Vec3 o = rng.point(-3, 3), d = rng.direction(), target = rng.point(-1, 1);
+    for (int i = 0; i < N; ++i) {
+      if (kind == 0) {  // random
+        rays[i] = Ray{rng.point(-3, 3), rng.direction()};
+      } else if (kind == 1) {  // a narrow cone from one origin
+        rays[i] = Ray{o, normalize(d + rng.direction() * 0.05)};
+      } else if (kind == 2) {  // spread origins towards one point (shadow rays)
+        const Vec3 p = o + rng.direction() * 0.3;
+        rays[i] = Ray{p, normalize(target - p)};
+      } else {  // zero components (±0) and axis-aligned directions
+        Real dir[3] = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
+        const int zero = int(rng.uniform(0, 3));
+        dir[zero] = rng.coin() ? 0.0 : -0.0;
+        if (rng.coin()) dir[(zero + 1) % 3] = rng.coin() ? 0.0 : -0.0;
+        rays[i] = Ray{rng.point(-2, 2), Vec3(dir[0], dir[1], dir[2])};
+      }
+      t_min[i] = rng.coin() ? 0 : rng.uniform(0, 2);
+      t_max[i] = rng.coin() ? kInfinity : t_min[i] + rng.uniform(0, 4);
+    }
+    const std::uint32_t active = trial % 3 == 0 ? std::uint32_t(rng.uniform(1, double(1u << N))) : (1u << N) - 1;
+    PacketBoxes<N> p;
+    set_lanes(p, active, view, rays, t_min, t_max);
+    for (int round = 0; round < 2; ++round) {
+      if (round == 1) {  // some lanes' nearest hit found
+        for (int i = 0; i < N; ++i)
+          if (((active >> i) & 1u) && rng.coin()) p.t_max[i] = std::min(p.t_max[i], float(rng.uniform(0, 3)));
+        lower_frustum(p, active);
+      }
+      float t_front[kWideBvhWidth];
+      const unsigned frustum = frustum_children(n, p, t_front);
+      for (int k = 0; k < kWideBvhWidth; ++k) {
+        if (n.child[k] == kWideBvhEmpty) {
+          EXPECT_EQ((frustum >> k) & 1u, 0u) << "empty slot " << k;
+          continue;
+        }
+        float t = 0;
+        const std::uint32_t lanes = child_test<N>(n, k, p, active, t);
+        met += lanes != 0;
+        passed += (frustum >> k) & 1u;
+        culled += lanes == 0 && ((frustum >> k) & 1u) == 0;
+        if (lanes != 0) {
+          ASSERT_TRUE((frustum >> k) & 1u) << "trial " << trial << " child " << k << ": lanes " << lanes
+                                            << " meet it, the frustum culls it";
+        }
+      }
+    }
+  }
+  EXPECT_GT(met, 1000u);     // the boxes are met
+  EXPECT_GT(culled, 1000u);  // and the frustum culls some
+}
+
+TEST(Packet, FrustumKeepsEveryChildALaneMeets) {
+  check_frustum<8>(41);
+  check_frustum<16>(42);
 }
 
 // Zero direction components (+0 and −0), rays along the axes, origins exactly on the grid's edges

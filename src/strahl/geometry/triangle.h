@@ -47,10 +47,15 @@ struct RayShear {
   Real sx = 0, sy = 0, sz = 1;
 };
 
+// The axis the ray is sheared along: that of the direction's largest |component|.
+STRAHL_HOST_DEVICE inline int shear_axis(const Vec3& d) {
+  const Real ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+  return ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+}
+
 STRAHL_HOST_DEVICE inline RayShear ray_shear(const Vec3& d) {
   RayShear s;
-  const Real ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
-  s.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+  s.kz = shear_axis(d);
   s.kx = s.kz == 2 ? 0 : s.kz + 1;
   s.ky = s.kx == 2 ? 0 : s.kx + 1;
   if (d[s.kz] < 0) { const int tmp = s.kx; s.kx = s.ky; s.ky = tmp; }
