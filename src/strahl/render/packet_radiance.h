@@ -26,10 +26,8 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
   const std::uint32_t active = count >= 32 ? ~0u : (1u << count) - 1;
   // The camera rays: directions side by side (Camera::directions, generate_ray's arithmetic).
   Real film_x[N], film_y[N], dx[N], dy[N], dz[N];
-  for (int i = 0; i < count; ++i) {
-    cs[i] = p.sample(first + std::uint32_t(i));
-    film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y;
-  }
+  p.samples<N>(first, count, cs);
+  for (int i = 0; i < count; ++i) film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y;
   for (int i = count; i < N; ++i) film_x[i] = film_x[0], film_y[i] = film_y[0];  // inactive lanes: nobody reads them
   s.camera.directions<N>(film_x, film_y, dx, dy, dz);
   Ray rays[N];
@@ -47,10 +45,12 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
   // trace()'s first step up to the shadow rays, lane by lane: emitter, surface point, normal; the
   // points, normals and offsets also side by side for the shadow rays (0 in lanes that do not shade).
   FirstHitSlot slots[N];
-  Real px[N], py[N], pz[N], nx[N], ny[N], nz[N], gx[N], gy[N], gz[N], offset[N];
+  Real px[N], py[N], pz[N], nx[N], ny[N], nz[N], gx[N], gy[N], gz[N], offset[N], vx[N], vy[N], vz[N];
   std::uint32_t lit = 0;  // lanes that hit a surface (and no emitter): they shade
   for (int i = 0; i < N; ++i) {
     px[i] = py[i] = pz[i] = nx[i] = ny[i] = nz[i] = gx[i] = gy[i] = gz[i] = offset[i] = 0;
+    const Vec3 view = -rays[i].direction;
+    vx[i] = view.x, vy[i] = view.y, vz[i] = view.z;
     if (i >= count) continue;
     FirstHit& f = slots[i].first;
     f.hit = hits[i];
@@ -84,9 +84,13 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
         lx[i] = ex * inv, ly[i] = ey * inv, lz[i] = ez * inv, distance[i] = dist;
       }
     }
-    Real ox[N], oy[N], oz[N], n_dot_l[N];
+    Real ox[N], oy[N], oz[N], n_dot_l[N], n_dot_h[N];
     for (int i = 0; i < N; ++i) {
       n_dot_l[i] = nx[i] * lx[i] + ny[i] * ly[i] + nz[i] * lz[i];
+      // shade_from's half vector: normalize(to_light + view).
+      const Real hx = lx[i] + vx[i], hy = ly[i] + vy[i], hz = lz[i] + vz[i];
+      const Real inv = Real(1) / std::sqrt(hx * hx + hy * hy + hz * hz);
+      n_dot_h[i] = nx[i] * (hx * inv) + ny[i] * (hy * inv) + nz[i] * (hz * inv);
       const Real side = lx[i] * gx[i] + ly[i] * gy[i] + lz[i] * gz[i] >= 0 ? Real(1) : Real(-1);
       const Real o = side * offset[i];
       ox[i] = px[i] + gx[i] * o, oy[i] = py[i] + gy[i] * o, oz[i] = pz[i] + gz[i] * o;
@@ -109,6 +113,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
     for (std::uint32_t m = cast; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       slots[i].first.lights[k].transmittance = tr[i];
+      slots[i].first.lights[k].n_dot_h = n_dot_h[i];
     }
   }
 

@@ -52,24 +52,36 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Ray shadow_ray(const SurfacePoint& sp, co
   return spawn_ray(sp, to_light, sp.time);
 }
 
+// The packet front end (render/packet_radiance.h) handles scenes with up to this many lights.
+inline constexpr int kMaxPacketLights = 4;
+
+// What the packet front end found of point light i at a surface point: sample_light()'s answer
+// and, where dot(n, to_light) > 0, the transmittance of the shadow ray it traced and
+// dot(n, h) of the half vector h = normalize(to_light + view) — the same arithmetic as below.
+struct KnownLight {
+  LightSample sample;
+  Vec3 transmittance;
+  Real n_dot_h;
+};
+
 // Light of intensity `intensity` arriving from unit direction `to_light` over `distance`:
 // Lambert + Blinn-Phong, times the shadow ray's transmittance — traced here, or, where `known` is
-// given, the transmittance of that same shadow ray traced before (render/packet_radiance.h).
+// given, taken from the packet front end with dot(n, h), which it computed side by side.
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Vec3 shade_from(const SceneView& s, const SurfacePoint& sp, const Vec3& n, const Vec3& view,
                                           const Vec3& c, const Material& m, const Vec3& to_light, Real distance,
-                                          const Vec3& intensity, RayCounters& counters, const Vec3* known = nullptr) {
+                                          const Vec3& intensity, RayCounters& counters,
+                                          const KnownLight* known = nullptr) {
   const Real n_dot_l = dot(n, to_light);
   if (n_dot_l <= 0) return Vec3(0);  // light behind the surface
   Vec3 tr;
   if (known != nullptr) {
-    tr = *known;
+    tr = known->transmittance;
   } else {
     ++counters.shadow;
     tr = transmittance(s, shadow_ray(sp, to_light), distance);
   }
   if (is_black(tr)) return Vec3(0);  // in shadow: ambient only
-  const Vec3 h = normalize(to_light + view);
-  const Real n_dot_h = dot(n, h);
+  const Real n_dot_h = known != nullptr ? known->n_dot_h : dot(n, normalize(to_light + view));
   Vec3 contribution = c * (m.diffuse * (1 - m.transparency) * n_dot_l);
   if (n_dot_h > 0 && !is_black(m.specular)) contribution += m.specular * specular_power(n_dot_h, m.shininess);
   return contribution * intensity * tr;
@@ -92,16 +104,6 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const Sce
   return sum * (Real(1) / (k * k));
 }
 
-// The packet front end (render/packet_radiance.h) handles scenes with up to this many lights.
-inline constexpr int kMaxPacketLights = 4;
-
-// What the packet front end found of point light i at a surface point: sample_light()'s answer
-// and, where dot(n, to_light) > 0, the transmittance of the shadow ray it traced.
-struct KnownLight {
-  LightSample sample;
-  Vec3 transmittance;
-};
-
 // `known`, where given, holds known[i] for each point light i (the packet front end's); else
 // local_illumination samples the lights and traces the shadow rays itself.
 STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
@@ -116,8 +118,7 @@ STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const Surf
     if (!light.is_area()) {
       if (known != nullptr) {
         const LightSample& ls = known[i].sample;
-        result += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance, counters,
-                             &known[i].transmittance);
+        result += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance, counters, &known[i]);
         continue;
       }
       const LightSample ls = sample_light(light, sp.p);

@@ -34,6 +34,29 @@ STRAHL_HOST_DEVICE constexpr std::uint32_t owen_scramble(std::uint32_t x, std::u
   return reverse_bits(laine_karras(reverse_bits(x), seed));
 }
 
+// One round of Kensler's hash of i within the mask w (2^k − 1 ≥ n − 1).
+STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_round(std::uint32_t i, std::uint32_t w, std::uint32_t seed) {
+  i ^= seed;
+  i *= 0xe170893du;
+  i ^= seed >> 16;
+  i ^= (i & w) >> 4;
+  i ^= seed >> 8;
+  i *= 0x0929eb3fu;
+  i ^= seed >> 23;
+  i ^= (i & w) >> 1;
+  i *= 1 | seed >> 27;
+  i *= 0x6935fa69u;
+  i ^= (i & w) >> 11;
+  i *= 0x74dcb303u;
+  i ^= (i & w) >> 2;
+  i *= 0x9e501cc3u;
+  i ^= (i & w) >> 2;
+  i *= 0xc860a3dfu;
+  i &= w;
+  i ^= i >> 5;
+  return i;
+}
+
 // Element i of a random permutation of [0, n) chosen by `seed` (Kensler's cycle-walking hash).
 STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_element(std::uint32_t i, std::uint32_t n, std::uint32_t seed) {
   if (n <= 1) return 0;
@@ -44,27 +67,18 @@ STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_element(std::uint32_t i, 
   w |= w >> 8;
   w |= w >> 16;
   do {
-    i ^= seed;
-    i *= 0xe170893du;
-    i ^= seed >> 16;
-    i ^= (i & w) >> 4;
-    i ^= seed >> 8;
-    i *= 0x0929eb3fu;
-    i ^= seed >> 23;
-    i ^= (i & w) >> 1;
-    i *= 1 | seed >> 27;
-    i *= 0x6935fa69u;
-    i ^= (i & w) >> 11;
-    i *= 0x74dcb303u;
-    i ^= (i & w) >> 2;
-    i *= 0x9e501cc3u;
-    i ^= (i & w) >> 2;
-    i *= 0xc860a3dfu;
-    i &= w;
-    i ^= i >> 5;
+    i = permutation_round(i, w, seed);
   } while (i >= n);
   if ((n & (n - 1)) == 0) return (i + seed) & (n - 1);  // n a power of two: the same as % n
   return (i + seed) % n;
 }
+
+// permutation_element(i, n, seed) for a power of two n > 1: one round always lands below n
+// (the round's result has no bit above w = n − 1), so there is no walk — a loop over many i
+// runs side by side.
+STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_element_pow2(std::uint32_t i, std::uint32_t n, std::uint32_t seed) {
+  return (permutation_round(i, n - 1, seed) + seed) & (n - 1);
+}
+
 
 }  // namespace strahl

@@ -177,6 +177,30 @@ struct PixelSequence {
     cs.time = time;
     return cs;
   }
+
+  // sample(first + i) for i < count (≤ N) into cs[0 … N): for the grid with a power-of-two side,
+  // no lens and no shutter, and samples of one round, the film positions with the lanes side by
+  // side (sample()'s arithmetic; cs[count …] get positions nobody reads); sample by sample otherwise.
+  template <int N>
+  STRAHL_HOST_DEVICE void samples(std::uint32_t first, int count, CameraSample* cs) const {
+    if (kind == SamplerKind::Grid && side_shift > 0 && !uses_lens && !uses_time && count > 0) {
+      const std::uint32_t n = side * side;
+      const std::uint32_t round = first >> (2 * side_shift);
+      if (((first + std::uint32_t(count) - 1) >> (2 * side_shift)) == round) {
+        const std::uint32_t order = round == 0 ? h[0] : hash(3 * round);
+        const Real inv = Real(1) / Real(side);  // exact: a power of two
+        for (int i = 0; i < N; ++i) {
+          const std::uint32_t s = permutation_element_pow2((first + std::uint32_t(i)) & (n - 1), n, order);
+          cs[i].film_x = Real(x) + (Real(s & (side - 1)) + Real(0.5)) * inv;
+          cs[i].film_y = Real(y) + (Real(s >> side_shift) + Real(0.5)) * inv;
+          cs[i].lens = Vec2{Real(0.5), Real(0.5)};
+          cs[i].time = 0;
+        }
+        return;
+      }
+    }
+    for (int i = 0; i < count; ++i) cs[i] = sample(first + std::uint32_t(i));
+  }
 };
 
 // Kernel side: the sampler's settings, plain data.
