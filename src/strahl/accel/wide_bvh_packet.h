@@ -515,8 +515,8 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE std::uint32_t lanes_reaching(const Packet
 // lane order accepting t < the lane's nearest so far, which finds what blocks_nearest() finds:
 // the first of the nearest. AVX-512: every group of lanes with one axis order, eight at a time,
 // nearest and any hit. AVX2 (four lanes a vector: no fewer operations per lane and triangle than
-// one ray against a block of four): only full groups of four lanes, for nearest hits, where it
-// measured faster. Leaves with spheres or solids, and the other lanes, go lane by lane through
+// one ray against a block of four): only groups of three or four of a vector's lanes, for nearest
+// hits, where it measured faster. Leaves with spheres or solids, and the other lanes, go lane by lane through
 // blocks_nearest() / blocks_any().
 
 // Per lane, structure of arrays, in double: the origin in the lane's axis order, the shear, the
@@ -728,19 +728,23 @@ STRAHL_FORCE_INLINE unsigned leaf_triangles4(const WideBvhLeaf* blocks, std::uin
   return changed;
 }
 
-// The nearest hits of the lanes of `lanes` that come four to a group of four with one axis order
-// (leaf_triangles4()); `lanes` keeps the others, for the one-lane blocks test.
+// The nearest hits of the lanes of `lanes` that come three or four to a vector's four lanes, all
+// with one axis order (leaf_triangles4()); `lanes` keeps the others, for the one-lane blocks test.
+// (Two lanes a vector measured slower than the one-lane test.)
 template <int N>
 STRAHL_FORCE_INLINE std::uint32_t leaf_triangles_dense(const WideBvhLeaf* blocks, std::uint32_t count,
                                                        PacketTriangles<N>& q, std::uint32_t& lanes) {
   std::uint32_t changed = 0;
   for (int h = 0; h < N; h += 4) {
     const unsigned m4 = (lanes >> h) & 15u;
-    if (m4 != 15u) continue;
-    const int axes = q.axes[h];
-    if (q.axes[h + 1] != axes || q.axes[h + 2] != axes || q.axes[h + 3] != axes) continue;
-    changed |= std::uint32_t(leaf_triangles4(blocks, count, q, h, m4, axes & 3, (axes >> 2) & 3, axes >> 4)) << h;
-    lanes &= ~(15u << h);
+    if (m4 == 0 || (m4 & (m4 - 1)) == 0 || ((m4 & (m4 - 1)) & ((m4 & (m4 - 1)) - 1)) == 0) continue;  // < 3 lanes
+    const int axes = q.axes[h + wide_bvh_detail::lowest_bit(m4)];
+    unsigned group = 0;
+    for (int i = 0; i < 4; ++i)
+      if (((m4 >> i) & 1u) && q.axes[h + i] == axes) group |= 1u << i;
+    if (group != m4) continue;
+    changed |= std::uint32_t(leaf_triangles4(blocks, count, q, h, group, axes & 3, (axes >> 2) & 3, axes >> 4)) << h;
+    lanes &= ~(group << h);
   }
   return changed;
 }
@@ -992,7 +996,7 @@ STRAHL_HOST_DEVICE inline void wide_bvh_nearest_packet(const WideBvhView& bvh, c
       changed = leaf_triangles(first, count, q, lanes, false);
     } else
 #elif defined(STRAHL_PACKET_AVX2)
-    // Full groups of four lanes with one axis order a triangle at a time; the rest lane by lane.
+    // Groups of three or four lanes with one axis order a triangle at a time; the rest lane by lane.
     if (triangles_only(first, count)) changed = leaf_triangles_dense(first, count, q, lanes);
 #endif
     {
