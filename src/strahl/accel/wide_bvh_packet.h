@@ -212,13 +212,10 @@ STRAHL_HOST_DEVICE inline void lower_frustum(PacketBoxes<N>& p, std::uint32_t ac
   p.f_t_max = m;
 }
 
-// Every lane of the packet: set_lane() for the active ones, clear_lane() for the others. With
-// AVX-512 ray_boxes()'s double arithmetic runs eight lanes at once, the same IEEE operations in
-// the same order (so the same figures as set_lane()).
+// Bit a set where every active lane's direction is negative along axis a (signbit); −1 when the
+// active lanes' signs differ on some axis (PacketBoxes::signs).
 template <int N>
-STRAHL_HOST_DEVICE inline void set_lanes(PacketBoxes<N>& p, std::uint32_t active, const WideBvhView& bvh,
-                                         const Ray* rays, const Real* t_min, const Real* t_max) {
-#if defined(STRAHL_PACKET_AVX512)
+STRAHL_HOST_DEVICE inline int shared_signs(std::uint32_t active, const Ray* rays) {
   int any_sign = 0, all_sign = 7;
   for (int i = 0; i < N; ++i) {
     if (((active >> i) & 1u) == 0) continue;
@@ -227,7 +224,17 @@ STRAHL_HOST_DEVICE inline void set_lanes(PacketBoxes<N>& p, std::uint32_t active
     any_sign |= sign;
     all_sign &= sign;
   }
-  p.signs = any_sign == all_sign ? all_sign : -1;
+  return any_sign == all_sign ? all_sign : -1;
+}
+
+// Every lane of the packet: set_lane() for the active ones, clear_lane() for the others. With
+// AVX-512 ray_boxes()'s double arithmetic runs eight lanes at once, the same IEEE operations in
+// the same order (so the same figures as set_lane()).
+template <int N>
+STRAHL_HOST_DEVICE inline void set_lanes(PacketBoxes<N>& p, std::uint32_t active, const WideBvhView& bvh,
+                                         const Ray* rays, const Real* t_min, const Real* t_max) {
+#if defined(STRAHL_PACKET_AVX512)
+  p.signs = shared_signs<N>(active, rays);
   alignas(64) double o[3][N], d[3][N];
   for (int i = 0; i < N; ++i) {
     const bool on = (active >> i) & 1u;
@@ -333,15 +340,7 @@ STRAHL_HOST_DEVICE inline void set_lanes(PacketBoxes<N>& p, std::uint32_t active
     _mm_store_ps(p.t_max + h, round_out4<true>(hi));
   }
 #else
-  int any_sign = 0, all_sign = 7;
-  for (int i = 0; i < N; ++i) {
-    if (((active >> i) & 1u) == 0) continue;
-    const Vec3& d = rays[i].direction;
-    const int sign = (std::signbit(d.x) ? 1 : 0) | (std::signbit(d.y) ? 2 : 0) | (std::signbit(d.z) ? 4 : 0);
-    any_sign |= sign;
-    all_sign &= sign;
-  }
-  p.signs = any_sign == all_sign ? all_sign : -1;
+  p.signs = shared_signs<N>(active, rays);
   for (int i = 0; i < N; ++i) {
     if ((active >> i) & 1u)
       set_lane(p, i, bvh, rays[i], t_min[i], t_max[i]);
