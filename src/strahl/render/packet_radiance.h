@@ -15,7 +15,7 @@
 
 namespace strahl {
 
-// Whether the packet front end handles the scene's lights (shadow[] has room for each).
+// Whether the packet front end handles the scene's lights (FirstHit::lights has room for each).
 STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) { return s.light_count <= kMaxPacketLights; }
 
 // Samples first … first + count − 1 (count ≤ N) of pixel sequence p: their camera samples into
