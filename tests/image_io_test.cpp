@@ -160,6 +160,26 @@ TEST(ImageEncoding, SrgbTransferFunction) {
   EXPECT_EQ(to_byte(100.0f / 255), 100);
 }
 
+// to_byte rounds v · 255 half away from zero, as std::lround does: tried on the 4097 floats
+// around every half step (k + 0.5) / 255, where a float's own "+ 0.5f" or a truncation goes wrong,
+// and on NaN, infinities and values outside 0 … 1.
+TEST(ImageEncoding, ToByteRoundsLikeLround) {
+  int wrong = 0;
+  for (int k = 0; k < 255; ++k) {
+    float v = (float(k) + 0.5f) / 255.0f;
+    for (int i = 0; i < 2048; ++i) v = std::nextafter(v, 0.0f);
+    for (int i = 0; i <= 4096; ++i, v = std::nextafter(v, 1.0f))
+      wrong += to_byte(v) != static_cast<unsigned char>(std::lround(v * 255.0f));
+  }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(to_byte(std::numeric_limits<float>::quiet_NaN()), 0);
+  EXPECT_EQ(to_byte(-std::numeric_limits<float>::infinity()), 0);
+  EXPECT_EQ(to_byte(std::numeric_limits<float>::infinity()), 255);
+  EXPECT_EQ(to_byte(-0.0f), 0);
+  EXPECT_EQ(to_byte(1.0001f), 255);
+  EXPECT_EQ(to_byte(std::numeric_limits<float>::denorm_min()), 0);
+}
+
 TEST_F(ImageIo, UppercaseExtensionsWork) {
   const Image img = hdr_test_image();
   write_image(img, dir_ / "UP.PFM");
