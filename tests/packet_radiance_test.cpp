@@ -123,6 +123,42 @@ TEST(PacketFrontEnd, WhittedSceneSpawnsSecondaryRays) {
   EXPECT_GT(tally.secondary, 100u);
 }
 
+// The lanes shade side by side where a pixel's samples meet several materials: exponents that
+// differ between the lanes, a fractional and a zero exponent (std::pow, lane by lane), black
+// highlights, a checkerboard, a mirror beside a matte sphere (lanes that go on into trace()),
+// three lights of two kinds — each sample as it would be alone, bit for bit.
+TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
+  Scene scene = lecture_scene();
+  scene.settings.width = 24;  // coarse pixels: many straddle two objects
+  scene.settings.height = 14;
+  const auto with = [](Real shininess, Real specular) {
+    Material m = material_with_color(Vec3(0.6, 0.3, 0.2));
+    m.shininess = shininess;
+    m.specular = Vec3(specular);
+    return m;
+  };
+  scene.addSceneObject(new Sphere(Vec3(0.3, 0.3, 0.4), 0.15, with(12.5, 0.5)));
+  scene.addSceneObject(new Sphere(Vec3(0.1, 0.3, 0.4), 0.12, with(0, 0.4)));
+  scene.addSceneObject(new Sphere(Vec3(-0.1, 0.3, 0.4), 0.12, with(7, 0)));
+  scene.addSceneObject(new Sphere(Vec3(-0.3, 0.3, 0.4), 0.12, with(100000, 0.7)));
+  Material checker = with(3, 0.3);
+  checker.checker_size = 0.05;
+  scene.addSceneObject(new Sphere(Vec3(0.5, 0.15, 0.5), 0.15, checker));
+  Material mirror = with(100, 0.6);
+  mirror.reflectivity = 0.5;
+  scene.addSceneObject(new Sphere(Vec3(-0.5, 0.15, 0.5), 0.15, mirror));
+  scene.add(point_light(Vec3(-1, 2, 2), Vec3(0.5, 0.4, 0.3)));
+  scene.add(directional_light(normalize(Vec3(0.3, -1, -0.2)), Vec3(0.2, 0.3, 0.4)));
+  const RenderScene rs = compile(scene);
+  ASSERT_TRUE(packet_radiance_supported(rs.view()));
+  SamplingSettings sampling;
+  sampling.spp = 16;
+  Tally tally;
+  expect_packets_match<16>(rs.view(), make_pixel_sampler(sampling), 0, 16, "mixed materials", tally);
+  expect_packets_match<8>(rs.view(), make_pixel_sampler(sampling), 3, 5, "mixed materials", tally);
+  EXPECT_GT(tally.secondary, 0u);
+}
+
 // More lights than a FirstHit has room for: the tile renderer keeps the single-sample path.
 TEST(PacketFrontEnd, ScenesWithManyLightsAreNotPacked) {
   Scene scene = lecture_scene();

@@ -64,19 +64,17 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_roots_lanes(const kernel::Sph
 }
 
 // kernel::intersect(sphere, ray, t_min, t_max) for every lane, into t[]: the single ray's answers
-// bit for bit.
+// bit for bit. False, with t[] unset, when no lane's ray meets the sphere (all kInfinity).
 template <int N>
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect_sphere_lanes(const kernel::Sphere& sphere, const PacketRays<N>& r,
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool intersect_sphere_lanes(const kernel::Sphere& sphere, const PacketRays<N>& r,
                                                                    const Real* t_min, const Real* t_max, Real* t) {
   Real t0[N], t1[N];
-  if (!sphere_roots_lanes<N>(sphere, r, t0, t1)) {
-    for (int i = 0; i < N; ++i) t[i] = kInfinity;
-    return;
-  }
+  if (!sphere_roots_lanes<N>(sphere, r, t0, t1)) return false;
   for (int i = 0; i < N; ++i) {
     const bool t0_in = (t0[i] > t_min[i]) & (t0[i] < t_max[i]), t1_in = (t1[i] > t_min[i]) & (t1[i] < t_max[i]);
     t[i] = t0_in ? t0[i] : t1_in ? t1[i] : kInfinity;
   }
+  return true;
 }
 
 // kernel::crossings(sphere, ray, t_min, t_max) for every lane, into n[]: 0, 1 or 2.
@@ -118,21 +116,21 @@ STRAHL_HOST_DEVICE inline void nearest_hit_packet(const AccelView& a, std::uint3
     // One leaf of spheres (nearest_hit's loop): sphere by sphere, all lanes at once, each lane's
     // far end lowered as it finds nearer hits, exactly as its own loop would.
     const PacketRays<N> r(rays);
-    Real t_far[N], t[N];
-    std::uint32_t prim[N];
+    // (the sphere's index kept as a Real beside t, so that the lanes' update is one width)
+    Real t_far[N], t[N], prim[N];
     for (int i = 0; i < N; ++i) t_far[i] = t_max[i], prim[i] = 0;
     for (std::uint32_t k = 0; k < a.prims.sphere_count; ++k) {
-      intersect_sphere_lanes<N>(a.prims.spheres[k], r, t_min, t_far, t);
+      if (!intersect_sphere_lanes<N>(a.prims.spheres[k], r, t_min, t_far, t)) continue;
       for (int i = 0; i < N; ++i) {
         const bool nearer = t[i] < t_far[i];
         t_far[i] = nearer ? t[i] : t_far[i];
-        prim[i] = nearer ? k : prim[i];
+        prim[i] = nearer ? Real(k) : prim[i];
       }
     }
-    for (int i = 0; i < N; ++i) {
-      if (!((active >> i) & 1u)) continue;
+    for (std::uint32_t m = active; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
       out[i] = NearestHit{};
-      if (t_far[i] < t_max[i]) out[i] = NearestHit{prim[i], kernel::TriangleHit{t_far[i], 0, 0}};
+      if (t_far[i] < t_max[i]) out[i] = NearestHit{std::uint32_t(prim[i]), kernel::TriangleHit{t_far[i], 0, 0}};
     }
     return;
   }
@@ -159,14 +157,15 @@ STRAHL_HOST_DEVICE inline std::uint32_t occluded_packet(const AccelView& a, std:
   if (a.kind == AccelKind::Bvh && !a.one_leaf) return wide_bvh_occluded_packet<N>(a.bvh, a.prims, active, rays, t_min, t_max);
   if (is_sphere_leaf(a)) {  // as nearest_hit_packet: all lanes, sphere by sphere
     const PacketRays<N> r(rays);
-    Real t[N];
-    bool hit[N] = {};
-    for (std::uint32_t k = 0; k < a.prims.sphere_count; ++k) {
-      intersect_sphere_lanes<N>(a.prims.spheres[k], r, t_min, t_max, t);
-      for (int i = 0; i < N; ++i) hit[i] = hit[i] || t[i] < kInfinity;
-    }
+    Real t0[N], t1[N];
     std::uint32_t m = 0;
-    for (int i = 0; i < N; ++i) m |= std::uint32_t(hit[i]) << i;
+    for (std::uint32_t k = 0; k < a.prims.sphere_count && (active & ~m) != 0; ++k) {
+      if (!sphere_roots_lanes<N>(a.prims.spheres[k], r, t0, t1)) continue;
+      for (int i = 0; i < N; ++i) {  // (intersect_sphere_lanes' test: a root inside the segment)
+        const bool in = ((t0[i] > t_min[i]) & (t0[i] < t_max[i])) | ((t1[i] > t_min[i]) & (t1[i] < t_max[i]));
+        m |= std::uint32_t(in) << i;
+      }
+    }
     return m & active;
   }
   std::uint32_t m = 0;

@@ -18,6 +18,62 @@ namespace strahl {
 // Whether the packet front end handles the scene's lights (FirstHit::lights has room for each).
 STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) { return s.light_count <= kMaxPacketLights; }
 
+// shade_from()'s term of one point or directional light of intensity `radiance`, added to r in
+// the lanes of `lanes` — the same operations on the same values, lane by lane: Lambert,
+// Blinn-Phong where dot(n, h) > 0 and k_s is not black, times the intensity and the shadow ray's
+// transmittance tr; 0 where tr is black (in shadow) or where the lane cast no shadow ray (not in
+// `cast`: dot(n, to_light) ≤ 0).
+template <int N>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void add_light_lanes(const Vec3& radiance, std::uint32_t lanes, std::uint32_t cast,
+                                                            const Real* n_dot_l,
+                                                            const Real* n_dot_h, const Vec3* tr, const Real* cr,
+                                                            const Real* cg, const Real* cb, const Real* kd,
+                                                            const Real* sr, const Real* sg, const Real* sb,
+                                                            const Real* shininess, Real* rr, Real* rg, Real* rb) {
+  // specular_power(n_dot_h, shininess) side by side when the lanes share a whole exponent (one
+  // material, as a pixel's samples mostly are), else lane by lane.
+  Real power[N] = {};
+  const int first = wide_bvh_detail::lowest_bit(lanes);
+  const Real e = shininess[first];
+  Real exponent[N];  // the lanes' exponents, e outside `lanes`
+  for (int i = 0; i < N; ++i) exponent[i] = shininess[i];
+  for (std::uint32_t m = ~lanes & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) exponent[wide_bvh_detail::lowest_bit(m)] = e;
+  int differ = 0;
+  for (int i = 0; i < N; ++i) differ |= int(exponent[i] != e);
+  if (differ == 0 && e >= 0 && e < 65536 && e == Real(static_cast<unsigned>(e))) {
+    Real x[N];
+    for (int i = 0; i < N; ++i) power[i] = 1, x[i] = n_dot_h[i];
+    for (unsigned n = static_cast<unsigned>(e); n != 0; n >>= 1) {
+      if (n & 1)
+        for (int i = 0; i < N; ++i) power[i] *= x[i];
+      for (int i = 0; i < N; ++i) x[i] *= x[i];
+    }
+  } else {
+    for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      power[i] = specular_power(n_dot_h[i], shininess[i]);
+    }
+  }
+  // The transmittances side by side, 0 in the lanes that add nothing: then every test below is
+  // one on Reals, and the loop runs the lanes together.
+  Real tx[N], ty[N], tz[N];
+  for (int i = 0; i < N; ++i) tx[i] = tr[i].x, ty[i] = tr[i].y, tz[i] = tr[i].z;
+  for (std::uint32_t m = ~(lanes & cast) & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    tx[i] = ty[i] = tz[i] = 0;
+  }
+  for (int i = 0; i < N; ++i) {
+    const bool lit = !((tx[i] == 0) & (ty[i] == 0) & (tz[i] == 0));
+    const bool shine = (n_dot_h[i] > 0) & !((sr[i] == 0) & (sg[i] == 0) & (sb[i] == 0));
+    const Real diffuse = kd[i] * n_dot_l[i];
+    Real x = cr[i] * diffuse, y = cg[i] * diffuse, z = cb[i] * diffuse;
+    x = shine ? x + sr[i] * power[i] : x, y = shine ? y + sg[i] * power[i] : y, z = shine ? z + sb[i] * power[i] : z;
+    rr[i] += lit ? x * radiance.x * tx[i] : Real(0);
+    rg[i] += lit ? y * radiance.y * ty[i] : Real(0);
+    rb[i] += lit ? z * radiance.z * tz[i] : Real(0);
+  }
+}
+
 // Samples first … first + count − 1 (count ≤ N) of pixel sequence p: their camera samples into
 // cs[], their radiance (guarded as sample_radiance's) into L[].
 template <int N>
@@ -67,6 +123,32 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
     lit |= 1u << i;
   }
 
+  // Lanes whose material spawns no ray get their colour here, the local illumination alone
+  // (local_illumination's arithmetic, side by side), when every light is a point or directional
+  // one: the ambient term now, each light's term as its shadow rays come back.
+  std::uint32_t local = 0;
+  Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shininess[N], rr[N], rg[N], rb[N];
+  for (int i = 0; i < N; ++i) {
+    const Material* material = nullptr;
+    if (s.area_light_count == 0 && ((lit >> i) & 1u)) {
+      material = &s.materials[slots[i].first.sp.material];
+      if (material->reflectivity > 0 || material->transparency > 0) material = nullptr;
+    }
+    if (material == nullptr) {  // (the lane's values are not used; they are set all the same)
+      cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
+      continue;
+    }
+    local |= 1u << i;
+    const Vec3 c = surface_color(*material, slots[i].first.sp.texcoord);
+    const Real opacity = 1 - material->transparency;
+    const Vec3 ambient = c * s.settings.ambient_light * (material->ambient * opacity);
+    cr[i] = c.x, cg[i] = c.y, cb[i] = c.z;
+    rr[i] = ambient.x, rg[i] = ambient.y, rb[i] = ambient.z;
+    kd[i] = material->diffuse * (1 - material->transparency);
+    sr[i] = material->specular.x, sg[i] = material->specular.y, sb[i] = material->specular.z;
+    shininess[i] = material->shininess;
+  }
+
   // The shadow rays to each point light, as local_illumination() casts them (sample_light,
   // shadow_ray: the same arithmetic, side by side), in one packet per light.
   for (std::uint32_t k = 0; k < s.light_count; ++k) {
@@ -102,22 +184,28 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
     }
     Ray shadow[N];
     Vec3 tr[N];
-    for (std::uint32_t m = lit; m != 0; m &= m - 1) {
+    for (std::uint32_t m = lit & ~local; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       slots[i].first.lights[k].sample = LightSample{Vec3(lx[i], ly[i], lz[i]), distance[i]};
     }
-    if (cast == 0) continue;
-    for (int i = 0; i < N; ++i) shadow[i] = Ray{Vec3(ox[i], oy[i], oz[i]), Vec3(lx[i], ly[i], lz[i]), rays[i].time};
-    for (std::uint32_t m = cast; m != 0; m &= m - 1) ++counters.shadow;
-    transmittance_packet<N>(s, cast, shadow, distance, tr);
-    for (std::uint32_t m = cast; m != 0; m &= m - 1) {
-      const int i = wide_bvh_detail::lowest_bit(m);
-      slots[i].first.lights[k].transmittance = tr[i];
-      slots[i].first.lights[k].n_dot_h = n_dot_h[i];
+    if (cast != 0) {
+      for (int i = 0; i < N; ++i) shadow[i] = Ray{Vec3(ox[i], oy[i], oz[i]), Vec3(lx[i], ly[i], lz[i]), rays[i].time};
+      for (std::uint32_t m = cast; m != 0; m &= m - 1) ++counters.shadow;
+      transmittance_packet<N>(s, cast, shadow, distance, tr);
+      for (std::uint32_t m = cast & ~local; m != 0; m &= m - 1) {
+        const int i = wide_bvh_detail::lowest_bit(m);
+        slots[i].first.lights[k].transmittance = tr[i];
+        slots[i].first.lights[k].n_dot_h = n_dot_h[i];
+      }
     }
+    if (local != 0) add_light_lanes<N>(light.radiance, local, cast, n_dot_l, n_dot_h, tr, cr, cg, cb, kd, sr, sg, sb, shininess, rr, rg, rb);
   }
 
   for (int i = 0; i < count; ++i) {
+    if ((local >> i) & 1u) {
+      L[i] = guard_sample(Vec3(rr[i], rg[i], rb[i]), counters);
+      continue;
+    }
     SampleStream rng{p.stream, first + std::uint32_t(i)};
     const FirstHit& f = slots[i].first;
     if ((lit >> i) & 1u) {

@@ -35,7 +35,7 @@ STRAHL_HOST_DEVICE constexpr std::uint32_t owen_scramble(std::uint32_t x, std::u
 }
 
 // One round of Kensler's hash of i within the mask w (2^k − 1 ≥ n − 1).
-STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_round(std::uint32_t i, std::uint32_t w, std::uint32_t seed) {
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE constexpr std::uint32_t permutation_round(std::uint32_t i, std::uint32_t w, std::uint32_t seed) {
   i ^= seed;
   i *= 0xe170893du;
   i ^= seed >> 16;
