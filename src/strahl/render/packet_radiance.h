@@ -24,12 +24,12 @@ STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) { r
 // transmittance tr; 0 where tr is black (in shadow) or where the lane cast no shadow ray (not in
 // `cast`: dot(n, to_light) ≤ 0).
 template <int N>
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void add_light_lanes(const Vec3& radiance, std::uint32_t lanes, std::uint32_t cast,
-                                                            const Real* n_dot_l,
-                                                            const Real* n_dot_h, const Vec3* tr, const Real* cr,
-                                                            const Real* cg, const Real* cb, const Real* kd,
-                                                            const Real* sr, const Real* sg, const Real* sb,
-                                                            const Real* shininess, Real* rr, Real* rg, Real* rb) {
+STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
+    const Vec3& radiance, std::uint32_t lanes, std::uint32_t cast, const Real* __restrict n_dot_l,
+    const Real* __restrict n_dot_h, const Vec3* __restrict tr, const Real* __restrict cr, const Real* __restrict cg,
+    const Real* __restrict cb, const Real* __restrict kd, const Real* __restrict sr, const Real* __restrict sg,
+    const Real* __restrict sb, const Real* __restrict shiny, const Real* __restrict shininess, Real* __restrict rr,
+    Real* __restrict rg, Real* __restrict rb) {
   // specular_power(n_dot_h, shininess) side by side when the lanes share a whole exponent (one
   // material, as a pixel's samples mostly are), else lane by lane.
   Real power[N] = {};
@@ -62,15 +62,19 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void add_light_lanes(const Vec3& radiance
     const int i = wide_bvh_detail::lowest_bit(m);
     tx[i] = ty[i] = tz[i] = 0;
   }
+  // Every value computed in every lane, then chosen by comparisons of Reals (no bools, no
+  // branches): the loop runs the lanes side by side. shiny[i] ≠ 0: k_s is not black.
   for (int i = 0; i < N; ++i) {
-    const bool lit = !((tx[i] == 0) & (ty[i] == 0) & (tz[i] == 0));
-    const bool shine = (n_dot_h[i] > 0) & !((sr[i] == 0) & (sg[i] == 0) & (sb[i] == 0));
     const Real diffuse = kd[i] * n_dot_l[i];
-    Real x = cr[i] * diffuse, y = cg[i] * diffuse, z = cb[i] * diffuse;
-    x = shine ? x + sr[i] * power[i] : x, y = shine ? y + sg[i] * power[i] : y, z = shine ? z + sb[i] * power[i] : z;
-    rr[i] += lit ? x * radiance.x * tx[i] : Real(0);
-    rg[i] += lit ? y * radiance.y * ty[i] : Real(0);
-    rb[i] += lit ? z * radiance.z * tz[i] : Real(0);
+    const Real x = cr[i] * diffuse, y = cg[i] * diffuse, z = cb[i] * diffuse;
+    const Real xs = x + sr[i] * power[i], ys = y + sg[i] * power[i], zs = z + sb[i] * power[i];
+    const Real ax = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? xs : x) : x) * radiance.x * tx[i];
+    const Real ay = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? ys : y) : y) * radiance.y * ty[i];
+    const Real az = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? zs : z) : z) * radiance.z * tz[i];
+    // shade_from adds nothing where the transmittance is black: (tx, ty, tz) = 0.
+    rr[i] = rr[i] + (tx[i] != 0 ? ax : ty[i] != 0 ? ax : tz[i] != 0 ? ax : Real(0));
+    rg[i] = rg[i] + (tx[i] != 0 ? ay : ty[i] != 0 ? ay : tz[i] != 0 ? ay : Real(0));
+    rb[i] = rb[i] + (tx[i] != 0 ? az : ty[i] != 0 ? az : tz[i] != 0 ? az : Real(0));
   }
 }
 
@@ -127,7 +131,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
   // (local_illumination's arithmetic, side by side), when every light is a point or directional
   // one: the ambient term now, each light's term as its shadow rays come back.
   std::uint32_t local = 0;
-  Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shininess[N], rr[N], rg[N], rb[N];
+  Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shiny[N], shininess[N], rr[N], rg[N], rb[N];
   for (int i = 0; i < N; ++i) {
     const Material* material = nullptr;
     if (s.area_light_count == 0 && ((lit >> i) & 1u)) {
@@ -135,7 +139,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
       if (material->reflectivity > 0 || material->transparency > 0) material = nullptr;
     }
     if (material == nullptr) {  // (the lane's values are not used; they are set all the same)
-      cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
+      cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
       continue;
     }
     local |= 1u << i;
@@ -146,6 +150,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
     rr[i] = ambient.x, rg[i] = ambient.y, rb[i] = ambient.z;
     kd[i] = material->diffuse * (1 - material->transparency);
     sr[i] = material->specular.x, sg[i] = material->specular.y, sb[i] = material->specular.z;
+    shiny[i] = is_black(material->specular) ? 0 : 1;
     shininess[i] = material->shininess;
   }
 
@@ -198,7 +203,8 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
         slots[i].first.lights[k].n_dot_h = n_dot_h[i];
       }
     }
-    if (local != 0) add_light_lanes<N>(light.radiance, local, cast, n_dot_l, n_dot_h, tr, cr, cg, cb, kd, sr, sg, sb, shininess, rr, rg, rb);
+    if (local != 0) add_light_lanes<N>(light.radiance, local, cast, n_dot_l, n_dot_h, tr, cr, cg, cb, kd, sr, sg, sb, shiny, shininess, rr,
+                                       rg, rb);
   }
 
   for (int i = 0; i < count; ++i) {
