@@ -20,10 +20,14 @@ struct SurfacePoint {
   Real offset = 0;       // how far secondary rays start off the surface (a bound on p's error)
 };
 
-// Largest coordinate magnitude of a triangle's vertices.
+// The larger of a and b, where b is not NaN: std::fmax's answer (b also where a is NaN) without
+// the call to libm's fmax that GCC makes for it.
+STRAHL_HOST_DEVICE constexpr Real larger_of(Real a, Real b) { return a > b ? a : b; }
+
+// Largest coordinate magnitude of a triangle's vertices (finite: the scene's).
 STRAHL_HOST_DEVICE inline Real vertex_magnitude(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Real ab = std::fmax(max_abs_component(a), max_abs_component(b));
-  return std::fmax(ab, max_abs_component(c));
+  const Real ab = larger_of(max_abs_component(a), max_abs_component(b));
+  return larger_of(ab, max_abs_component(c));
 }
 
 // The offset of secondary rays from a hit point p: it must exceed the rounding error of p and
@@ -32,7 +36,7 @@ STRAHL_HOST_DEVICE inline Real vertex_magnitude(const Vec3& a, const Vec3& b, co
 // and the path o + t·d that found p — and with nothing absolute, so that scaling a scene by any
 // factor in the supported range (docs/scene-format.md, "Units and scale") scales the offsets too.
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Real ray_offset(const Ray& ray, Real t, const Vec3& p, Real magnitude) {
-  return kRayEpsilon * std::fmax(max_abs_component(p), magnitude) +
+  return kRayEpsilon * larger_of(max_abs_component(p), magnitude) +  // (magnitude: finite)
          kRayPathEpsilon * (max_abs_component(ray.origin) + t);
 }
 
