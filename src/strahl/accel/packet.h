@@ -77,17 +77,16 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool intersect_sphere_lanes(const kernel:
   return true;
 }
 
-// kernel::crossings(sphere, ray, t_min, t_max) for every lane, into n[]: 0, 1 or 2.
+// kernel::crossings(sphere, ray, t_min, t_max) for every lane, into n[]: 0, 1 or 2. False, with
+// n[] unset, when no lane's ray meets the sphere (all 0).
 template <int N>
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sphere_crossings_lanes(const kernel::Sphere& sphere, const PacketRays<N>& r,
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_crossings_lanes(const kernel::Sphere& sphere, const PacketRays<N>& r,
                                                                    const Real* t_min, const Real* t_max, int* n) {
   Real t0[N], t1[N];
-  if (!sphere_roots_lanes<N>(sphere, r, t0, t1)) {
-    for (int i = 0; i < N; ++i) n[i] = 0;
-    return;
-  }
+  if (!sphere_roots_lanes<N>(sphere, r, t0, t1)) return false;
   for (int i = 0; i < N; ++i)
     n[i] = int((t0[i] > t_min[i]) & (t0[i] < t_max[i])) + int((t1[i] > t_min[i]) & (t1[i] < t_max[i]));
+  return true;
 }
 
 template <int N>

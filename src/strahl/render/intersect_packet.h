@@ -71,32 +71,40 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
     // Crossings to count and attenuate by, in transmittance()'s order — planes, unbounded solids,
     // then the spheres of the one leaf in index order (for_each_crossing's naive loop) — with
     // the lanes side by side at each sphere.
-    bool blocked[N];
-    for (int i = 0; i < N; ++i) tr[i] = Vec3(1), blocked[i] = !((active >> i) & 1u);
+    std::uint32_t open = active;  // lanes whose light is not blocked yet
+    for (int i = 0; i < N; ++i) tr[i] = Vec3(1);
     const auto cross = [&](int i, const Material& material, int n) {
-      for (int c = 0; c < n && !blocked[i]; ++c) blocked[i] = !attenuate(material, tr[i]);
+      for (int c = 0; c < n; ++c)
+        if (!attenuate(material, tr[i])) {
+          open &= ~(1u << i);
+          return;
+        }
     };
     for (std::uint32_t k = 0; k < s.plane_count; ++k)
-      for (int i = 0; i < N; ++i)
-        if (!blocked[i] && kernel::intersect(s.planes[k], rays[i], 0, distance[i]) < kInfinity)
-          cross(i, s.materials[s.planes[k].material], 1);
+      for (std::uint32_t m = open; m != 0; m &= m - 1) {
+        const int i = wide_bvh_detail::lowest_bit(m);
+        if (kernel::intersect(s.planes[k], rays[i], 0, distance[i]) < kInfinity) cross(i, s.materials[s.planes[k].material], 1);
+      }
     for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k)
-      for (int i = 0; i < N; ++i)
-        if (!blocked[i]) cross(i, s.materials[s.solids[k].material], kernel::crossings(s.accel.prims.shapes, s.solids[k], rays[i], 0, distance[i]));
+      for (std::uint32_t m = open; m != 0; m &= m - 1) {
+        const int i = wide_bvh_detail::lowest_bit(m);
+        cross(i, s.materials[s.solids[k].material], kernel::crossings(s.accel.prims.shapes, s.solids[k], rays[i], 0, distance[i]));
+      }
     const PacketRays<N> r(rays);
     Real t_min[N];
     int n[N];
     for (int i = 0; i < N; ++i) t_min[i] = 0;
-    for (std::uint32_t k = 0; k < s.accel.prims.sphere_count; ++k) {
-      sphere_crossings_lanes<N>(s.accel.prims.spheres[k], r, t_min, distance, n);
+    for (std::uint32_t k = 0; k < s.accel.prims.sphere_count && open != 0; ++k) {
+      if (!sphere_crossings_lanes<N>(s.accel.prims.spheres[k], r, t_min, distance, n)) continue;
+      std::uint32_t crossing = 0;
+      for (int i = 0; i < N; ++i) crossing |= std::uint32_t(n[i] > 0) << i;
       const Material& material = s.materials[s.accel.prims.spheres[k].material];
-      for (int i = 0; i < N; ++i)
-        if (n[i] > 0 && !blocked[i]) cross(i, material, n[i]);
+      for (std::uint32_t m = crossing & open; m != 0; m &= m - 1) {
+        const int i = wide_bvh_detail::lowest_bit(m);
+        cross(i, material, n[i]);
+      }
     }
-    for (std::uint32_t m = active; m != 0; m &= m - 1) {
-      const int i = wide_bvh_detail::lowest_bit(m);
-      if (blocked[i]) tr[i] = Vec3(0);
-    }
+    for (std::uint32_t m = active & ~open; m != 0; m &= m - 1) tr[wide_bvh_detail::lowest_bit(m)] = Vec3(0);
     return;
   }
   if (!(s.opaque && !moving)) {

@@ -76,6 +76,16 @@ STRAHL_HOST_DEVICE STRAHL_DEVICE_NOINLINE Vec3 transmittance(const SceneView& s,
                                                  : occluded(s.accel, ray, 0, distance);
     return blocked || (s.instance_count > 0 && instance_occluded(s, ray, 0, distance)) ? Vec3(0) : tr;
   }
+  if (is_sphere_leaf(s.accel) && s.moving_sphere_count + s.moving_triangle_count == 0 && s.instance_count == 0) {
+    // One leaf of spheres: for_each_crossing's naive loop, without its visitor.
+    for (std::uint32_t i = 0; i < s.accel.prims.sphere_count; ++i) {
+      const kernel::Sphere& sphere = s.accel.prims.spheres[i];
+      const int n = kernel::crossings(sphere, ray, 0, distance);
+      for (int k = 0; k < n; ++k)
+        if (!attenuate(s.materials[sphere.material], tr)) return Vec3(0);
+    }
+    return tr;
+  }
   bool blocked = false;
   auto cross = [&](std::uint32_t prim, int crossings) {
     const Material& m = s.materials[primitive_material(s.accel.prims, prim)];
