@@ -3,11 +3,13 @@
 // the same eye through one pixel) take their first step together — the camera rays' nearest hits,
 // then, light by light, the shadow rays from those hits — through the packet queries of
 // intersect_packet.h, whose planes and sphere loops run the lanes side by side and whose BVH
-// fetches each node once per packet. Each sample then goes on alone in the one integrator,
-// trace() (render/whitted.h), from that first step (FirstHit): shading, reflected and refracted
-// rays. The radiance of each sample is sample_radiance()'s bit for bit (same hits, same shadow
-// rays, same arithmetic; the counters the same too), except where a camera ray meets two
-// triangles at exactly the same t (accel/packet.h).
+// fetches each node once per packet. A sample whose surface spawns no ray (no mirror, no
+// glass) in a scene of point and directional lights is shaded there too, the lanes side by side
+// (add_light_lanes); every other sample goes on alone in the one integrator, trace()
+// (render/whitted.h), from that first step (FirstHit): shading, reflected and refracted rays.
+// The radiance of each sample is sample_radiance()'s bit for bit (same hits, same shadow rays,
+// same arithmetic; the counters the same too), except where a camera ray meets two triangles at
+// exactly the same t (accel/packet.h).
 
 #include "strahl/render/integrator.h"
 #include "strahl/render/intersect_packet.h"
