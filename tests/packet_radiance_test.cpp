@@ -159,6 +159,52 @@ TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
   EXPECT_GT(tally.secondary, 0u);
 }
 
+// Lanes from neighbouring pixels (packet_radiance_of, what the tile renderer uses for pixels with
+// one sample each): every row in runs of N pixels, lane j taking sample j % 3 of its pixel — each
+// sample's radiance bit for bit pixel_sample()'s, the ray counts equal.
+template <int N>
+void expect_neighbours_match(const SceneView& view, const PixelSampler& sampler, const std::string& what) {
+  for (int row = 0; row < view.camera.ny; ++row) {
+    for (int x0 = 0; x0 < view.camera.nx; x0 += N) {
+      const int count = view.camera.nx - x0 < N ? view.camera.nx - x0 : N;
+      CameraSample cs[N];
+      std::uint64_t key[N];
+      std::uint32_t index[N];
+      Vec3 L[N];
+      for (int j = 0; j < count; ++j) {
+        const PixelSequence p = pixel_sequence(view, sampler, x0 + j, row);
+        index[j] = std::uint32_t(j % 3);
+        cs[j] = p.sample(index[j]);
+        key[j] = p.stream;
+      }
+      RayCounters packed, single;
+      packet_radiance_of<N>(view, cs, key, index, count, L, packed);
+      for (int j = 0; j < count; ++j) {
+        CameraSample c;
+        const Vec3 l = pixel_sample(view, pixel_sequence(view, sampler, x0 + j, row), index[j], c, single);
+        ASSERT_TRUE(same_bits(L[j], l)) << what << " N " << N << " pixel " << x0 + j << "," << row;
+      }
+      ASSERT_TRUE(same_counts(packed, single)) << what << " N " << N << " row " << row;
+    }
+  }
+}
+
+TEST(PacketFrontEnd, LanesOfNeighbouringPixelsEqualTheSingleSamplePath) {
+  for (const char* file : {"lecture-whitted.yaml", "mesh.yaml", "depth-of-field.yaml", "soft-shadows.yaml"}) {
+    Scene scene = load_scene(std::string(STRAHL_SOURCE_DIR) + "/scenes/" + file);
+    scene.settings.width = 40;
+    scene.settings.height = 23;
+    const RenderScene rs = compile(scene);
+    ASSERT_TRUE(packet_radiance_supported(rs.view())) << file;
+    SamplingSettings sampling;
+    sampling.sampler = SamplerKind::Stratified;
+    sampling.spp = 4;
+    const PixelSampler sampler = make_pixel_sampler(sampling);
+    expect_neighbours_match<16>(rs.view(), sampler, file);
+    expect_neighbours_match<8>(rs.view(), sampler, file);
+  }
+}
+
 // More lights than a FirstHit has room for: the tile renderer keeps the single-sample path.
 TEST(PacketFrontEnd, ScenesWithManyLightsAreNotPacked) {
   Scene scene = lecture_scene();

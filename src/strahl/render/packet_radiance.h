@@ -80,15 +80,16 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
   }
 }
 
-// Samples first … first + count − 1 (count ≤ N) of pixel sequence p: their camera samples into
-// cs[], their radiance (guarded as sample_radiance's) into L[].
+// The camera samples cs[0 … count − 1] (count ≤ N), lane i sample number index[i] of the pixel
+// whose random numbers are keyed by key[i] (PixelSequence::stream): their radiance (guarded as
+// sample_radiance's) into L[]. The lanes may be samples of one pixel or of several.
 template <int N>
-STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSequence& p, std::uint32_t first,
-                                               int count, CameraSample* cs, Vec3* L, RayCounters& counters) {
+STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const CameraSample* cs, const std::uint64_t* key,
+                                                  const std::uint32_t* index, int count, Vec3* L,
+                                                  RayCounters& counters) {
   const std::uint32_t active = count >= 32 ? ~0u : (1u << count) - 1;
   // The camera rays: directions side by side (Camera::directions, generate_ray's arithmetic).
   Real film_x[N], film_y[N], dx[N], dy[N], dz[N];
-  p.samples<N>(first, count, cs);
   for (int i = 0; i < count; ++i) film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y;
   for (int i = count; i < N; ++i) film_x[i] = film_x[0], film_y[i] = film_y[0];  // inactive lanes: nobody reads them
   s.camera.directions<N>(film_x, film_y, dx, dy, dz);
@@ -214,7 +215,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
       L[i] = guard_sample(Vec3(rr[i], rg[i], rb[i]), counters);
       continue;
     }
-    SampleStream rng{p.stream, first + std::uint32_t(i)};
+    SampleStream rng{key[i], index[i]};
     const FirstHit& f = slots[i].first;
     if ((lit >> i) & 1u) {
       const Material& m = s.materials[f.sp.material];
@@ -227,6 +228,18 @@ STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSe
     }
     L[i] = guard_sample(trace(s, rays[i], counters, rng, &f), counters);
   }
+}
+
+// Samples first … first + count − 1 (count ≤ N) of pixel sequence p: their camera samples into
+// cs[], their radiance (guarded as sample_radiance's) into L[].
+template <int N>
+STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSequence& p, std::uint32_t first,
+                                               int count, CameraSample* cs, Vec3* L, RayCounters& counters) {
+  p.samples<N>(first, count, cs);
+  std::uint64_t key[N];
+  std::uint32_t index[N];
+  for (int i = 0; i < N; ++i) key[i] = p.stream, index[i] = first + std::uint32_t(i);
+  packet_radiance_of<N>(s, cs, key, index, count, L, counters);
 }
 
 }  // namespace strahl

@@ -27,18 +27,74 @@ bool render_samples_packed(const SceneView& view, const PixelSequence& sequence,
   return true;
 }
 
+// Pixels of one row with one sample each (a 1-spp pass: the adaptive sampler's first, the
+// viewer's), gathered into packets of up to 16 neighbours (render/packet_radiance.h).
+class NeighbourPackets {
+ public:
+  NeighbourPackets(const SceneView& view, const FilmLayout& film, TileWork& work)
+      : view_(view), film_(film), work_(work) {}
+
+  // Pixel (x, row), entry i of the tile, takes its sample `index` of `sequence`; false when stopped.
+  bool add(const PixelSequence& sequence, std::uint32_t index, int x, int row, std::size_t i, const StopToken& stop) {
+    if (count_ > 0 && row != row_) {
+      if (!flush(stop)) return false;
+    }
+    row_ = row;
+    cs_[count_] = sequence.sample(index);
+    key_[count_] = sequence.stream;
+    index_[count_] = index;
+    x_[count_] = x;
+    entry_[count_] = i;
+    return ++count_ < kLanes || flush(stop);
+  }
+
+  // Traces the gathered samples; false (and nothing traced) when stopped.
+  bool flush(const StopToken& stop) {
+    if (count_ == 0) return true;
+    if (stop.requested()) return false;
+    if (count_ > 8)
+      packet_radiance_of<16>(view_, cs_, key_, index_, count_, L_, work_.counters);
+    else
+      packet_radiance_of<8>(view_, cs_, key_, index_, count_, L_, work_.counters);
+    for (int j = 0; j < count_; ++j) {
+      film_.add_sample(work_, x_[j], row_, cs_[j], L_[j]);
+      ++work_.taken[entry_[j]];
+    }
+    count_ = 0;
+    return true;
+  }
+
+ private:
+  static constexpr int kLanes = 16;
+  const SceneView& view_;
+  const FilmLayout& film_;
+  TileWork& work_;
+  int count_ = 0, row_ = 0;
+  CameraSample cs_[kLanes];
+  std::uint64_t key_[kLanes];
+  std::uint32_t index_[kLanes];
+  int x_[kLanes];
+  std::size_t entry_[kLanes];
+  Vec3 L_[kLanes];
+};
+
 }  // namespace
 
 void render_tile(const SceneView& view, const PixelSampler& sampler, const FilmLayout& film, const StopToken& stop,
                  TileWork& work) {
   const TileRect& r = work.rect;
   const bool packets = packet_radiance_supported(view);
+  NeighbourPackets neighbours(view, film, work);
   for (int row = r.row0; row < r.row1; ++row)
     for (int x = r.x0; x < r.x1; ++x) {
       const std::size_t i = r.index(x, row);
       const std::uint32_t begin = work.first[i], end = begin + work.count[i];
       if (begin == end) continue;
       const PixelSequence sequence = pixel_sequence(view, sampler, x, row);
+      if (packets && end - begin == 1) {
+        if (!neighbours.add(sequence, begin, x, row, i, stop)) return;
+        continue;
+      }
       if (packets && end - begin > 1) {
         const bool done = end - begin >= 16 ? render_samples_packed<16>(view, sequence, film, stop, work, x, row, i, begin, end)
                                             : render_samples_packed<8>(view, sequence, film, stop, work, x, row, i, begin, end);
@@ -53,6 +109,7 @@ void render_tile(const SceneView& view, const PixelSampler& sampler, const FilmL
         ++work.taken[i];
       }
     }
+  neighbours.flush(stop);
 }
 
 }  // namespace strahl

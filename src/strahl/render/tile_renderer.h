@@ -12,8 +12,9 @@ namespace strahl {
 
 // Renders the samples `work` asks for (its buffers sized by FilmLayout::prepare or
 // Film::begin_tile). A pixel's samples go through the packet front end (render/packet_radiance.h)
-// in packets of up to 16 where it handles the scene, else one by one. Stops between two samples or
-// packets when `stop` is requested; work.taken then says how far each pixel got.
+// in packets of up to 16 where it handles the scene, else one by one; pixels of a row that take
+// one sample each go in packets of up to 16 neighbours. Stops between two samples or packets when
+// `stop` is requested; work.taken then says how far each pixel got.
 void render_tile(const SceneView& view, const PixelSampler& sampler, const FilmLayout& film, const StopToken& stop,
                  TileWork& work);
 
