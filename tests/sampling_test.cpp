@@ -240,6 +240,19 @@ TEST(PixelSampler, StratifiedFillsEveryStratumOncePerRound) {
 }
 
 // The O(1) Sobol dimensions against the textbook loop over the index's bits.
+// reverse_bits against the bit-by-bit definition: bit k of x is bit 31 − k of the result.
+TEST(PixelSampler, ReverseBitsMirrorsEveryBit) {
+  std::uint32_t state = 12345;
+  for (int n = 0; n < 100000; ++n) {
+    state = state * 1664525u + 1013904223u;  // (any spread of values will do)
+    const std::uint32_t x = n < 33 ? (n == 32 ? 0xffffffffu : 1u << n) : state ^ (state >> 13);
+    std::uint32_t expected = 0;
+    for (int k = 0; k < 32; ++k) expected |= ((x >> k) & 1u) << (31 - k);
+    ASSERT_EQ(reverse_bits(x), expected) << x;
+  }
+  static_assert(reverse_bits(1u) == 0x80000000u && reverse_bits(0x12345678u) == 0x1e6a2c48u);
+}
+
 TEST(PixelSampler, SobolDimensionsMatchTheDirectionNumbers) {
   for (std::uint32_t index : {0u, 1u, 2u, 3u, 7u, 100u, 12345u, 0x80000000u, 0xdeadbeefu, 0xffffffffu}) {
     std::uint32_t d0 = 0, d1 = 0;

@@ -65,8 +65,10 @@ inline double pixel_error(const Film& film, int x, int row) {
 class AdaptivePlanner {
  public:
   // `full`: examine every pixel (what the incremental plan must equal; tests).
+  // `headroom`, where given, receives Σ (max_spp − counts[p]) over the pixels planned more samples.
   std::uint64_t plan(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
-                     double threshold, std::vector<std::uint32_t>& add, bool full = false) {
+                     double threshold, std::vector<std::uint32_t>& add, bool full = false,
+                     std::uint64_t* headroom = nullptr) {
     const int w = film.width(), h = film.height();
     const std::size_t n = counts.size();
     if (seen_.size() != n || full) {
@@ -77,9 +79,10 @@ class AdaptivePlanner {
     // mark_ of the pixels next to a change 2 (their errors are recomputed), of the pixels next to
     // those 1 (their decisions are taken again); touched_ lists them, to clear them afterwards.
     touched_.clear();
-    std::size_t changed = 0;
-    for (std::size_t p = 0; p < n; ++p) changed += counts[p] != seen_[p];
-    if (changed > n / 8) return plan_every_pixel(film, counts, max_spp, threshold, add);
+    changed_.clear();
+    for (std::size_t p = 0; p < n; ++p)
+      if (counts[p] != seen_[p]) changed_.push_back(std::uint32_t(p));
+    if (changed_.size() > n / 8) return plan_every_pixel(film, counts, max_spp, threshold, add, headroom);
     const auto around = [&](std::size_t p, std::uint8_t level) {
       const int x = int(p % std::size_t(w)), row = int(p / std::size_t(w));
       for (int ny = std::max(0, row - 1); ny <= std::min(h - 1, row + 1); ++ny)
@@ -89,11 +92,10 @@ class AdaptivePlanner {
           if (mark_[q] < level) mark_[q] = level;
         }
     };
-    for (std::size_t p = 0; p < n; ++p)
-      if (counts[p] != seen_[p]) {
-        seen_[p] = counts[p];
-        around(p, 2);
-      }
+    for (const std::uint32_t p : changed_) {
+      seen_[p] = counts[p];
+      around(p, 2);
+    }
     const std::size_t next_to_change = touched_.size();
     for (std::size_t k = 0; k < next_to_change; ++k) {
       const std::size_t p = touched_[k];
@@ -104,12 +106,14 @@ class AdaptivePlanner {
     // Pixels not touched were not refined last time (their counts did not change) and nothing near
     // them changed: they are not refined now.
     std::fill(add.begin(), add.end(), 0u);
-    std::uint64_t total = 0;
+    std::uint64_t total = 0, room = 0;
     for (const std::uint32_t p : touched_) {
       mark_[p] = 0;
       add[p] = more(int(p % std::uint32_t(w)), int(p / std::uint32_t(w)), w, h, counts[p], max_spp);
       total += add[p];
+      if (add[p] > 0) room += max_spp - counts[p];
     }
+    if (headroom != nullptr) *headroom = room;
     return total;
   }
 
@@ -126,18 +130,20 @@ class AdaptivePlanner {
 
   // The plan when much changed (the first pass): every error, then every decision.
   std::uint64_t plan_every_pixel(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
-                                 double threshold, std::vector<std::uint32_t>& add) {
+                                 double threshold, std::vector<std::uint32_t>& add, std::uint64_t* headroom) {
     const int w = film.width(), h = film.height();
     seen_ = counts;
     for (int row = 0; row < h; ++row)
       for (int x = 0; x < w; ++x) over_[std::size_t(row) * std::size_t(w) + std::size_t(x)] = pixel_error(film, x, row) > threshold;
-    std::uint64_t total = 0;
+    std::uint64_t total = 0, room = 0;
     for (int row = 0; row < h; ++row)
       for (int x = 0; x < w; ++x) {
         const std::size_t p = std::size_t(row) * std::size_t(w) + std::size_t(x);
         add[p] = more(x, row, w, h, counts[p], max_spp);
         total += add[p];
+        if (add[p] > 0) room += max_spp - counts[p];
       }
+    if (headroom != nullptr) *headroom = room;
     return total;
   }
 
@@ -145,6 +151,7 @@ class AdaptivePlanner {
   std::vector<std::uint8_t> over_;   // error > threshold, as of the last plan
   std::vector<std::uint8_t> mark_;   // all 0 between plans
   std::vector<std::uint32_t> touched_;
+  std::vector<std::uint32_t> changed_;  // the pixels whose counts changed since the last plan
 };
 
 }  // namespace strahl

@@ -125,14 +125,12 @@ bool RenderJob::take_pass() {
 bool RenderJob::plan_next_pass() {
   ++pass_;
   if (take_pass()) return true;  // the rest of a pass split by max_pass_samples
-  const std::size_t pixels = counts_.size();
   if (adaptive_) {
-    planner_->plan(film_, counts_, max_spp_, sampling_.adaptive_threshold, pending_);
-    // Samples the render may still take in all: an upper bound that shrinks pass by pass.
-    std::uint64_t bound = done_.load();
-    for (std::size_t p = 0; p < pixels; ++p)
-      if (pending_[p] > 0) bound += max_spp_ - counts_[p];
-    planned_.store(bound);
+    // Samples the render may still take in all: an upper bound that shrinks pass by pass (the
+    // planner sums max_spp − count over the pixels it plans more for).
+    std::uint64_t headroom = 0;
+    planner_->plan(film_, counts_, max_spp_, sampling_.adaptive_threshold, pending_, false, &headroom);
+    planned_.store(done_.load() + headroom);
   } else {
     // Double every pixel's count (all pixels have the same).
     const std::uint32_t c = counts_[0];
