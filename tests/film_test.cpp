@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <functional>
@@ -243,6 +244,11 @@ TEST(AdaptivePlanner, IncrementalPlanEqualsAFullPlan) {
         const std::uint64_t b = every_pixel.plan(f.film, f.counts, 64, threshold, full, true);
         ASSERT_EQ(a, b) << "min " << min << " threshold " << threshold << " pass " << passes;
         ASSERT_EQ(add, full) << "min " << min << " threshold " << threshold << " pass " << passes;
+        std::vector<std::uint32_t> planned = incremental.planned(), want;
+        std::sort(planned.begin(), planned.end());
+        for (std::size_t p = 0; p < add.size(); ++p)
+          if (add[p] > 0) want.push_back(std::uint32_t(p));
+        ASSERT_EQ(planned, want) << "min " << min << " threshold " << threshold << " pass " << passes;
         if (a == 0) break;
         ++passes;
       }
@@ -267,6 +273,44 @@ TEST(AdaptivePlanner, IncrementalPlanEqualsAFullPlan) {
     ASSERT_EQ(add, full) << "pass " << pass;
   }
   EXPECT_GT(add[10 * 24 + 14], 0u);
+}
+
+// The plan from scratch (the first pass's) is the rule of adaptive.h applied to pixel_error() pixel
+// by pixel: each pixel doubles its count when it or a neighbour is over the threshold.
+TEST(AdaptivePlanner, PlanOfEveryPixelFollowsPixelError) {
+  for (const std::uint32_t min : {1u, 2u})
+    for (const double threshold : {0.05, 0.2, 0.5}) {
+      SyntheticFilm f(53, 37);
+      f.second_disc = true;
+      std::vector<std::uint32_t> add(f.counts.size(), min), full(f.counts.size(), 0);
+      AdaptivePlanner planner;
+      for (int pass = 0; pass < 4; ++pass) {
+        f.take(add);
+        const std::uint64_t total = planner.plan(f.film, f.counts, 16, threshold, full, true);
+        std::uint64_t want_total = 0;
+        std::size_t differ = 0;
+        for (int row = 0; row < f.h; ++row)
+          for (int x = 0; x < f.w; ++x) {
+            bool refine = false;
+            for (int ny = std::max(0, row - 1); ny <= std::min(f.h - 1, row + 1); ++ny)
+              for (int nx = std::max(0, x - 1); nx <= std::min(f.w - 1, x + 1); ++nx)
+                refine = refine || pixel_error(f.film, nx, ny) > threshold;
+            const std::size_t p = std::size_t(row) * std::size_t(f.w) + std::size_t(x);
+            const std::uint32_t c = f.counts[p];
+            const std::uint32_t want = refine && c < 16 ? std::min(std::max(c, 1u), 16 - c) : 0;
+            want_total += want;
+            differ += full[p] != want;
+          }
+        EXPECT_EQ(differ, 0u) << "min " << min << " threshold " << threshold << " pass " << pass;
+        EXPECT_EQ(total, want_total) << "min " << min << " threshold " << threshold << " pass " << pass;
+        std::vector<std::uint32_t> planned = planner.planned(), want_planned;
+        std::sort(planned.begin(), planned.end());
+        for (std::size_t p = 0; p < full.size(); ++p)
+          if (full[p] > 0) want_planned.push_back(std::uint32_t(p));
+        EXPECT_EQ(planned, want_planned) << "the pixels planned() lists";
+        add = full;
+      }
+    }
 }
 
 // Passes of 1, 1, 2, 4, … samples add up to the same image as one pass of all of them.

@@ -62,6 +62,10 @@ inline double pixel_error(const Film& film, int x, int row) {
 // not now (had it been, its count would have changed). The answers are those of examining every
 // pixel every pass (AdaptivePlanner.IncrementalPlanEqualsAFullPlan), at a cost that follows the
 // samples taken rather than the image size — the late passes refine a few dozen pixels.
+//
+// Between two calls the caller takes at most the samples planned (counts change only at the
+// pixels of planned()) and leaves `add` as it was or zeroes entries: the planner then looks only
+// at the pixels it planned, and clears only the entries it set (no pass over the whole image).
 class AdaptivePlanner {
  public:
   // `full`: examine every pixel (what the incremental plan must equal; tests).
@@ -71,17 +75,22 @@ class AdaptivePlanner {
                      std::uint64_t* headroom = nullptr) {
     const int w = film.width(), h = film.height();
     const std::size_t n = counts.size();
-    if (seen_.size() != n || full) {
+    if (seen_.size() != n || add.size() != n || full) {
       seen_.assign(n, ~std::uint32_t(0));  // every pixel changed
       over_.assign(n, 0);
       mark_.assign(n, 0);
+      planned_.clear();
+      return plan_every_pixel(film, counts, max_spp, threshold, add, headroom);
     }
     // mark_ of the pixels next to a change 2 (their errors are recomputed), of the pixels next to
     // those 1 (their decisions are taken again); touched_ lists them, to clear them afterwards.
+    // Only the pixels planned last time can have changed.
     touched_.clear();
     changed_.clear();
-    for (std::size_t p = 0; p < n; ++p)
-      if (counts[p] != seen_[p]) changed_.push_back(std::uint32_t(p));
+    for (const std::uint32_t p : planned_) {
+      if (counts[p] != seen_[p]) changed_.push_back(p);
+      add[p] = 0;
+    }
     if (changed_.size() > n / 8) return plan_every_pixel(film, counts, max_spp, threshold, add, headroom);
     const auto around = [&](std::size_t p, std::uint8_t level) {
       const int x = int(p % std::size_t(w)), row = int(p / std::size_t(w));
@@ -104,18 +113,23 @@ class AdaptivePlanner {
       around(p, 1);
     }
     // Pixels not touched were not refined last time (their counts did not change) and nothing near
-    // them changed: they are not refined now.
-    std::fill(add.begin(), add.end(), 0u);
+    // them changed: they are not refined now (their entries of `add` are 0: see above).
     std::uint64_t total = 0, room = 0;
+    planned_.clear();
     for (const std::uint32_t p : touched_) {
       mark_[p] = 0;
       add[p] = more(int(p % std::uint32_t(w)), int(p / std::uint32_t(w)), w, h, counts[p], max_spp);
+      if (add[p] == 0) continue;
+      planned_.push_back(p);
       total += add[p];
-      if (add[p] > 0) room += max_spp - counts[p];
+      room += max_spp - counts[p];
     }
     if (headroom != nullptr) *headroom = room;
     return total;
   }
+
+  // The pixels the last plan gave samples (add > 0), in no particular order.
+  const std::vector<std::uint32_t>& planned() const { return planned_; }
 
  private:
   // The samples pixel (x, row), which has c, takes next: it doubles its count (at least 1 more, at
@@ -128,20 +142,42 @@ class AdaptivePlanner {
     return refine && c < max_spp ? std::min(std::max(c, 1u), max_spp - c) : 0;
   }
 
-  // The plan when much changed (the first pass): every error, then every decision.
+  // The plan when much changed (the first pass): every error, then every decision. The errors are
+  // pixel_error()'s, with each pixel's mean divided out once instead of once per neighbour.
   std::uint64_t plan_every_pixel(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
                                  double threshold, std::vector<std::uint32_t>& add, std::uint64_t* headroom) {
     const int w = film.width(), h = film.height();
+    const std::vector<PixelStats>& stats = film.pixel_stats();
     seen_ = counts;
+    mean_.resize(stats.size());
+    for (std::size_t p = 0; p < stats.size(); ++p) mean_[p] = stats[p].n > 0 ? stats[p].sum / stats[p].n : 0.0;
     for (int row = 0; row < h; ++row)
-      for (int x = 0; x < w; ++x) over_[std::size_t(row) * std::size_t(w) + std::size_t(x)] = pixel_error(film, x, row) > threshold;
+      for (int x = 0; x < w; ++x) {
+        const std::size_t p = std::size_t(row) * std::size_t(w) + std::size_t(x);
+        if (stats[p].n != 1) {
+          over_[p] = relative_error(stats[p]) > threshold;
+          continue;
+        }
+        // contrast_error(film, x, row)
+        const double mean = mean_[p];
+        double e = 0;
+        for (int ny = std::max(0, row - 1); ny <= std::min(h - 1, row + 1); ++ny)
+          for (int nx = std::max(0, x - 1); nx <= std::min(w - 1, x + 1); ++nx) {
+            const std::size_t q = std::size_t(ny) * std::size_t(w) + std::size_t(nx);
+            if (q != p && stats[q].n > 0) e = std::max(e, std::abs(mean - mean_[q]));
+          }
+        over_[p] = e / std::max(mean, 0.01) > threshold;
+      }
     std::uint64_t total = 0, room = 0;
+    planned_.clear();
     for (int row = 0; row < h; ++row)
       for (int x = 0; x < w; ++x) {
         const std::size_t p = std::size_t(row) * std::size_t(w) + std::size_t(x);
         add[p] = more(x, row, w, h, counts[p], max_spp);
+        if (add[p] == 0) continue;
+        planned_.push_back(std::uint32_t(p));
         total += add[p];
-        if (add[p] > 0) room += max_spp - counts[p];
+        room += max_spp - counts[p];
       }
     if (headroom != nullptr) *headroom = room;
     return total;
@@ -152,6 +188,8 @@ class AdaptivePlanner {
   std::vector<std::uint8_t> mark_;   // all 0 between plans
   std::vector<std::uint32_t> touched_;
   std::vector<std::uint32_t> changed_;  // the pixels whose counts changed since the last plan
+  std::vector<std::uint32_t> planned_;  // the pixels the last plan gave samples
+  std::vector<double> mean_;            // plan_every_pixel's pixel means
 };
 
 }  // namespace strahl

@@ -93,6 +93,8 @@ class Film {
   Image resolve() const;
 
   const PixelStats& stats(int x, int row) const { return stats_.at(index(x, row)); }
+  // Every pixel's statistics, row-major from the top (empty unless the layout keeps them).
+  const std::vector<PixelStats>& pixel_stats() const { return stats_; }
   // The pixel's Σ f·L (r, g, b) and Σ f, unrounded (tests compare these bit for bit).
   std::array<double, 4> sums(int x, int row) const;
 

@@ -114,11 +114,30 @@ void RenderJob::run(TileBackend& backend) {
 bool RenderJob::take_pass() {
   std::uint64_t n = 0;
   const std::uint32_t cap = options_.max_pass_samples;
-  for (std::size_t p = 0; p < pending_.size(); ++p) {
-    add_[p] = cap > 0 ? std::min(pending_[p], cap) : pending_[p];
-    pending_[p] -= add_[p];
-    n += add_[p];
+  if (!sparse_) {
+    for (std::size_t p = 0; p < pending_.size(); ++p) {
+      add_[p] = cap > 0 ? std::min(pending_[p], cap) : pending_[p];
+      pending_[p] -= add_[p];
+      n += add_[p];
+    }
+    return n > 0;
   }
+  for (const std::uint32_t p : pass_pixels_) add_[p] = 0;
+  pass_pixels_.clear();
+  std::fill(busy_.begin(), busy_.end(), std::uint8_t(0));
+  std::size_t keep = 0;
+  for (const std::uint32_t p : pending_pixels_) {
+    const std::uint32_t a = cap > 0 ? std::min(pending_[p], cap) : pending_[p];
+    if (a == 0) continue;
+    add_[p] = a;
+    pending_[p] -= a;
+    n += a;
+    pass_pixels_.push_back(p);
+    const int x = int(p % std::uint32_t(width_)), row = int(p / std::uint32_t(width_));
+    busy_[std::size_t(row / tile_) * std::size_t(tiles_x_) + std::size_t(x / tile_)] = 1;
+    if (pending_[p] > 0) pending_pixels_[keep++] = p;
+  }
+  pending_pixels_.resize(keep);
   return n > 0;
 }
 
@@ -126,10 +145,16 @@ bool RenderJob::plan_next_pass() {
   ++pass_;
   if (take_pass()) return true;  // the rest of a pass split by max_pass_samples
   if (adaptive_) {
+    if (!sparse_) {  // from now on the passes are sparse; every pending_ is 0 here (taken)
+      std::fill(add_.begin(), add_.end(), 0u);
+      busy_.assign(std::size_t(tile_count()), 0);
+      sparse_ = true;
+    }
     // Samples the render may still take in all: an upper bound that shrinks pass by pass (the
     // planner sums max_spp − count over the pixels it plans more for).
     std::uint64_t headroom = 0;
     planner_->plan(film_, counts_, max_spp_, sampling_.adaptive_threshold, pending_, false, &headroom);
+    pending_pixels_ = planner_->planned();
     planned_.store(done_.load() + headroom);
   } else {
     // Double every pixel's count (all pixels have the same).
@@ -189,13 +214,9 @@ bool RenderJob::next_tile(TileWork& work) {
   while (!stop_.requested()) {
     const int i = next_.fetch_add(1, std::memory_order_relaxed);
     if (i >= tile_count()) break;
-    // Tiles with nothing to do in this pass (adaptive sampling) are not handed out.
-    const int x0 = (i % tiles_x_) * tile_, row0 = (i / tiles_x_) * tile_;
-    const int x1 = std::min(width_, x0 + tile_), row1 = std::min(height_, row0 + tile_);
-    bool any = false;
-    for (int row = row0; row < row1 && !any; ++row)
-      for (int x = x0; x < x1 && !any; ++x) any = add_[std::size_t(row) * std::size_t(width_) + std::size_t(x)] > 0;
-    if (!any) continue;
+    // Tiles with nothing to do in this pass (adaptive sampling) are not handed out; dense passes
+    // give every pixel samples.
+    if (sparse_ && busy_[std::size_t(i)] == 0) continue;
     if (options_.replay) {
       std::optional<TileWork> done = options_.replay(pass_, i);
       if (done && replayable(*done, i)) {

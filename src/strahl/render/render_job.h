@@ -155,6 +155,12 @@ class RenderJob {
   // Samples per pixel still to take in the planned pass, when max_pass_samples splits it; the
   // adaptive decisions are taken only after the whole of it, so the split leaves the image alone.
   std::vector<std::uint32_t> pending_;
+  // Adaptive passes after the first are sparse: the pixels with pending_ > 0, the pixels with
+  // add_ > 0, and which tiles have any of those (busy_), so that a pass costs what its samples
+  // cost, not a walk over the whole image. Dense passes (sparse_ false) give every pixel the same.
+  bool sparse_ = false;
+  std::vector<std::uint32_t> pending_pixels_, pass_pixels_;
+  std::vector<std::uint8_t> busy_;
   int pass_ = 0;
   std::atomic<int> next_{0};  // next tile of the current pass to hand out
   std::atomic<std::uint64_t> done_{0}, planned_{0};
