@@ -13,6 +13,7 @@
 #include "strahl/render/packet_radiance.h"
 #include "strahl/render/pixel.h"
 #include "strahl/render/render_scene.h"
+#include "strahl/render/tile_renderer.h"
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
@@ -202,6 +203,65 @@ TEST(PacketFrontEnd, LanesOfNeighbouringPixelsEqualTheSingleSamplePath) {
     const PixelSampler sampler = make_pixel_sampler(sampling);
     expect_neighbours_match<16>(rs.view(), sampler, file);
     expect_neighbours_match<8>(rs.view(), sampler, file);
+  }
+}
+
+// The tile renderer (one sample per pixel: packets of neighbouring pixels; several: packets of a
+// pixel's samples; the Sobol film positions computed lane by lane in both) against pixel_sample()
+// one sample at a time into the same film layout: the same sums, statistics and counts, bit for bit.
+TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
+  for (const char* file : {"lecture-whitted.yaml", "depth-of-field.yaml"}) {
+    Scene scene = load_scene(std::string(STRAHL_SOURCE_DIR) + "/scenes/" + file);
+    scene.settings.width = 37;
+    scene.settings.height = 21;
+    const RenderScene rs = compile(scene);
+    const SceneView view = rs.view();
+    for (const SamplerKind kind : {SamplerKind::Adaptive, SamplerKind::Sobol, SamplerKind::Stratified, SamplerKind::Grid})
+      for (const std::uint32_t per_pixel : {1u, 3u, 16u}) {
+        SamplingSettings sampling;
+        sampling.sampler = kind;
+        sampling.spp = 16;
+        sampling.seed = 5;
+        const PixelSampler sampler = make_pixel_sampler(sampling);
+        const FilmLayout layout(view.camera.nx, view.camera.ny, Filter{}, kind == SamplerKind::Adaptive);
+        TileWork tiled, alone;
+        tiled.rect = alone.rect = TileRect{0, 0, view.camera.nx, view.camera.ny};
+        const std::size_t n = tiled.rect.pixels();
+        for (TileWork* w : {&tiled, &alone}) {
+          layout.prepare(*w);
+          w->first.resize(n);
+          w->count.resize(n);
+          for (int row = 0; row < view.camera.ny; ++row)
+            for (int x = 0; x < view.camera.nx; ++x) {
+              const std::size_t i = w->rect.index(x, row);
+              w->first[i] = std::uint32_t(x + 2 * row) % 7;        // rows of samples of differing numbers
+              w->count[i] = (x * row) % 5 == 1 ? 0u : per_pixel;  // and gaps in them
+            }
+        }
+        const StopToken stop;
+        render_tile(view, sampler, layout, stop, tiled);
+        for (int row = 0; row < view.camera.ny; ++row)
+          for (int x = 0; x < view.camera.nx; ++x) {
+            const std::size_t i = alone.rect.index(x, row);
+            const PixelSequence p = pixel_sequence(view, sampler, x, row);
+            for (std::uint32_t k = alone.first[i]; k < alone.first[i] + alone.count[i]; ++k) {
+              CameraSample cs;
+              const Vec3 L = pixel_sample(view, p, k, cs, alone.counters);
+              layout.add_sample(alone, x, row, cs, L);
+              ++alone.taken[i];
+            }
+          }
+        const std::string what = std::string(file) + " " + sampler_name(kind) + " " + std::to_string(per_pixel);
+        EXPECT_EQ(tiled.taken, alone.taken) << what;
+        ASSERT_EQ(tiled.local.size(), alone.local.size()) << what;
+        EXPECT_EQ(std::memcmp(tiled.local.data(), alone.local.data(), tiled.local.size() * sizeof(double)), 0) << what;
+        ASSERT_EQ(tiled.stats.size(), alone.stats.size()) << what;
+        for (std::size_t i = 0; i < tiled.stats.size(); ++i) {
+          ASSERT_EQ(tiled.stats[i].n, alone.stats[i].n) << what << " pixel " << i;
+          ASSERT_EQ(tiled.stats[i].sum, alone.stats[i].sum) << what << " pixel " << i;
+        }
+        EXPECT_TRUE(same_counts(tiled.counters, alone.counters)) << what;
+      }
   }
 }
 

@@ -84,6 +84,42 @@ TEST(PixelSampler, LanesMatchSampleBySample) {
         ASSERT_EQ(permutation_element_pow2(i, n, seed), permutation_element(i, n, seed)) << n << " " << seed << " " << i;
 }
 
+// sobol_pair leaves out the bit reversals that cancel: it must equal the composition it stands for,
+// owen_scramble(sobol_dim0 / sobol_dim1(owen_scramble(index, s0)), s1 / s2), on every bit.
+TEST(PixelSampler, SobolPairIsTheComposition) {
+  std::uint64_t k = 12345;
+  const auto next = [&] {
+    k = k * 6364136223846793005ull + 1442695040888963407ull;
+    return std::uint32_t(k >> 32);
+  };
+  for (int trial = 0; trial < 200000; ++trial) {
+    const std::uint32_t index = trial < 4096 ? std::uint32_t(trial) : next(), s0 = next(), s1 = next(), s2 = next();
+    const std::uint32_t shuffled = owen_scramble(index, s0);
+    std::uint32_t a, b;
+    sobol_pair(index, s0, s1, s2, a, b);
+    ASSERT_EQ(a, owen_scramble(sobol_dim0(shuffled), s1)) << index;
+    ASSERT_EQ(b, owen_scramble(sobol_dim1(shuffled), s2)) << index;
+  }
+}
+
+// A pixel's hashes for the lens and time dimensions are computed only where they are used; the
+// samples are the same either way.
+TEST(PixelSampler, UnusedDimensionsNeedNoHashes) {
+  for (SamplerKind kind : {SamplerKind::Grid, SamplerKind::Stratified, SamplerKind::Sobol, SamplerKind::Adaptive}) {
+    PixelSampler sampler;
+    sampler.kind = kind;
+    sampler.side = 4;
+    sampler.seed = 3;
+    PixelSequence all = sampler.pixel(7, 2, 2 * 640 + 7);
+    all.uses_lens = all.uses_time = false;
+    const PixelSequence some = sampler.pixel(7, 2, 2 * 640 + 7, false, false);
+    for (std::uint32_t i = 0; i < 40; ++i) {
+      const CameraSample a = all.sample(i), b = some.sample(i);
+      ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << sampler_name(kind) << " sample " << i;
+    }
+  }
+}
+
 constexpr int kSamples = 200000;
 constexpr int kThetaBins = 10, kPhiBins = 20;
 const double kAlpha = test::significance(0.01, 8);  // eight chi-square tests below

@@ -11,12 +11,11 @@ namespace strahl {
 // The samples of pixel (x, row).
 STRAHL_HOST_DEVICE inline PixelSequence pixel_sequence(const SceneView& s, const PixelSampler& sampler, int x, int row) {
   const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
-  PixelSequence p = sampler.pixel(x, y, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x));
-  p.uses_lens = s.camera.lens_radius > 0;
   // Time matters only to moving shapes (ray.time is read nowhere else): a static scene's samples
   // leave it at 0 without computing it, whatever the shutter interval.
-  p.uses_time = s.camera.shutter_close != s.camera.shutter_open && s.moving_sphere_count + s.moving_triangle_count > 0;
-  return p;
+  const bool uses_time = s.camera.shutter_close != s.camera.shutter_open && s.moving_sphere_count + s.moving_triangle_count > 0;
+  return sampler.pixel(x, y, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x), s.camera.lens_radius > 0,
+                       uses_time);
 }
 
 // Radiance of sample `index` of a pixel; `cs` receives the camera sample it used.

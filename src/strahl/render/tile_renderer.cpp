@@ -40,7 +40,14 @@ class NeighbourPackets {
       if (!flush(stop)) return false;
     }
     row_ = row;
-    cs_[count_] = sequence.sample(index);
+    sobol_ = (sequence.kind == SamplerKind::Sobol || sequence.kind == SamplerKind::Adaptive) && !sequence.uses_lens &&
+             !sequence.uses_time;
+    if (sobol_) {  // the film positions come in flush(), the lanes side by side
+      s0_[count_] = sequence.h[0], s1_[count_] = sequence.h[1], s2_[count_] = sequence.h[2];
+      px_[count_] = Real(sequence.x), py_[count_] = Real(sequence.y);
+    } else {
+      cs_[count_] = sequence.sample(index);
+    }
     key_[count_] = sequence.stream;
     index_[count_] = index;
     x_[count_] = x;
@@ -52,6 +59,11 @@ class NeighbourPackets {
   bool flush(const StopToken& stop) {
     if (count_ == 0) return true;
     if (stop.requested()) return false;
+    if (sobol_) {
+      for (int j = count_; j < kLanes; ++j)  // lanes nobody reads
+        index_[j] = 0, s0_[j] = s1_[j] = s2_[j] = 0, px_[j] = py_[j] = 0;
+      sobol_film_lanes<kLanes>(index_, s0_, s1_, s2_, px_, py_, cs_);
+    }
     if (count_ > 8)
       packet_radiance_of<16>(view_, cs_, key_, index_, count_, L_, work_.counters);
     else
@@ -73,6 +85,9 @@ class NeighbourPackets {
   CameraSample cs_[kLanes];
   std::uint64_t key_[kLanes];
   std::uint32_t index_[kLanes];
+  bool sobol_ = false;  // Sobol film positions without lens and time: computed in flush()
+  std::uint32_t s0_[kLanes], s1_[kLanes], s2_[kLanes];
+  Real px_[kLanes], py_[kLanes];
   int x_[kLanes];
   std::size_t entry_[kLanes];
   Vec3 L_[kLanes];

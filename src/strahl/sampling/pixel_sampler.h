@@ -89,6 +89,28 @@ inline const char* filter_name(FilterKind kind) {
 }
 inline constexpr const char* kFilterNames = "box, tent, gaussian, mitchell";
 
+// The film positions of N Sobol samples, lane i sample index[i] of the pixel at (px[i], py[i])
+// with film-pair scrambles s0[i], s1[i], s2[i] (PixelSequence::h[0 … 2]): PixelSequence::sample()'s
+// for a camera without lens and shutter (lens (0.5, 0.5), time 0), the lanes side by side.
+template <int N>
+STRAHL_HOST_DEVICE inline void sobol_film_lanes(const std::uint32_t* __restrict index, const std::uint32_t* __restrict s0,
+                                                const std::uint32_t* __restrict s1, const std::uint32_t* __restrict s2,
+                                                const Real* __restrict px, const Real* __restrict py, CameraSample* cs) {
+  Real fx[N], fy[N];
+  for (int i = 0; i < N; ++i) {
+    std::uint32_t a, b;
+    sobol_pair(index[i], s0[i], s1[i], s2[i], a, b);
+    fx[i] = px[i] + fixed_to_unit(a);
+    fy[i] = py[i] + fixed_to_unit(b);
+  }
+  for (int i = 0; i < N; ++i) {
+    cs[i].film_x = fx[i];
+    cs[i].film_y = fy[i];
+    cs[i].lens = Vec2{Real(0.5), Real(0.5)};
+    cs[i].time = 0;
+  }
+}
+
 // The samples of one pixel, with the pixel's hashes (permutation and scrambling seeds) computed
 // once rather than per sample.
 struct PixelSequence {
@@ -122,9 +144,9 @@ struct PixelSequence {
     return {(Real(s % side) + jitter.x) / Real(side), (Real(s / side) + jitter.y) / Real(side)};
   }
   STRAHL_HOST_DEVICE Vec2 sobol_2d(std::uint32_t index, std::uint32_t pair) const {
-    const std::uint32_t shuffled = owen_scramble(index, h[3 * pair]);
-    return {fixed_to_unit(owen_scramble(sobol_dim0(shuffled), h[3 * pair + 1])),
-            fixed_to_unit(owen_scramble(sobol_dim1(shuffled), h[3 * pair + 2]))};
+    std::uint32_t a, b;
+    sobol_pair(index, h[3 * pair], h[3 * pair + 1], h[3 * pair + 2], a, b);
+    return {fixed_to_unit(a), fixed_to_unit(b)};
   }
 
   // Sample number `index` of the pixel.
@@ -199,6 +221,13 @@ struct PixelSequence {
         return;
       }
     }
+    if ((kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) && !uses_lens && !uses_time) {
+      std::uint32_t index[N], s0[N], s1[N], s2[N];
+      Real px[N], py[N];
+      for (int i = 0; i < N; ++i) index[i] = first + std::uint32_t(i), s0[i] = h[0], s1[i] = h[1], s2[i] = h[2], px[i] = Real(x), py[i] = Real(y);
+      sobol_film_lanes<N>(index, s0, s1, s2, px, py, cs);
+      return;
+    }
     for (int i = 0; i < count; ++i) cs[i] = sample(first + std::uint32_t(i));
   }
 };
@@ -209,8 +238,11 @@ struct PixelSampler {
   std::uint32_t side = 1;  // grid/stratified: n
   std::uint64_t seed = 0;
 
-  // The samples of pixel (x, y), y counted from the bottom row; `pixel` = y · width + x.
-  STRAHL_HOST_DEVICE PixelSequence pixel(int x, int y, std::uint64_t pixel_index) const {
+  // The samples of pixel (x, y), y counted from the bottom row; `pixel` = y · width + x. Without
+  // `uses_lens` / `uses_time` the sequence leaves those dimensions at lens (0.5, 0.5) and time 0,
+  // and their hashes are not computed (h[] holds 0 there).
+  STRAHL_HOST_DEVICE PixelSequence pixel(int x, int y, std::uint64_t pixel_index, bool uses_lens = true,
+                                         bool uses_time = true) const {
     PixelSequence p;
     p.kind = kind;
     p.side = side;
@@ -228,9 +260,17 @@ struct PixelSampler {
                        : (kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) ? 9
                        : side > 1                                                     ? 3
                                                                                       : 0;
+    p.uses_lens = uses_lens;
+    p.uses_time = uses_time;
     if (hashes == 0) return p;
     p.key = keyed_bits(p.stream, 0xffffffffu, 0);
-    for (int i = 0; i < hashes; ++i) p.h[i] = p.hash(std::uint32_t(i));
+    // Hash i serves the film (sobol: pair 0, hashes 0–2; strata: order 0), the lens (pair 1; order
+    // 1) or the time (pair 2; order 2).
+    for (int i = 0; i < hashes; ++i) {
+      const int use = hashes == 9 ? i / 3 : i;
+      if ((use == 1 && !uses_lens) || (use == 2 && !uses_time)) continue;
+      p.h[i] = p.hash(std::uint32_t(i));
+    }
     return p;
   }
 

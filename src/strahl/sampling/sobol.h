@@ -18,15 +18,30 @@ STRAHL_HOST_DEVICE constexpr std::uint32_t sobol_dim0(std::uint32_t index) { ret
 // Dimension 1: primitive polynomial x + 1, direction numbers v_k = v_{k-1} ^ (v_{k-1} >> 1), i.e.
 // the Pascal matrix mod 2: by Lucas' theorem output bit k (from the top) is the parity of the
 // index bits i whose binary digits contain k's. That superset-parity transform takes five steps
-// (one per bit of the 5-bit bit position), then the bits are reversed.
-STRAHL_HOST_DEVICE constexpr std::uint32_t sobol_dim1(std::uint32_t index) {
-  std::uint32_t x = index;
+// (one per bit of the 5-bit bit position), then the bits are reversed: sobol_dim1 is
+// reverse_bits(sobol_dim1_unreversed(index)).
+STRAHL_HOST_DEVICE constexpr std::uint32_t sobol_dim1_unreversed(std::uint32_t x) {
   x ^= (x >> 1) & 0x55555555u;
   x ^= (x >> 2) & 0x33333333u;
   x ^= (x >> 4) & 0x0f0f0f0fu;
   x ^= (x >> 8) & 0x00ff00ffu;
   x ^= (x >> 16) & 0x0000ffffu;
-  return reverse_bits(x);
+  return x;
+}
+
+STRAHL_HOST_DEVICE constexpr std::uint32_t sobol_dim1(std::uint32_t index) { return reverse_bits(sobol_dim1_unreversed(index)); }
+
+// One Owen-scrambled, shuffled Sobol pair (Burley 2020) as 0.32 fixed-point values:
+//   shuffled = owen_scramble(index, s0)
+//   a = owen_scramble(sobol_dim0(shuffled), s1),  b = owen_scramble(sobol_dim1(shuffled), s2)
+// with the bit reversals that cancel left out (owen_scramble(x, s) = reverse(laine_karras(reverse(x), s))
+// and sobol_dim0 = reverse, sobol_dim1 = reverse ∘ parity): four reversals instead of eight, the
+// same bits (PixelSampler.SobolPairIsTheComposition).
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE constexpr void sobol_pair(std::uint32_t index, std::uint32_t s0, std::uint32_t s1,
+                                                                 std::uint32_t s2, std::uint32_t& a, std::uint32_t& b) {
+  const std::uint32_t shuffled = reverse_bits(laine_karras(reverse_bits(index), s0));
+  a = reverse_bits(laine_karras(shuffled, s1));
+  b = reverse_bits(laine_karras(sobol_dim1_unreversed(shuffled), s2));
 }
 
 // 0.32 fixed point to [0, 1) (never 1).
