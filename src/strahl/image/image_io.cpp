@@ -103,13 +103,9 @@ void write_pfm(const Image& image, OutputFile& out) {
   static_assert(std::endian::native == std::endian::little, "PFM rows are written as the machine stores floats");
   const std::string header = "PF\n" + std::to_string(image.width()) + " " + std::to_string(image.height()) + "\n-1.0\n";
   out.write(header.data(), header.size());
-  for (int row = image.height() - 1; row >= 0; --row) {
-    for (int x = 0; x < image.width(); ++x) {
-      const Rgb& p = image.at(x, row);
-      const float v[3] = {p.r, p.g, p.b};
-      out.write(v, sizeof v);
-    }
-  }
+  static_assert(sizeof(Rgb) == 3 * sizeof(float), "an image row is its pixels' floats, r g b, back to back");
+  if (image.width() == 0) return;
+  for (int row = image.height() - 1; row >= 0; --row) out.write(&image.at(0, row), std::size_t(image.width()) * sizeof(Rgb));
 }
 
 // OpenEXR writes through this stream, so that its bytes go through OutputFile's checks too.
