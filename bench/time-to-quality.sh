@@ -4,9 +4,10 @@
 # POV-Ray 3.7's adaptive anti-aliasing (+AM2), side by side in one run. The reference is strahl
 # with 1024 stratified samples per pixel (the two renderers' images agree to RMSE ~1e-5 without
 # anti-aliasing: bench/povray-compare.sh), written as PFM; POV-Ray writes 16-bit PNG with
-# File_Gamma=1.0 so that its quantisation (~5e-6) does not count. Each setting is one run (wall
-# time of the whole process); the table lists every setting, then the fastest one that reaches the
-# goal for each renderer.
+# File_Gamma=1.0 so that its quantisation (~5e-6) does not count. Each setting's time is the
+# median of three runs (wall time of the whole process; single runs on a shared machine vary by
+# ±25 %); the table lists every setting, then the fastest one that reaches the goal for each
+# renderer.
 #   bench/time-to-quality.sh [build-dir] [width] [height] [goal]   (defaults: build 960 540 2e-3)
 # (needs: apt-get install povray)
 set -euo pipefail
@@ -30,7 +31,8 @@ pov() {  # pov WHITTED OPTIONS…
   povray -D -V +W"$width" +H"$height" +WT"$threads" +FN16 File_Gamma=1.0 +Ilecture.pov +Opov.png \
     Declare=WHITTED="$variant" "$@" >/dev/null 2>&1
 }
-wall() { local s e; s=$(date +%s.%N); "$@"; e=$(date +%s.%N); echo "$e - $s" | bc; }
+wall1() { local s e; s=$(date +%s.%N); "$@"; e=$(date +%s.%N); echo "$e - $s" | bc; }
+wall() { { wall1 "$@"; wall1 "$@"; wall1 "$@"; } | sort -g | sed -n 2p; }  # the median of three
 rmse() { "$build/bin/strahl-diff" "$1" "$2" | awk '{print $2}'; }
 below() { awk -v a="$1" -v b="$goal" 'BEGIN { exit !(a <= b) }'; }
 
@@ -40,7 +42,7 @@ for variant in 0 1; do
   [ $variant = 1 ] && scene=$root/scenes/lecture-whitted.yaml
   name=$(basename "$scene" .yaml)
   size=(--width "$width" --height "$height")
-  t=$(wall "$build/bin/strahl" "$scene" "${size[@]}" --sampler stratified --spp 1024 -q -o ref.pfm)
+  t=$(wall1 "$build/bin/strahl" "$scene" "${size[@]}" --sampler stratified --spp 1024 -q -o ref.pfm)
   printf "== %s: reference 1024 spp stratified in %.1f s\n" "$name" "$t"
   best_s="" best_p=""
   for thr in 0.5 0.2 0.1 0.05 0.02; do
