@@ -196,6 +196,7 @@ struct SyntheticFilm {
           if (x < 6) v += 0.1 * (jitter(3 * key + 2) - 0.5);
           film.layout().add_sample(t, x, row, CameraSample{}, Vec3(Real(v)));
         }
+        t.taken[p] = add[p];
         counts[p] += add[p];
       }
     film.merge(t);

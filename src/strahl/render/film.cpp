@@ -65,12 +65,34 @@ Film::Film(const FilmLayout& layout) : layout_(layout) {
     fixed_.assign(pixels * 4, 0);
 }
 
+namespace {
+
+// Whether every entry of a tile row's counts is above 0 (then the row's state moves as one block).
+bool all_counted(const std::uint32_t* count, std::size_t n) {
+  std::uint32_t none = 0;
+  for (std::size_t k = 0; k < n; ++k) none |= std::uint32_t(count[k] == 0);
+  return none == 0;
+}
+
+}  // namespace
+
 void Film::begin_tile(TileWork& t) const {
   layout_.prepare(t);
   const TileRect& r = t.rect;
   const std::size_t tw = std::size_t(r.width());
+  const bool counted = t.count.size() == r.pixels();
   for (int row = r.row0; row < r.row1; ++row) {
     const std::size_t own = std::size_t(row - r.row0) * tw, p = index(r.x0, row);
+    // Only the pixels that take samples (a sparse adaptive pass: a few of the tile's); the state of
+    // the others is not read (render_tile) nor taken back (merge).
+    if (counted && !all_counted(&t.count[own], tw)) {
+      for (std::size_t k = 0; k < tw; ++k) {
+        if (t.count[own + k] == 0) continue;
+        if (!stats_.empty()) t.stats[own + k] = stats_[p + k];
+        if (pixel_local()) std::copy_n(&local_sums_[(p + k) * 4], 4, &t.local[(own + k) * 4]);
+      }
+      continue;
+    }
     if (!stats_.empty()) std::copy_n(&stats_[p], tw, &t.stats[own]);
     // Only this tile writes these pixels, and not before it is merged: plain reads.
     if (pixel_local()) std::copy_n(&local_sums_[p * 4], tw * 4, &t.local[own * 4]);
@@ -82,12 +104,17 @@ void Film::merge(const TileWork& t) {
   const std::size_t tw = std::size_t(r.width());
   for (int row = r.row0; row < r.row1; ++row) {
     const std::size_t own = std::size_t(row - r.row0) * tw, p = index(r.x0, row);
-    if (!stats_.empty()) std::copy_n(&t.stats[own], tw, &stats_[p]);
-    if (!pixel_local()) continue;
-    // Only this tile writes the pixels; atomic stores let resolve() read meanwhile.
-    const double* src = &t.local[own * 4];
-    double* dst = &local_sums_[p * 4];
-    for (std::size_t k = 0; k < tw * 4; ++k) std::atomic_ref<double>(dst[k]).store(src[k], std::memory_order_relaxed);
+    // The pixels that took samples (all of a row, or the few of a sparse pass).
+    const bool whole = all_counted(&t.taken[own], tw);
+    for (std::size_t k = 0; k < tw; ++k) {
+      if (!whole && t.taken[own + k] == 0) continue;
+      if (!stats_.empty()) stats_[p + k] = t.stats[own + k];
+      if (!pixel_local()) continue;
+      // Only this tile writes the pixels; atomic stores let resolve() read meanwhile.
+      const double* src = &t.local[(own + k) * 4];
+      double* dst = &local_sums_[(p + k) * 4];
+      for (std::size_t c = 0; c < 4; ++c) std::atomic_ref<double>(dst[c]).store(src[c], std::memory_order_relaxed);
+    }
   }
   if (pixel_local()) return;
   for (int r2 = 0; r2 < t.bh; ++r2)

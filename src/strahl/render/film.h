@@ -81,11 +81,12 @@ class Film {
   const Filter& filter() const { return layout_.filter(); }
   bool pixel_local() const { return layout_.pixel_local(); }
 
-  // Sizes the tile's buffers and carries in the film's sums and statistics of its pixels.
+  // Sizes the tile's buffers and carries in the film's sums and statistics of its pixels (of those with
+  // samples to take, when the tile's counts are set: the others are left as they are).
   void begin_tile(TileWork& tile) const;
-  // Takes a rendered tile back: its pixels' sums and statistics replace the film's, its wide-filter
-  // contributions are added. Tiles of one pass cover disjoint pixels and may be merged from any
-  // threads at once.
+  // Takes a rendered tile back: the sums and statistics of its pixels that took samples (taken > 0)
+  // replace the film's, its wide-filter contributions are added. Tiles of one pass cover disjoint
+  // pixels and may be merged from any threads at once.
   void merge(const TileWork& tile);
 
   // Σ f·L / Σ f per pixel (0 where the weights sum to 0, e.g. no sample yet). Safe while tiles are

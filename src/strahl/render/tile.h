@@ -43,7 +43,7 @@ struct TileWork {
   std::vector<std::uint32_t> taken;
 
   // The film's state (Film::begin_tile fills it, FilmLayout::add_sample adds to it, Film::merge
-  // takes it back):
+  // takes back the pixels with taken > 0; a pixel without samples in the pass may hold anything):
   // pixel-local filters: Σ f·L (r, g, b) and Σ f per pixel of rect, carried in and out;
   std::vector<double> local;
   // adaptive sampling: each pixel's statistics, carried in and out (empty when not kept);
