@@ -77,6 +77,7 @@ class AdaptivePlanner {
     const int w = film.width(), h = film.height();
     const std::size_t n = counts.size();
     if (seen_.size() != n || add.size() != n || full) {
+      add.resize(n);
       seen_.assign(n, ~std::uint32_t(0));  // every pixel changed
       over_.assign(n, 0);
       mark_.assign(n, 0);

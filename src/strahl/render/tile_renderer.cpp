@@ -40,6 +40,7 @@ class NeighbourPackets {
       if (!flush(stop)) return false;
     }
     row_ = row;
+    // (The same for every pixel of a render: one sampler, one camera.)
     sobol_ = (sequence.kind == SamplerKind::Sobol || sequence.kind == SamplerKind::Adaptive) && !sequence.uses_lens &&
              !sequence.uses_time;
     if (sobol_) {  // the film positions come in flush(), the lanes side by side

@@ -224,7 +224,10 @@ struct PixelSequence {
     if ((kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) && !uses_lens && !uses_time) {
       std::uint32_t index[N], s0[N], s1[N], s2[N];
       Real px[N], py[N];
-      for (int i = 0; i < N; ++i) index[i] = first + std::uint32_t(i), s0[i] = h[0], s1[i] = h[1], s2[i] = h[2], px[i] = Real(x), py[i] = Real(y);
+      for (int i = 0; i < N; ++i) {
+        index[i] = first + std::uint32_t(i), s0[i] = h[0], s1[i] = h[1], s2[i] = h[2];
+        px[i] = Real(x), py[i] = Real(y);
+      }
       sobol_film_lanes<N>(index, s0, s1, s2, px, py, cs);
       return;
     }
