@@ -145,8 +145,7 @@ bool RenderJob::plan_next_pass() {
   ++pass_;
   if (take_pass()) return true;  // the rest of a pass split by max_pass_samples
   if (adaptive_) {
-    if (!sparse_) {  // from now on the passes are sparse; every pending_ is 0 here (taken)
-      std::fill(add_.begin(), add_.end(), 0u);
+    if (!sparse_) {  // from now on the passes are sparse (pending_ and add_ are all 0 here: nothing was left to take)
       busy_.assign(std::size_t(tile_count()), 0);
       sparse_ = true;
     }
