@@ -27,7 +27,7 @@ bool same_counts(const RayCounters& a, const RayCounters& b) {
 }
 
 struct Tally {
-  std::uint64_t samples = 0, shadow = 0, secondary = 0;
+  std::uint64_t samples = 0, shadow = 0, secondary = 0, invalid = 0;
 };
 
 // Samples first … first + count − 1 of every pixel of `view` through packets of N and one by one.
@@ -55,6 +55,7 @@ void expect_packets_match(const SceneView& view, const PixelSampler& sampler, st
       tally.samples += std::uint64_t(count);
       tally.shadow += single.shadow;
       tally.secondary += single.reflection + single.refraction;
+      tally.invalid += single.invalid_samples;
     }
   }
 }
@@ -158,6 +159,28 @@ TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
   expect_packets_match<16>(rs.view(), make_pixel_sampler(sampling), 0, 16, "mixed materials", tally);
   expect_packets_match<8>(rs.view(), make_pixel_sampler(sampling), 3, 5, "mixed materials", tally);
   EXPECT_GT(tally.secondary, 0u);
+}
+
+// Lanes shaded side by side (no mirror, no glass) whose radiance overflows — two lights of 1e308,
+// each finite, whose terms add up to infinity where both light the surface — become black and are
+// counted, as guard_sample() does for the single sample, in packets of good and bad lanes.
+TEST(PacketFrontEnd, OverflowingLanesAreGuardedAsAlone) {
+  Scene scene;
+  test::set_camera(scene, Vec3(0, 0, 4), Vec3(0, 0, 0), Vec3(0, 1, 0), -1, 1, -1, 1, 2, 20, 20);
+  scene.add(Sphere(Vec3(0, 0, 0), 1, test::phong(Vec3(1), 0, 1, Vec3(1), 10)));
+  scene.add(Sphere(Vec3(0.8, 0.8, 0.5), 0.3, test::phong(Vec3(0.5), 0, 1, Vec3(0), 10)));
+  scene.add(point_light(Vec3(2, 2, 4), Vec3(1), 1e308));
+  scene.add(point_light(Vec3(-2, 2, 4), Vec3(1), 1e308));
+  const RenderScene rs = compile(scene);
+  ASSERT_TRUE(packet_radiance_supported(rs.view()));
+  SamplingSettings sampling;
+  sampling.spp = 16;
+  Tally tally;
+  expect_packets_match<16>(rs.view(), make_pixel_sampler(sampling), 0, 16, "overflow", tally);
+  expect_packets_match<8>(rs.view(), make_pixel_sampler(sampling), 3, 5, "overflow", tally);
+  EXPECT_GT(tally.invalid, 0u);
+  EXPECT_LT(tally.invalid, tally.samples / 2) << "most samples are finite: the packets mix good and bad lanes";
+  EXPECT_EQ(tally.secondary, 0u) << "every lane is shaded side by side";
 }
 
 // Lanes from neighbouring pixels (packet_radiance_of, what the tile renderer uses for pixels with

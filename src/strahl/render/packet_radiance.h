@@ -80,6 +80,35 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
   }
 }
 
+// N values without their default member initialisers (a memset per packet, ~1.5 % of the lecture
+// scene's instructions), for arrays whose every lane is assigned before it is read.
+template <class T, int N>
+union UninitializedLanes {
+  T at[N];
+  STRAHL_HOST_DEVICE UninitializedLanes() {}
+};
+
+// local_illumination()'s per-surface terms of a material that spawns no ray: the colour at
+// `texcoord`, the ambient term, k_d (times the opacity), k_s and whether it is not black, the
+// shininess.
+struct LocalTerms {
+  Vec3 c, ambient;
+  Real kd;
+  Vec3 ks;
+  Real shiny, shininess;
+};
+STRAHL_HOST_DEVICE inline LocalTerms local_terms(const Material& material, const Vec3& texcoord, const Vec3& ambient_light) {
+  LocalTerms t;
+  t.c = surface_color(material, texcoord);
+  const Real opacity = 1 - material.transparency;
+  t.ambient = t.c * ambient_light * (material.ambient * opacity);
+  t.kd = material.diffuse * (1 - material.transparency);
+  t.ks = material.specular;
+  t.shiny = is_black(material.specular) ? 0 : 1;
+  t.shininess = material.shininess;
+  return t;
+}
+
 // The camera samples cs[0 … count − 1] (count ≤ N), lane i sample number index[i] of the pixel
 // whose random numbers are keyed by key[i] (PixelSequence::stream): their radiance (guarded as
 // sample_radiance's) into L[]. The lanes may be samples of one pixel or of several.
@@ -93,7 +122,8 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   for (int i = 0; i < count; ++i) film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y;
   for (int i = count; i < N; ++i) film_x[i] = film_x[0], film_y[i] = film_y[0];  // inactive lanes: nobody reads them
   s.camera.directions<N>(film_x, film_y, dx, dy, dz);
-  Ray rays[N];
+  UninitializedLanes<Ray, N> ray_slots;  // (every lane assigned below)
+  Ray* const rays = ray_slots.at;
   const Camera& camera = s.camera;
   for (int i = 0; i < N; ++i) {
     rays[i] = Ray{camera.eye, Vec3(dx[i], dy[i], dz[i])};
@@ -102,19 +132,17 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   }
   counters.camera += std::uint64_t(count);
 
-  Hit hits[N];
+  UninitializedLanes<Hit, N> hit_slots;  // (closest_hit_packet sets every lane)
+  Hit* const hits = hit_slots.at;
   closest_hit_packet<N>(s, active, rays, hits);
 
   // trace()'s first step up to the shadow rays, lane by lane: emitter, surface point, normal; the
   // points, normals and offsets also side by side for the shadow rays (0 in lanes that do not shade).
   FirstHitSlot slots[N];
   Real px[N], py[N], pz[N], nx[N], ny[N], nz[N], gx[N], gy[N], gz[N], offset[N], vx[N], vy[N], vz[N];
+  for (int i = 0; i < N; ++i) vx[i] = -rays[i].direction.x, vy[i] = -rays[i].direction.y, vz[i] = -rays[i].direction.z;
   std::uint32_t lit = 0;  // lanes that hit a surface (and no emitter): they shade
-  for (int i = 0; i < N; ++i) {
-    px[i] = py[i] = pz[i] = nx[i] = ny[i] = nz[i] = gx[i] = gy[i] = gz[i] = offset[i] = 0;
-    const Vec3 view = -rays[i].direction;
-    vx[i] = view.x, vy[i] = view.y, vz[i] = view.z;
-    if (i >= count) continue;
+  for (int i = 0; i < count; ++i) {
     FirstHit& f = slots[i].first;
     f.hit = hits[i];
     f.emitter = s.area_light_count > 0 ? nearest_emitter(s, rays[i], f.hit.t) : -1;
@@ -129,32 +157,41 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     offset[i] = sp.offset;
     lit |= 1u << i;
   }
+  for (std::uint32_t m = ~lit & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    px[i] = py[i] = pz[i] = nx[i] = ny[i] = nz[i] = gx[i] = gy[i] = gz[i] = offset[i] = 0;
+  }
 
   // Lanes whose material spawns no ray get their colour here, the local illumination alone
   // (local_illumination's arithmetic, side by side), when every light is a point or directional
   // one: the ambient term now, each light's term as its shadow rays come back.
   std::uint32_t local = 0;
   Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shiny[N], shininess[N], rr[N], rg[N], rb[N];
-  for (int i = 0; i < N; ++i) {
-    const Material* material = nullptr;
-    if (s.area_light_count == 0 && ((lit >> i) & 1u)) {
-      material = &s.materials[slots[i].first.sp.material];
-      if (material->reflectivity > 0 || material->transparency > 0) material = nullptr;
-    }
-    if (material == nullptr) {  // (the lane's values are not used; they are set all the same)
-      cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
+  // The terms of the last material without a checker (a lane of the same material takes them).
+  std::uint32_t plain = ~0u;  // its index (~0u: none yet)
+  LocalTerms terms{};
+  for (std::uint32_t m = s.area_light_count == 0 ? lit : 0; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    const std::uint32_t material_index = slots[i].first.sp.material;
+    if (material_index != plain) {
+      const Material& material = s.materials[material_index];
+      if (material.reflectivity > 0 || material.transparency > 0) continue;
+      const LocalTerms t = local_terms(material, slots[i].first.sp.texcoord, s.settings.ambient_light);
+      if (material.checker_size <= 0) plain = material_index, terms = t;
+      local |= 1u << i;
+      cr[i] = t.c.x, cg[i] = t.c.y, cb[i] = t.c.z, rr[i] = t.ambient.x, rg[i] = t.ambient.y, rb[i] = t.ambient.z;
+      kd[i] = t.kd, sr[i] = t.ks.x, sg[i] = t.ks.y, sb[i] = t.ks.z, shiny[i] = t.shiny, shininess[i] = t.shininess;
       continue;
     }
     local |= 1u << i;
-    const Vec3 c = surface_color(*material, slots[i].first.sp.texcoord);
-    const Real opacity = 1 - material->transparency;
-    const Vec3 ambient = c * s.settings.ambient_light * (material->ambient * opacity);
-    cr[i] = c.x, cg[i] = c.y, cb[i] = c.z;
-    rr[i] = ambient.x, rg[i] = ambient.y, rb[i] = ambient.z;
-    kd[i] = material->diffuse * (1 - material->transparency);
-    sr[i] = material->specular.x, sg[i] = material->specular.y, sb[i] = material->specular.z;
-    shiny[i] = is_black(material->specular) ? 0 : 1;
-    shininess[i] = material->shininess;
+    cr[i] = terms.c.x, cg[i] = terms.c.y, cb[i] = terms.c.z;
+    rr[i] = terms.ambient.x, rg[i] = terms.ambient.y, rb[i] = terms.ambient.z;
+    kd[i] = terms.kd, sr[i] = terms.ks.x, sg[i] = terms.ks.y, sb[i] = terms.ks.z, shiny[i] = terms.shiny;
+    shininess[i] = terms.shininess;
+  }
+  for (std::uint32_t m = ~local & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {  // (values not used; set all the same)
+    const int i = wide_bvh_detail::lowest_bit(m);
+    cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
   }
 
   // The shadow rays to each point light, as local_illumination() casts them (sample_light,
@@ -190,7 +227,8 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
       const int i = wide_bvh_detail::lowest_bit(m);
       if (!(n_dot_l[i] <= 0)) cast |= 1u << i;
     }
-    Ray shadow[N];
+    UninitializedLanes<Ray, N> shadow_slots;  // (every lane assigned before the query)
+    Ray* const shadow = shadow_slots.at;
     Vec3 tr[N];
     for (std::uint32_t m = lit & ~local; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
@@ -210,11 +248,15 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
                                        rg, rb);
   }
 
-  for (int i = 0; i < count; ++i) {
-    if ((local >> i) & 1u) {
-      L[i] = guard_sample(Vec3(rr[i], rg[i], rb[i]), counters);
-      continue;
-    }
+  // The local lanes' colours, guarded as guard_sample() does, side by side.
+  const std::uint32_t valid = valid_lanes<N>(rr, rg, rb);
+  for (std::uint32_t m = local; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    L[i] = ((valid >> i) & 1u) ? Vec3(rr[i], rg[i], rb[i]) : Vec3(0);
+  }
+  for (std::uint32_t m = local & ~valid; m != 0; m &= m - 1) ++counters.invalid_samples;
+  for (std::uint32_t lanes = active & ~local; lanes != 0; lanes &= lanes - 1) {
+    const int i = wide_bvh_detail::lowest_bit(lanes);
     SampleStream rng{key[i], index[i]};
     const FirstHit& f = slots[i].first;
     if ((lit >> i) & 1u) {
