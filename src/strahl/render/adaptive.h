@@ -152,7 +152,7 @@ class AdaptivePlanner {
   std::uint64_t plan_every_pixel(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
                                  double threshold, std::vector<std::uint32_t>& add, std::uint64_t* headroom) {
     const std::size_t w = std::size_t(film.width()), h = std::size_t(film.height());
-    const std::vector<PixelStats>& stats = film.pixel_stats();
+    const ZeroedArray<PixelStats>& stats = film.pixel_stats();
     seen_ = counts;
     mean_.resize(stats.size());
     for (std::size_t p = 0; p < stats.size(); ++p)

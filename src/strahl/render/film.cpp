@@ -58,11 +58,11 @@ Film::Film(int width, int height, const Filter& filter, bool pixel_stats)
 
 Film::Film(const FilmLayout& layout) : layout_(layout) {
   const std::size_t pixels = std::size_t(width()) * std::size_t(height());
-  if (layout_.keeps_stats()) stats_.assign(pixels, PixelStats{});
+  if (layout_.keeps_stats()) stats_ = ZeroedArray<PixelStats>(pixels);
   if (layout_.pixel_local())
-    local_sums_.assign(pixels * 4, 0.0);
+    local_sums_ = ZeroedArray<double>(pixels * 4);
   else
-    fixed_.assign(pixels * 4, 0);
+    fixed_ = ZeroedArray<std::int64_t>(pixels * 4);
 }
 
 namespace {
@@ -74,15 +74,29 @@ bool all_counted(const std::uint32_t* count, std::size_t n) {
   return none == 0;
 }
 
+// Whether any entry of a tile row's counts is above 0.
+bool any_counted(const std::uint32_t* count, std::size_t n) {
+  std::uint32_t any = 0;
+  for (std::size_t k = 0; k < n; ++k) any |= count[k];
+  return any != 0;
+}
+
 }  // namespace
 
 void Film::begin_tile(TileWork& t) const {
   layout_.prepare(t);
   const TileRect& r = t.rect;
   const std::size_t tw = std::size_t(r.width());
-  const bool counted = t.count.size() == r.pixels();
+  const bool counted = t.count.size() == r.pixels(), known_first = t.first.size() == r.pixels();
   for (int row = r.row0; row < r.row1; ++row) {
     const std::size_t own = std::size_t(row - r.row0) * tw, p = index(r.x0, row);
+    // A row of pixels without samples so far (the first pass) starts from zero: the film's state of
+    // them is zero, and not reading it leaves its pages untouched until the tile is merged.
+    if (known_first && !any_counted(&t.first[own], tw)) {
+      if (!stats_.empty()) std::fill_n(&t.stats[own], tw, PixelStats{});
+      if (pixel_local()) std::fill_n(&t.local[own * 4], tw * 4, 0.0);
+      continue;
+    }
     // Only the pixels that take samples (a sparse adaptive pass: a few of the tile's); the state of
     // the others is not read (render_tile) nor taken back (merge).
     if (counted && !all_counted(&t.count[own], tw)) {

@@ -22,6 +22,7 @@
 #include "strahl/render/film_sample.h"
 #include "strahl/render/tile.h"
 #include "strahl/sampling/filter.h"
+#include "strahl/util/zeroed_array.h"
 
 namespace strahl {
 
@@ -82,7 +83,9 @@ class Film {
   bool pixel_local() const { return layout_.pixel_local(); }
 
   // Sizes the tile's buffers and carries in the film's sums and statistics of its pixels (of those with
-  // samples to take, when the tile's counts are set: the others are left as they are).
+  // samples to take, when the tile's counts are set: the others are left as they are). Rows whose
+  // pixels have no samples so far (tile.first all 0, when set) start from zero without a read: the
+  // film holds only what merged tiles took, and tile.first counts those samples.
   void begin_tile(TileWork& tile) const;
   // Takes a rendered tile back: the sums and statistics of its pixels that took samples (taken > 0)
   // replace the film's, its wide-filter contributions are added. Tiles of one pass cover disjoint
@@ -95,7 +98,7 @@ class Film {
 
   const PixelStats& stats(int x, int row) const { return stats_.at(index(x, row)); }
   // Every pixel's statistics, row-major from the top (empty unless the layout keeps them).
-  const std::vector<PixelStats>& pixel_stats() const { return stats_; }
+  const ZeroedArray<PixelStats>& pixel_stats() const { return stats_; }
   // The pixel's Σ f·L (r, g, b) and Σ f, unrounded (tests compare these bit for bit).
   std::array<double, 4> sums(int x, int row) const;
 
@@ -103,9 +106,9 @@ class Film {
   std::size_t index(int x, int row) const { return std::size_t(row) * std::size_t(width()) + std::size_t(x); }
 
   FilmLayout layout_;
-  std::vector<double> local_sums_;   // pixel-local filters: r, g, b, weight per pixel
-  std::vector<std::int64_t> fixed_;  // wide filters: fixed-point r, g, b, weight per pixel
-  std::vector<PixelStats> stats_;
+  ZeroedArray<double> local_sums_;   // pixel-local filters: r, g, b, weight per pixel
+  ZeroedArray<std::int64_t> fixed_;  // wide filters: fixed-point r, g, b, weight per pixel
+  ZeroedArray<PixelStats> stats_;
 };
 
 }  // namespace strahl
