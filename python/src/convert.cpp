@@ -35,7 +35,7 @@ py::array_t<float> to_numpy(const Image& image, int channels) {
   const auto h = py::ssize_t(image.height()), w = py::ssize_t(image.width());
   py::array_t<float> out = channels == 3 ? py::array_t<float>({h, w, py::ssize_t(3)}) : py::array_t<float>({h, w});
   float* dst = out.mutable_data();
-  const std::vector<Rgb>& px = image.pixels();
+  const auto& px = image.pixels();
   if (channels == 3) {
     static_assert(sizeof(Rgb) == 3 * sizeof(float));
     std::memcpy(dst, px.data(), px.size() * sizeof(Rgb));

@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "strahl/util/zeroed_array.h"
+
 namespace strahl {
 
 struct Rgb {
@@ -14,18 +16,18 @@ struct Rgb {
 class Image {
  public:
   Image() = default;
-  Image(int width, int height) : width_(width), height_(height), pixels_(std::size_t(width) * height) {}
+  Image(int width, int height) : width_(width), height_(height), pixels_(std::size_t(width) * std::size_t(height)) {}
 
   int width() const { return width_; }
   int height() const { return height_; }
   Rgb& at(int x, int row) { return pixels_[std::size_t(row) * width_ + x]; }
   const Rgb& at(int x, int row) const { return pixels_[std::size_t(row) * width_ + x]; }
-  const std::vector<Rgb>& pixels() const { return pixels_; }
+  const ZeroedArray<Rgb>& pixels() const { return pixels_; }
   friend bool operator==(const Image&, const Image&) = default;
 
  private:
   int width_ = 0, height_ = 0;
-  std::vector<Rgb> pixels_;
+  ZeroedArray<Rgb> pixels_;
 };
 
 }  // namespace strahl

@@ -83,7 +83,7 @@ inline unsigned char byte_of(float v) {
 
 // 8-bit encoding, in parallel: the sRGB curve costs a pow per channel (~0.1 s at 1080p).
 std::vector<unsigned char> to_bytes(const Image& image, bool linear) {
-  const std::vector<Rgb>& pixels = image.pixels();
+  const auto& pixels = image.pixels();
   std::vector<unsigned char> bytes(pixels.size() * 3);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pixels.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     encode_bytes(pixels.data() + r.begin(), r.size(), linear, bytes.data() + 3 * r.begin());

@@ -4,6 +4,9 @@
 #include <atomic>
 #include <cmath>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace strahl {
 
 namespace {
@@ -150,31 +153,35 @@ std::array<double, 4> Film::sums(int x, int row) const {
 
 Image Film::resolve() const {
   Image image(width(), height());
-  for (int row = 0; row < height(); ++row)
-    for (int x = 0; x < width(); ++x) {
-      const std::size_t i = index(x, row) * 4;
-      Vec3 sum;
-      double w;
-      if (pixel_local()) {
-        const auto load = [&](int k) {
-          return std::atomic_ref<double>(const_cast<double&>(local_sums_[i + std::size_t(k)])).load(std::memory_order_relaxed);
-        };
-        sum = {load(0), load(1), load(2)};
-        w = load(3);
-      } else {
-        const auto load = [&](int k) {
-          return double(std::atomic_ref<std::int64_t>(const_cast<std::int64_t&>(fixed_[i + std::size_t(k)]))
-                            .load(std::memory_order_relaxed)) /
-                 kFixedScale;
-        };
-        sum = {load(0), load(1), load(2)};
-        w = load(3);
+  // Rows in parallel (the image's fresh pages are first written here, by whichever thread).
+  tbb::parallel_for(tbb::blocked_range<int>(0, height(), 16), [&](const tbb::blocked_range<int>& rows) {
+    for (int row = rows.begin(); row < rows.end(); ++row)
+      for (int x = 0; x < width(); ++x) {
+        const std::size_t i = index(x, row) * 4;
+        Vec3 sum;
+        double w;
+        if (pixel_local()) {
+          const auto load = [&](int k) {
+            return std::atomic_ref<double>(const_cast<double&>(local_sums_[i + std::size_t(k)]))
+                .load(std::memory_order_relaxed);
+          };
+          sum = {load(0), load(1), load(2)};
+          w = load(3);
+        } else {
+          const auto load = [&](int k) {
+            return double(std::atomic_ref<std::int64_t>(const_cast<std::int64_t&>(fixed_[i + std::size_t(k)]))
+                              .load(std::memory_order_relaxed)) /
+                   kFixedScale;
+          };
+          sum = {load(0), load(1), load(2)};
+          w = load(3);
+        }
+        if (w != 0) {  // as pbrt: Mitchell's negative lobes can make a sparse pixel's sum negative
+          const Vec3 c = sum / w;
+          image.at(x, row) = Rgb{float(c.x), float(c.y), float(c.z)};
+        }
       }
-      if (w != 0) {  // as pbrt: Mitchell's negative lobes can make a sparse pixel's sum negative
-        const Vec3 c = sum / w;
-        image.at(x, row) = Rgb{float(c.x), float(c.y), float(c.z)};
-      }
-    }
+  });
   return image;
 }
 

@@ -97,7 +97,8 @@ struct LocalTerms {
   Vec3 ks;
   Real shiny, shininess;
 };
-STRAHL_HOST_DEVICE inline LocalTerms local_terms(const Material& material, const Vec3& texcoord, const Vec3& ambient_light) {
+STRAHL_HOST_DEVICE inline LocalTerms local_terms(const Material& material, const Vec3& texcoord,
+                                                 const Vec3& ambient_light) {
   LocalTerms t;
   t.c = surface_color(material, texcoord);
   const Real opacity = 1 - material.transparency;
@@ -189,7 +190,8 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     kd[i] = terms.kd, sr[i] = terms.ks.x, sg[i] = terms.ks.y, sb[i] = terms.ks.z, shiny[i] = terms.shiny;
     shininess[i] = terms.shininess;
   }
-  for (std::uint32_t m = ~local & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {  // (values not used; set all the same)
+  // The other lanes' values are not used; they are set all the same.
+  for (std::uint32_t m = ~local & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
   }

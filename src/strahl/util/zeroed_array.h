@@ -1,10 +1,10 @@
 #pragma once
 // An array of n values that start as all-zero bytes, with its memory from calloc: a large block
 // is fresh pages that the kernel supplies already zeroed on first touch, so creating the array
-// writes nothing. The film's sums and statistics (tens of MiB) are such arrays: their page
-// faults — a few µs per 4 KiB page in a virtual machine, some 10^4 for a 960×540 film — then
-// happen where the tiles are first merged, in the threads that render, instead of all at once
-// before the first tile.
+// writes nothing. The film's sums and statistics and the image (tens of MiB) are such arrays:
+// their page faults — a few µs per 4 KiB page in a virtual machine, some 10^4 for a 960×540
+// film — then happen where the tiles are first merged and the image resolved, in the threads
+// that do it, instead of all at once before the first tile.
 
 #include <cstddef>
 #include <cstdlib>
@@ -36,6 +36,16 @@ class ZeroedArray {
   const T* data() const { return data_.get(); }
   T& operator[](std::size_t i) { return data_.get()[i]; }
   const T& operator[](std::size_t i) const { return data_.get()[i]; }
+  T* begin() { return data(); }
+  T* end() { return data() + size_; }
+  const T* begin() const { return data(); }
+  const T* end() const { return data() + size_; }
+  friend bool operator==(const ZeroedArray& a, const ZeroedArray& b) {
+    if (a.size_ != b.size_) return false;
+    for (std::size_t i = 0; i < a.size_; ++i)
+      if (!(a[i] == b[i])) return false;
+    return true;
+  }
   const T& at(std::size_t i) const {
     if (i >= size_) throw std::out_of_range("ZeroedArray::at");
     return data_.get()[i];
