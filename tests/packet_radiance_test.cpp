@@ -125,6 +125,16 @@ TEST(PacketFrontEnd, WhittedSceneSpawnsSecondaryRays) {
   EXPECT_GT(tally.secondary, 100u);
 }
 
+// A scene of the tests below, 16 grid samples per pixel: full packets of 16, and 5 lanes of 8.
+void expect_scene_packets_match(const Scene& scene, const std::string& what, Tally& tally) {
+  const RenderScene rs = compile(scene);
+  ASSERT_TRUE(packet_radiance_supported(rs.view())) << what;
+  SamplingSettings sampling;
+  sampling.spp = 16;
+  expect_packets_match<16>(rs.view(), make_pixel_sampler(sampling), 0, 16, what, tally);
+  expect_packets_match<8>(rs.view(), make_pixel_sampler(sampling), 3, 5, what, tally);
+}
+
 // The lanes shade side by side where a pixel's samples meet several materials: exponents that
 // differ between the lanes, a fractional and a zero exponent (std::pow, lane by lane), black
 // highlights, a checkerboard, a mirror beside a matte sphere (lanes that go on into trace()),
@@ -151,13 +161,8 @@ TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
   scene.addSceneObject(new Sphere(Vec3(-0.5, 0.15, 0.5), 0.15, mirror));
   scene.add(point_light(Vec3(-1, 2, 2), Vec3(0.5, 0.4, 0.3)));
   scene.add(directional_light(normalize(Vec3(0.3, -1, -0.2)), Vec3(0.2, 0.3, 0.4)));
-  const RenderScene rs = compile(scene);
-  ASSERT_TRUE(packet_radiance_supported(rs.view()));
-  SamplingSettings sampling;
-  sampling.spp = 16;
   Tally tally;
-  expect_packets_match<16>(rs.view(), make_pixel_sampler(sampling), 0, 16, "mixed materials", tally);
-  expect_packets_match<8>(rs.view(), make_pixel_sampler(sampling), 3, 5, "mixed materials", tally);
+  expect_scene_packets_match(scene, "mixed materials", tally);
   EXPECT_GT(tally.secondary, 0u);
 }
 
@@ -171,13 +176,8 @@ TEST(PacketFrontEnd, OverflowingLanesAreGuardedAsAlone) {
   scene.add(Sphere(Vec3(0.8, 0.8, 0.5), 0.3, test::phong(Vec3(0.5), 0, 1, Vec3(0), 10)));
   scene.add(point_light(Vec3(2, 2, 4), Vec3(1), 1e308));
   scene.add(point_light(Vec3(-2, 2, 4), Vec3(1), 1e308));
-  const RenderScene rs = compile(scene);
-  ASSERT_TRUE(packet_radiance_supported(rs.view()));
-  SamplingSettings sampling;
-  sampling.spp = 16;
   Tally tally;
-  expect_packets_match<16>(rs.view(), make_pixel_sampler(sampling), 0, 16, "overflow", tally);
-  expect_packets_match<8>(rs.view(), make_pixel_sampler(sampling), 3, 5, "overflow", tally);
+  expect_scene_packets_match(scene, "overflow", tally);
   EXPECT_GT(tally.invalid, 0u);
   EXPECT_LT(tally.invalid, tally.samples / 2) << "most samples are finite: the packets mix good and bad lanes";
   EXPECT_EQ(tally.secondary, 0u) << "every lane is shaded side by side";
