@@ -119,18 +119,18 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
                                                   RayCounters& counters) {
   const std::uint32_t active = count >= 32 ? ~0u : (1u << count) - 1;
   // The camera rays: directions side by side (Camera::directions, generate_ray's arithmetic).
-  Real film_x[N], film_y[N], dx[N], dy[N], dz[N];
-  for (int i = 0; i < count; ++i) film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y;
-  for (int i = count; i < N; ++i) film_x[i] = film_x[0], film_y[i] = film_y[0];  // inactive lanes: nobody reads them
+  Real film_x[N], film_y[N], time[N], dx[N], dy[N], dz[N];
+  for (int i = 0; i < count; ++i) film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y, time[i] = cs[i].time;
+  for (int i = count; i < N; ++i)  // inactive lanes: nobody reads them
+    film_x[i] = film_x[0], film_y[i] = film_y[0], time[i] = time[0];
   s.camera.directions<N>(film_x, film_y, dx, dy, dz);
+  const Camera& camera = s.camera;
+  for (int i = 0; i < N; ++i) time[i] = camera.shutter_open + time[i] * (camera.shutter_close - camera.shutter_open);
   UninitializedLanes<Ray, N> ray_slots;  // (every lane assigned below)
   Ray* const rays = ray_slots.at;
-  const Camera& camera = s.camera;
-  for (int i = 0; i < N; ++i) {
-    rays[i] = Ray{camera.eye, Vec3(dx[i], dy[i], dz[i])};
-    rays[i].time = camera.shutter_open + cs[i < count ? i : 0].time * (camera.shutter_close - camera.shutter_open);
-    if (camera.lens_radius > 0) camera.through_lens(rays[i], cs[i < count ? i : 0].lens);
-  }
+  for (int i = 0; i < N; ++i) rays[i] = Ray{camera.eye, Vec3(dx[i], dy[i], dz[i]), time[i]};
+  if (camera.lens_radius > 0)
+    for (int i = 0; i < N; ++i) camera.through_lens(rays[i], cs[i < count ? i : 0].lens);
   counters.camera += std::uint64_t(count);
 
   UninitializedLanes<Hit, N> hit_slots;  // (closest_hit_packet sets every lane)
@@ -141,7 +141,10 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   // points, normals and offsets also side by side for the shadow rays (0 in lanes that do not shade).
   FirstHitSlot slots[N];
   Real px[N], py[N], pz[N], nx[N], ny[N], nz[N], gx[N], gy[N], gz[N], offset[N], vx[N], vy[N], vz[N];
-  for (int i = 0; i < N; ++i) vx[i] = -rays[i].direction.x, vy[i] = -rays[i].direction.y, vz[i] = -rays[i].direction.z;
+  if (camera.lens_radius > 0)
+    for (int i = 0; i < N; ++i) vx[i] = -rays[i].direction.x, vy[i] = -rays[i].direction.y, vz[i] = -rays[i].direction.z;
+  else
+    for (int i = 0; i < N; ++i) vx[i] = -dx[i], vy[i] = -dy[i], vz[i] = -dz[i];  // (the rays' directions)
   std::uint32_t lit = 0;  // lanes that hit a surface (and no emitter): they shade
   for (int i = 0; i < count; ++i) {
     FirstHit& f = slots[i].first;
