@@ -13,6 +13,7 @@
 #include <new>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 namespace strahl {
 
@@ -26,9 +27,14 @@ class ZeroedArray {
   ZeroedArray(const ZeroedArray& o) : data_(allocate(o.size_)), size_(o.size_) {
     if (size_ > 0) std::memcpy(data_.get(), o.data_.get(), size_ * sizeof(T));
   }
-  ZeroedArray(ZeroedArray&&) noexcept = default;
+  // A moved-from array is empty, as a moved-from std::vector is.
+  ZeroedArray(ZeroedArray&& o) noexcept : data_(std::move(o.data_)), size_(std::exchange(o.size_, 0)) {}
   ZeroedArray& operator=(const ZeroedArray& o) { return *this = ZeroedArray(o); }
-  ZeroedArray& operator=(ZeroedArray&&) noexcept = default;
+  ZeroedArray& operator=(ZeroedArray&& o) noexcept {
+    data_ = std::move(o.data_);
+    size_ = std::exchange(o.size_, 0);
+    return *this;
+  }
 
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
