@@ -19,7 +19,10 @@ namespace strahl {
 
 template <class T>
 class ZeroedArray {
-  static_assert(std::is_trivially_copyable_v<T>, "zero bytes must be a valid value");
+  // Copies are memcpy, so T must be trivially copyable. That all-zero bytes are a value of T (and
+  // the value zero) is the user's promise, which no trait can check: it holds for the arithmetic
+  // types and the aggregates of them stored here (double, std::int64_t, Rgb, PixelStats).
+  static_assert(std::is_trivially_copyable_v<T>, "ZeroedArray copies with memcpy: T must be trivially copyable");
 
  public:
   ZeroedArray() = default;
