@@ -309,6 +309,81 @@ TEST(Packet, FrustumKeepsEveryChildALaneMeets) {
   check_frustum<16>(42);
 }
 
+// The sphere pre-test (packet.h packet_cone(), cone_may_meet()) never skips a sphere that some
+// active lane's ray meets, as the lane tests compute it: packets from one origin, shadow-ray-like
+// packets (spread origins towards one point), parallel rays, unnormalised directions, at scales
+// 1e-3…1e4 and 1e5 from the origin, against random spheres and spheres tangent to one lane's ray
+// (their radius off by a few ulps either way: the lane test's rounding decides those).
+template <int N>
+void check_cone(std::uint64_t seed) {
+  Random rng(seed);
+  std::size_t met = 0, culled = 0, tangent_met = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Real scale = rng.log_uniform(1e-3, 1e4);
+    const Vec3 shift = trial % 5 == 0 ? Vec3(1e5, -1e5, 1e5) : Vec3(0);
+    const int kind = trial % 4;
+    const Vec3 o = rng.point(-1, 1) * scale + shift, d = rng.direction(), target = rng.point(-1, 1) * scale + shift;
+    const Real width = rng.log_uniform(1e-6, 0.5);
+    Ray rays[N];
+    Real t_min[N], t_max[N];
+    for (int i = 0; i < N; ++i) {
+      if (kind == 0) {  // one origin, a cone of directions
+        rays[i] = Ray{o, normalize(d + rng.direction() * width)};
+      } else if (kind == 1) {  // spread origins towards one point
+        const Vec3 p = o + rng.direction() * (width * scale);
+        rays[i] = Ray{p, normalize(target - p)};
+      } else if (kind == 2) {  // parallel rays
+        rays[i] = Ray{o + rng.direction() * (width * scale), d};
+      } else {  // unnormalised directions
+        rays[i] = Ray{o + rng.direction() * (width * scale * 1e-3), (d + rng.direction() * width) * rng.uniform(0.5, 2)};
+      }
+      t_min[i] = rng.coin() ? 0 : rng.uniform(0, 1) * scale;
+      t_max[i] = rng.coin() ? kInfinity : t_min[i] + rng.uniform(0, 4) * scale;
+    }
+    const std::uint32_t active = trial % 3 == 0 ? std::uint32_t(rng.uniform(1, double(1u << N))) : (1u << N) - 1;
+    const PacketRays<N> r(rays);
+    const PacketCone cone = packet_cone<N>(r, active, t_min);
+    for (int k = 0; k < 16; ++k) {
+      kernel::Sphere sphere;
+      const bool tangent = k % 2 == 1;
+      if (!tangent) {
+        sphere.center = rng.point(-2, 2) * scale + shift;
+        sphere.radius = rng.log_uniform(1e-4, 1) * scale;
+      } else {  // touching lane j's ray at t (its radius a few ulps off either way)
+        int j = int(rng.below(N));
+        while (((active >> j) & 1u) == 0) j = (j + 1) % N;
+        const Vec3 dir = normalize(rays[j].direction);
+        const Vec3 p = rays[j].origin + dir * (rng.uniform(0, 3) * scale);
+        const Vec3 u = normalize(cross(dir, rng.direction()));
+        const Real radius = rng.log_uniform(1e-4, 1) * scale;
+        sphere.center = p + u * radius;
+        sphere.radius = radius * (1 + Real(rng.uniform(-8, 8)) * 1.1e-16);
+      }
+      bool some_lane_meets = false;
+      for (int i = 0; i < N; ++i)
+        if ((active >> i) & 1u)
+          some_lane_meets |= kernel::intersect(sphere, rays[i], t_min[i], t_max[i]) < kInfinity ||
+                             kernel::crossings(sphere, rays[i], t_min[i], t_max[i]) > 0;
+      const bool may_meet = cone_may_meet(cone, sphere);
+      met += some_lane_meets;
+      tangent_met += tangent && some_lane_meets;
+      culled += !may_meet;
+      if (some_lane_meets) {
+        ASSERT_TRUE(may_meet) << "trial " << trial << " sphere " << k << (tangent ? " (tangent)" : "")
+                              << ": a lane meets it, the cone skips it";
+      }
+    }
+  }
+  EXPECT_GT(met, 5000u);          // spheres are met
+  EXPECT_GT(tangent_met, 2000u);  // tangent ones too, by the lanes' rounding
+  EXPECT_GT(culled, 10000u);      // and the cone skips many others
+}
+
+TEST(Packet, ConeKeepsEverySphereALaneMeets) {
+  check_cone<8>(43);
+  check_cone<16>(44);
+}
+
 // Zero direction components (+0 and −0), rays along the axes, origins exactly on the grid's edges
 // and vertices and in its plane, rays through its shared vertices and along its edges.
 TEST(Packet, DegenerateRaysMatchSingleRays) {

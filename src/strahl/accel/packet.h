@@ -14,19 +14,110 @@
 
 namespace strahl {
 
+// N values without their default member initialisers (a memset per packet, ~1.5 % of the lecture
+// scene's instructions), for arrays whose every lane is assigned before it is read.
+template <class T, int N>
+union UninitializedLanes {
+  T at[N];
+  STRAHL_HOST_DEVICE UninitializedLanes() {}
+};
+
 // The rays of a packet as plain arrays, one per coordinate, for loops over the lanes that the
 // compiler turns into SIMD (and the GPU runs as they are).
+// The packet front end (render/packet_radiance.h) fills them directly from its own arrays.
 template <int N>
 struct PacketRays {
-  Real ox[N], oy[N], oz[N], dx[N], dy[N], dz[N];
+  Real ox[N], oy[N], oz[N], dx[N], dy[N], dz[N], time[N];
 
+  PacketRays() = default;  // (uninitialised: for filling lane by lane)
   STRAHL_HOST_DEVICE explicit PacketRays(const Ray* rays) {
     for (int i = 0; i < N; ++i) {
       ox[i] = rays[i].origin.x, oy[i] = rays[i].origin.y, oz[i] = rays[i].origin.z;
       dx[i] = rays[i].direction.x, dy[i] = rays[i].direction.y, dz[i] = rays[i].direction.z;
+      time[i] = rays[i].time;
     }
   }
+  STRAHL_HOST_DEVICE Ray ray(int i) const { return Ray{Vec3(ox[i], oy[i], oz[i]), Vec3(dx[i], dy[i], dz[i]), time[i]}; }
 };
+
+// A bound on the active lanes' rays, for skipping a sphere that none of them can meet before
+// computing their roots: every point o_i + t·d_i (t ≥ 0) of lane i lies within `spread` of the
+// cone of apex `apex` (the first active lane's origin), unit axis `axis` and half-angle
+// θ (cos_theta, sin_theta) — because o_i + t·d_i lies within |o_i − apex| of apex + t·d_i, which is
+// in the cone. Camera rays through one pixel share their origin (spread 0) and form a cone of a
+// pixel's width; a pixel's shadow rays to one light start close together with nearly parallel
+// directions. `valid` is false where the directions span 90° or more (or are not finite): no bound.
+struct PacketCone {
+  Vec3 apex, axis;
+  Real cos_theta = -1, sin_theta = 0, spread = 0;
+  bool valid = false;
+};
+
+// The cone of the active lanes' rays of r, for hits at t > t_min[i] ≥ 0 (no cone when some
+// t_min is negative: a root behind the origin would not be in it). Its axis is lane `first`'s
+// direction; the lanes' directions need not be unit (a lane test's hit means the same line
+// whatever |d|). Written as loops over all lanes and a tree of minima and maxima, so that the
+// lanes run side by side (a running sum or minimum over the lanes would be one long chain).
+template <int N>
+STRAHL_HOST_DEVICE inline PacketCone packet_cone(const PacketRays<N>& r, std::uint32_t active, const Real* t_min) {
+  PacketCone k;
+  if (active == 0) return k;
+  const int first = wide_bvh_detail::lowest_bit(active);
+  const Real ax = r.ox[first], ay = r.oy[first], az = r.oz[first];
+  const Real fx = r.dx[first], fy = r.dy[first], fz = r.dz[first];
+  const Real inv = Real(1) / std::sqrt(fx * fx + fy * fy + fz * fz);
+  const Real ux = fx * inv, uy = fy * inv, uz = fz * inv;
+  // Per lane: the cosine of its angle to the axis and its origin's squared distance from the
+  // apex; an inactive lane (garbage) gets 1 and 0, a NaN or infinite one marks the cone unusable.
+  Real cos_lane[N], spread2[N];
+  std::uint32_t unusable = 0;  // lanes whose values are NaN or infinite
+  for (int i = 0; i < N; ++i) {
+    const Real c = (ux * r.dx[i] + uy * r.dy[i] + uz * r.dz[i]) /
+                   std::sqrt(r.dx[i] * r.dx[i] + r.dy[i] * r.dy[i] + r.dz[i] * r.dz[i]);
+    const Real ex = r.ox[i] - ax, ey = r.oy[i] - ay, ez = r.oz[i] - az;
+    const Real e2 = ex * ex + ey * ey + ez * ez;
+    cos_lane[i] = c;
+    spread2[i] = e2;
+    unusable |= std::uint32_t(!(c >= -2) | !(e2 < kInfinity) | !(t_min[i] >= 0)) << i;
+  }
+  if ((unusable & active) != 0) return k;
+  for (std::uint32_t m = ~active & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    cos_lane[i] = 1, spread2[i] = 0;
+  }
+  for (int w = N / 2; w > 0; w /= 2)
+    for (int i = 0; i < w; ++i) {
+      cos_lane[i] = cos_lane[i + w] < cos_lane[i] ? cos_lane[i + w] : cos_lane[i];
+      spread2[i] = spread2[i + w] > spread2[i] ? spread2[i + w] : spread2[i];
+    }
+  // Widened by far more than the rounding of the products and quotients above (a few 1e-16).
+  k.cos_theta = cos_lane[0] - Real(1e-12);
+  if (!(k.cos_theta > Real(1e-3))) return k;
+  k.sin_theta = std::sqrt(1 - k.cos_theta * k.cos_theta);
+  k.apex = Vec3(ax, ay, az);
+  k.axis = Vec3(ux, uy, uz);
+  k.spread = std::sqrt(spread2[0]);
+  k.valid = true;
+  return k;
+}
+
+// False only when no ray of the cone's packet can meet the sphere — then none of the sphere lane
+// tests below finds a root in any lane, computed as they compute it: the sphere is grown by the
+// rays' spread and by 1e-8 of the distances involved (the lane tests' rounding is some 1e-16 of
+// them), and the cone of apex half-angle θ misses it when the angle α between the axis and the
+// centre exceeds θ + β, β the angle the grown sphere subtends (sin β = R/|v|): cos α < cos(θ + β).
+STRAHL_HOST_DEVICE inline bool cone_may_meet(const PacketCone& k, const kernel::Sphere& sphere) {
+  if (!k.valid) return true;
+  const Vec3 v = sphere.center - k.apex;
+  const Real distance = v.length();
+  const Real grown = sphere.radius + k.spread;
+  const Real radius = grown + Real(1e-8) * (distance + grown);
+  if (!(distance > radius)) return true;  // the apex inside (or NaN)
+  const Real sin_b = radius / distance, cos_b = std::sqrt(1 - sin_b * sin_b);
+  const Real cos_a = dot(k.axis, v) / distance;
+  const Real cos_sum = k.cos_theta * cos_b - k.sin_theta * sin_b;  // cos(θ + β), θ + β ≤ π
+  return !(cos_a < cos_sum - Real(1e-12));
+}
 
 // The two roots of the sphere's quadratic along every lane's ray, t0 ≤ t1, as kernel::intersect
 // and kernel::crossings (geometry/sphere.h) compute them: the same operations in the same order,
@@ -89,6 +180,50 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_crossings_lanes(const kernel:
   return true;
 }
 
+// The one-leaf sphere loops of nearest_hit and occluded (accel.h) for a packet: sphere by sphere,
+// all lanes at once, each lane's far end lowered as it finds nearer hits, exactly as its own loop
+// would; spheres no lane's ray can meet (packet_cone) skipped.
+template <int N>
+STRAHL_HOST_DEVICE inline void sphere_leaf_nearest_packet(const PrimitiveSet& p, std::uint32_t active, const PacketRays<N>& r,
+                                                          const Real* t_min, const Real* t_max, NearestHit* out) {
+  // (the sphere's index kept as a Real beside t, so that the lanes' update is one width)
+  Real t_far[N], t[N], prim[N];
+  for (int i = 0; i < N; ++i) t_far[i] = t_max[i], prim[i] = 0;
+  const PacketCone cone = p.sphere_count > 1 ? packet_cone<N>(r, active, t_min) : PacketCone{};
+  for (std::uint32_t k = 0; k < p.sphere_count; ++k) {
+    if (!cone_may_meet(cone, p.spheres[k])) continue;
+    if (!intersect_sphere_lanes<N>(p.spheres[k], r, t_min, t_far, t)) continue;
+    for (int i = 0; i < N; ++i) {
+      const bool nearer = t[i] < t_far[i];
+      t_far[i] = nearer ? t[i] : t_far[i];
+      prim[i] = nearer ? Real(k) : prim[i];
+    }
+  }
+  for (std::uint32_t m = active; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    out[i] = NearestHit{};
+    if (t_far[i] < t_max[i]) out[i] = NearestHit{std::uint32_t(prim[i]), kernel::TriangleHit{t_far[i], 0, 0}};
+  }
+}
+
+template <int N>
+STRAHL_HOST_DEVICE inline std::uint32_t sphere_leaf_occluded_packet(const PrimitiveSet& p, std::uint32_t active,
+                                                                    const PacketRays<N>& r, const Real* t_min,
+                                                                    const Real* t_max) {
+  Real t0[N], t1[N];
+  std::uint32_t m = 0;
+  const PacketCone cone = p.sphere_count > 1 ? packet_cone<N>(r, active, t_min) : PacketCone{};
+  for (std::uint32_t k = 0; k < p.sphere_count && (active & ~m) != 0; ++k) {
+    if (!cone_may_meet(cone, p.spheres[k])) continue;
+    if (!sphere_roots_lanes<N>(p.spheres[k], r, t0, t1)) continue;
+    for (int i = 0; i < N; ++i) {  // (intersect_sphere_lanes' test: a root inside the segment)
+      const bool in = ((t0[i] > t_min[i]) & (t0[i] < t_max[i])) | ((t1[i] > t_min[i]) & (t1[i] < t_max[i]));
+      m |= std::uint32_t(in) << i;
+    }
+  }
+  return m & active;
+}
+
 template <int N>
 STRAHL_HOST_DEVICE inline void nearest_hit_packet(const AccelView& a, std::uint32_t active, const Ray* rays,
                                                   const Real* t_min, const Real* t_max, NearestHit* out) {
@@ -111,28 +246,7 @@ STRAHL_HOST_DEVICE inline void nearest_hit_packet(const AccelView& a, std::uint3
       if ((active >> i) & 1u) out[i] = NearestHit{prim[i], hit[i]};
     return;
   }
-  if (is_sphere_leaf(a)) {
-    // One leaf of spheres (nearest_hit's loop): sphere by sphere, all lanes at once, each lane's
-    // far end lowered as it finds nearer hits, exactly as its own loop would.
-    const PacketRays<N> r(rays);
-    // (the sphere's index kept as a Real beside t, so that the lanes' update is one width)
-    Real t_far[N], t[N], prim[N];
-    for (int i = 0; i < N; ++i) t_far[i] = t_max[i], prim[i] = 0;
-    for (std::uint32_t k = 0; k < a.prims.sphere_count; ++k) {
-      if (!intersect_sphere_lanes<N>(a.prims.spheres[k], r, t_min, t_far, t)) continue;
-      for (int i = 0; i < N; ++i) {
-        const bool nearer = t[i] < t_far[i];
-        t_far[i] = nearer ? t[i] : t_far[i];
-        prim[i] = nearer ? Real(k) : prim[i];
-      }
-    }
-    for (std::uint32_t m = active; m != 0; m &= m - 1) {
-      const int i = wide_bvh_detail::lowest_bit(m);
-      out[i] = NearestHit{};
-      if (t_far[i] < t_max[i]) out[i] = NearestHit{std::uint32_t(prim[i]), kernel::TriangleHit{t_far[i], 0, 0}};
-    }
-    return;
-  }
+  if (is_sphere_leaf(a)) return sphere_leaf_nearest_packet<N>(a.prims, active, PacketRays<N>(rays), t_min, t_max, out);
   for (int i = 0; i < N; ++i)
     if ((active >> i) & 1u) out[i] = nearest_hit(a, rays[i], t_min[i], t_max[i]);
 }
@@ -154,19 +268,7 @@ STRAHL_HOST_DEVICE inline std::uint32_t occluded_packet(const AccelView& a, std:
   }
 #endif
   if (a.kind == AccelKind::Bvh && !a.one_leaf) return wide_bvh_occluded_packet<N>(a.bvh, a.prims, active, rays, t_min, t_max);
-  if (is_sphere_leaf(a)) {  // as nearest_hit_packet: all lanes, sphere by sphere
-    const PacketRays<N> r(rays);
-    Real t0[N], t1[N];
-    std::uint32_t m = 0;
-    for (std::uint32_t k = 0; k < a.prims.sphere_count && (active & ~m) != 0; ++k) {
-      if (!sphere_roots_lanes<N>(a.prims.spheres[k], r, t0, t1)) continue;
-      for (int i = 0; i < N; ++i) {  // (intersect_sphere_lanes' test: a root inside the segment)
-        const bool in = ((t0[i] > t_min[i]) & (t0[i] < t_max[i])) | ((t1[i] > t_min[i]) & (t1[i] < t_max[i]));
-        m |= std::uint32_t(in) << i;
-      }
-    }
-    return m & active;
-  }
+  if (is_sphere_leaf(a)) return sphere_leaf_occluded_packet<N>(a.prims, active, PacketRays<N>(rays), t_min, t_max);
   std::uint32_t m = 0;
   for (int i = 0; i < N; ++i)
     if (((active >> i) & 1u) && occluded(a, rays[i], t_min[i], t_max[i])) m |= 1u << i;

@@ -12,19 +12,49 @@
 
 namespace strahl {
 
-// closest_hit(s, rays[i], 0, kInfinity) for each active lane, into hits[i].
+// kernel::intersect(plane, ray, t_min[i], t_max[i]) for every lane's ray, into t[]: the same
+// operations, the lanes side by side (a lane parallel to the plane divides by zero here, and its
+// NaN or infinite quotient is replaced by kInfinity as the single test returns it).
 template <int N>
-STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint32_t active, const Ray* rays, Hit* hits) {
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect_plane_lanes(const kernel::Plane& p, const PacketRays<N>& r,
+                                                                  const Real* t_min, const Real* t_max, Real* t) {
+  const Real nx = p.normal.x, ny = p.normal.y, nz = p.normal.z;
+  for (int i = 0; i < N; ++i) {
+    const Real denom = nx * r.dx[i] + ny * r.dy[i] + nz * r.dz[i];
+    const Real u = (p.distance - (nx * r.ox[i] + ny * r.oy[i] + nz * r.oz[i])) / denom;
+    t[i] = (denom != 0) & (u > t_min[i]) & (u < t_max[i]) ? u : kInfinity;
+  }
+}
+
+// closest_hit(s, rays[i], 0, kInfinity) for each active lane, into hits[i]; r holds the same rays
+// side by side.
+template <int N>
+STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint32_t active, const Ray* rays,
+                                                  const PacketRays<N>& r, Hit* hits) {
   Real t_min[N], t_max[N];
   for (int i = 0; i < N; ++i) {
     hits[i] = Hit{};
     t_min[i] = 0;
+    t_max[i] = kInfinity;
   }
-  for (std::uint32_t k = 0; k < s.plane_count; ++k) {
-    for (int i = 0; i < N; ++i) {
-      const Real t = kernel::intersect(s.planes[k], rays[i], 0, hits[i].t);
-      if (t < hits[i].t) { hits[i].t = t; hits[i].kind = ShapeKind::Plane; hits[i].index = k; }
+  if (s.plane_count > 0) {
+    // (the plane's index kept as a Real beside t, so that the lanes' update is one width)
+    Real t[N], plane[N];
+    for (int i = 0; i < N; ++i) plane[i] = -1;
+    for (std::uint32_t k = 0; k < s.plane_count; ++k) {
+      intersect_plane_lanes<N>(s.planes[k], r, t_min, t_max, t);
+      for (int i = 0; i < N; ++i) {
+        const bool nearer = t[i] < t_max[i];
+        t_max[i] = nearer ? t[i] : t_max[i];
+        plane[i] = nearer ? Real(k) : plane[i];
+      }
     }
+    for (int i = 0; i < N; ++i)
+      if (plane[i] >= 0) {
+        hits[i].t = t_max[i];
+        hits[i].kind = ShapeKind::Plane;
+        hits[i].index = std::uint32_t(plane[i]);
+      }
   }
   for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k) {
     for (std::uint32_t m = active; m != 0; m &= m - 1) {
@@ -35,7 +65,10 @@ STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint3
   }
   for (int i = 0; i < N; ++i) t_max[i] = hits[i].t;
   NearestHit nearest[N];
-  nearest_hit_packet<N>(s.accel, active, rays, t_min, t_max, nearest);
+  if (is_sphere_leaf(s.accel))
+    sphere_leaf_nearest_packet<N>(s.accel.prims, active, r, t_min, t_max, nearest);
+  else
+    nearest_hit_packet<N>(s.accel, active, rays, t_min, t_max, nearest);
   for (std::uint32_t m = active; m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     Hit& hit = hits[i];
@@ -62,15 +95,17 @@ STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint3
   }
 }
 
-// transmittance(s, rays[i], distance[i]) for each active lane, into tr[i].
+// transmittance(s, r.ray(i), distance[i]) for each active lane, into tr[i].
 template <int N>
-STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uint32_t active, const Ray* rays,
+STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
                                                     const Real* distance, Vec3* tr) {
   const bool moving = s.moving_sphere_count + s.moving_triangle_count > 0;
+  Real t_min[N], t[N];
+  for (int i = 0; i < N; ++i) t_min[i] = 0;
   if (!s.opaque && !moving && s.instance_count == 0 && is_sphere_leaf(s.accel)) {
     // Crossings to count and attenuate by, in transmittance()'s order — planes, unbounded solids,
     // then the spheres of the one leaf in index order (for_each_crossing's naive loop) — with
-    // the lanes side by side at each sphere.
+    // the lanes side by side at each plane and sphere.
     std::uint32_t open = active;  // lanes whose light is not blocked yet
     for (int i = 0; i < N; ++i) tr[i] = Vec3(1);
     const auto cross = [&](int i, const Material& material, int n) {
@@ -80,21 +115,22 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
           return;
         }
     };
-    for (std::uint32_t k = 0; k < s.plane_count; ++k)
+    for (std::uint32_t k = 0; k < s.plane_count; ++k) {
+      intersect_plane_lanes<N>(s.planes[k], r, t_min, distance, t);
       for (std::uint32_t m = open; m != 0; m &= m - 1) {
         const int i = wide_bvh_detail::lowest_bit(m);
-        if (kernel::intersect(s.planes[k], rays[i], 0, distance[i]) < kInfinity) cross(i, s.materials[s.planes[k].material], 1);
+        if (t[i] < kInfinity) cross(i, s.materials[s.planes[k].material], 1);
       }
+    }
     for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k)
       for (std::uint32_t m = open; m != 0; m &= m - 1) {
         const int i = wide_bvh_detail::lowest_bit(m);
-        cross(i, s.materials[s.solids[k].material], kernel::crossings(s.accel.prims.shapes, s.solids[k], rays[i], 0, distance[i]));
+        cross(i, s.materials[s.solids[k].material], kernel::crossings(s.accel.prims.shapes, s.solids[k], r.ray(i), 0, distance[i]));
       }
-    const PacketRays<N> r(rays);
-    Real t_min[N];
     int n[N];
-    for (int i = 0; i < N; ++i) t_min[i] = 0;
+    const PacketCone cone = s.accel.prims.sphere_count > 1 ? packet_cone<N>(r, open, t_min) : PacketCone{};
     for (std::uint32_t k = 0; k < s.accel.prims.sphere_count && open != 0; ++k) {
+      if (!cone_may_meet(cone, s.accel.prims.spheres[k])) continue;
       if (!sphere_crossings_lanes<N>(s.accel.prims.spheres[k], r, t_min, distance, n)) continue;
       std::uint32_t crossing = 0;
       for (int i = 0; i < N; ++i) crossing |= std::uint32_t(n[i] > 0) << i;
@@ -111,27 +147,32 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
     // Crossings to count and attenuate by: the single-ray query, lane by lane.
     for (std::uint32_t m = active; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
-      tr[i] = transmittance(s, rays[i], distance[i]);
+      tr[i] = transmittance(s, r.ray(i), distance[i]);
     }
     return;
   }
   // Nothing transparent: any surface in between blocks the light (transmittance()'s any-hit case).
   std::uint32_t blocked = 0;
-  for (std::uint32_t k = 0; k < s.plane_count; ++k)
-    for (int i = 0; i < N; ++i)
-      if (kernel::intersect(s.planes[k], rays[i], 0, distance[i]) < kInfinity) blocked |= 1u << i;
+  for (std::uint32_t k = 0; k < s.plane_count; ++k) {
+    intersect_plane_lanes<N>(s.planes[k], r, t_min, distance, t);
+    for (int i = 0; i < N; ++i) blocked |= std::uint32_t(t[i] < kInfinity) << i;
+  }
   for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k)
     for (std::uint32_t m = active & ~blocked; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
-      if (kernel::crossings(s.accel.prims.shapes, s.solids[k], rays[i], 0, distance[i]) > 0) blocked |= 1u << i;
+      if (kernel::crossings(s.accel.prims.shapes, s.solids[k], r.ray(i), 0, distance[i]) > 0) blocked |= 1u << i;
     }
-  Real t_min[N];
-  for (int i = 0; i < N; ++i) t_min[i] = 0;
-  blocked |= occluded_packet<N>(s.accel, active & ~blocked, rays, t_min, distance);
+  if (is_sphere_leaf(s.accel)) {
+    blocked |= sphere_leaf_occluded_packet<N>(s.accel.prims, active & ~blocked, r, t_min, distance);
+  } else {
+    UninitializedLanes<Ray, N> ray_slots;  // (every lane assigned)
+    for (int i = 0; i < N; ++i) ray_slots.at[i] = r.ray(i);
+    blocked |= occluded_packet<N>(s.accel, active & ~blocked, ray_slots.at, t_min, distance);
+  }
   if (s.instance_count > 0)
     for (std::uint32_t m = active & ~blocked; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
-      if (instance_occluded(s, rays[i], 0, distance[i])) blocked |= 1u << i;
+      if (instance_occluded(s, r.ray(i), 0, distance[i])) blocked |= 1u << i;
     }
   for (std::uint32_t m = active; m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);

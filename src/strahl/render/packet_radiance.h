@@ -80,14 +80,6 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
   }
 }
 
-// N values without their default member initialisers (a memset per packet, ~1.5 % of the lecture
-// scene's instructions), for arrays whose every lane is assigned before it is read.
-template <class T, int N>
-union UninitializedLanes {
-  T at[N];
-  STRAHL_HOST_DEVICE UninitializedLanes() {}
-};
-
 // local_illumination()'s per-surface terms of a material that spawns no ray: the colour at
 // `texcoord`, the ambient term, k_d (times the opacity), k_s and whether it is not black, the
 // shininess.
@@ -129,13 +121,21 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   UninitializedLanes<Ray, N> ray_slots;  // (every lane assigned below)
   Ray* const rays = ray_slots.at;
   for (int i = 0; i < N; ++i) rays[i] = Ray{camera.eye, Vec3(dx[i], dy[i], dz[i]), time[i]};
-  if (camera.lens_radius > 0)
+  PacketRays<N> r;  // the same rays side by side
+  if (camera.lens_radius > 0) {
     for (int i = 0; i < N; ++i) camera.through_lens(rays[i], cs[i < count ? i : 0].lens);
+    r = PacketRays<N>(rays);
+  } else {
+    for (int i = 0; i < N; ++i) {
+      r.ox[i] = camera.eye.x, r.oy[i] = camera.eye.y, r.oz[i] = camera.eye.z;
+      r.dx[i] = dx[i], r.dy[i] = dy[i], r.dz[i] = dz[i], r.time[i] = time[i];
+    }
+  }
   counters.camera += std::uint64_t(count);
 
   UninitializedLanes<Hit, N> hit_slots;  // (closest_hit_packet sets every lane)
   Hit* const hits = hit_slots.at;
-  closest_hit_packet<N>(s, active, rays, hits);
+  closest_hit_packet<N>(s, active, rays, r, hits);
 
   // trace()'s first step up to the shadow rays, lane by lane: emitter, surface point, normal; the
   // points, normals and offsets also side by side for the shadow rays (0 in lanes that do not shade).
@@ -232,15 +232,17 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
       const int i = wide_bvh_detail::lowest_bit(m);
       if (!(n_dot_l[i] <= 0)) cast |= 1u << i;
     }
-    UninitializedLanes<Ray, N> shadow_slots;  // (every lane assigned before the query)
-    Ray* const shadow = shadow_slots.at;
     Vec3 tr[N];
     for (std::uint32_t m = lit & ~local; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       slots[i].first.lights[k].sample = LightSample{Vec3(lx[i], ly[i], lz[i]), distance[i]};
     }
     if (cast != 0) {
-      for (int i = 0; i < N; ++i) shadow[i] = Ray{Vec3(ox[i], oy[i], oz[i]), Vec3(lx[i], ly[i], lz[i]), rays[i].time};
+      PacketRays<N> shadow;
+      for (int i = 0; i < N; ++i) {
+        shadow.ox[i] = ox[i], shadow.oy[i] = oy[i], shadow.oz[i] = oz[i];
+        shadow.dx[i] = lx[i], shadow.dy[i] = ly[i], shadow.dz[i] = lz[i], shadow.time[i] = r.time[i];
+      }
       for (std::uint32_t m = cast; m != 0; m &= m - 1) ++counters.shadow;
       transmittance_packet<N>(s, cast, shadow, distance, tr);
       for (std::uint32_t m = cast & ~local; m != 0; m &= m - 1) {
