@@ -13,6 +13,7 @@
 
 #include "strahl/render/integrator.h"
 #include "strahl/render/intersect_packet.h"
+#include "strahl/render/surface_lanes.h"
 #include "strahl/sampling/pixel_sampler.h"
 
 namespace strahl {
@@ -137,29 +138,45 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   Hit* const hits = hit_slots.at;
   closest_hit_packet<N>(s, active, rays, r, hits);
 
-  // trace()'s first step up to the shadow rays, lane by lane: emitter, surface point, normal; the
-  // points, normals and offsets also side by side for the shadow rays (0 in lanes that do not shade).
+  // trace()'s first step up to the shadow rays: emitter, surface point, normal — side by side
+  // (surface_lanes) where every lane hit a sphere, a plane or nothing and there are no area
+  // lights, else lane by lane; the points, normals and offsets side by side for the shadow rays
+  // (0 in lanes that do not shade), the materials and texture coordinates in `surface`. The lanes
+  // that go on in trace() get their FirstHit below, once known.
   FirstHitSlot slots[N];
   Real px[N], py[N], pz[N], nx[N], ny[N], nz[N], gx[N], gy[N], gz[N], offset[N], vx[N], vy[N], vz[N];
-  if (camera.lens_radius > 0)
-    for (int i = 0; i < N; ++i) vx[i] = -rays[i].direction.x, vy[i] = -rays[i].direction.y, vz[i] = -rays[i].direction.z;
-  else
-    for (int i = 0; i < N; ++i) vx[i] = -dx[i], vy[i] = -dy[i], vz[i] = -dz[i];  // (the rays' directions)
+  for (int i = 0; i < N; ++i) vx[i] = -r.dx[i], vy[i] = -r.dy[i], vz[i] = -r.dz[i];  // (the rays' directions)
   std::uint32_t lit = 0;  // lanes that hit a surface (and no emitter): they shade
-  for (int i = 0; i < count; ++i) {
-    FirstHit& f = slots[i].first;
-    f.hit = hits[i];
-    f.emitter = s.area_light_count > 0 ? nearest_emitter(s, rays[i], f.hit.t) : -1;
-    if (f.emitter >= 0 || !f.hit.found()) continue;
-    surface_at(s, rays[i], f.hit, f.sp);
-    const SurfacePoint& sp = f.sp;
-    const bool front = dot(rays[i].direction, sp.geometric_normal) < 0;
-    const Vec3 n = front ? sp.normal : -sp.normal;
-    px[i] = sp.p.x, py[i] = sp.p.y, pz[i] = sp.p.z;
-    nx[i] = n.x, ny[i] = n.y, nz[i] = n.z;
-    gx[i] = sp.geometric_normal.x, gy[i] = sp.geometric_normal.y, gz[i] = sp.geometric_normal.z;
-    offset[i] = sp.offset;
-    lit |= 1u << i;
+  SurfaceLanes<N> surface;
+  const bool side_by_side = s.area_light_count == 0 && surface_lanes<N>(s, active, r, hits, surface, lit);
+  if (side_by_side) {
+    for (int i = 0; i < N; ++i) {
+      const Real x = surface.gx[i], y = surface.gy[i], z = surface.gz[i];
+      const bool front = r.dx[i] * x + r.dy[i] * y + r.dz[i] * z < 0;  // dot(direction, geometric normal)
+      px[i] = surface.px[i], py[i] = surface.py[i], pz[i] = surface.pz[i];
+      nx[i] = front ? x : -x, ny[i] = front ? y : -y, nz[i] = front ? z : -z;
+      gx[i] = x, gy[i] = y, gz[i] = z;
+      offset[i] = surface.offset[i];
+    }
+  } else {
+    lit = 0;
+    for (int i = 0; i < count; ++i) {
+      FirstHit& f = slots[i].first;
+      f.hit = hits[i];
+      f.emitter = s.area_light_count > 0 ? nearest_emitter(s, rays[i], f.hit.t) : -1;
+      if (f.emitter >= 0 || !f.hit.found()) continue;
+      surface_at(s, rays[i], f.hit, f.sp);
+      const SurfacePoint& sp = f.sp;
+      const bool front = dot(rays[i].direction, sp.geometric_normal) < 0;
+      const Vec3 n = front ? sp.normal : -sp.normal;
+      px[i] = sp.p.x, py[i] = sp.p.y, pz[i] = sp.p.z;
+      nx[i] = n.x, ny[i] = n.y, nz[i] = n.z;
+      gx[i] = sp.geometric_normal.x, gy[i] = sp.geometric_normal.y, gz[i] = sp.geometric_normal.z;
+      offset[i] = sp.offset;
+      surface.material[i] = sp.material;
+      surface.ux[i] = sp.texcoord.x, surface.uy[i] = sp.texcoord.y, surface.uz[i] = sp.texcoord.z;
+      lit |= 1u << i;
+    }
   }
   for (std::uint32_t m = ~lit & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
@@ -176,11 +193,11 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   LocalTerms terms{};
   for (std::uint32_t m = s.area_light_count == 0 ? lit : 0; m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
-    const std::uint32_t material_index = slots[i].first.sp.material;
+    const std::uint32_t material_index = surface.material[i];
     if (material_index != plain) {
       const Material& material = s.materials[material_index];
       if (material.reflectivity > 0 || material.transparency > 0) continue;
-      const LocalTerms t = local_terms(material, slots[i].first.sp.texcoord, s.settings.ambient_light);
+      const LocalTerms t = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.settings.ambient_light);
       if (material.checker_size <= 0) plain = material_index, terms = t;
       local |= 1u << i;
       cr[i] = t.c.x, cg[i] = t.c.y, cb[i] = t.c.z, rr[i] = t.ambient.x, rg[i] = t.ambient.y, rb[i] = t.ambient.z;
@@ -198,6 +215,15 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     const int i = wide_bvh_detail::lowest_bit(m);
     cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
   }
+  // The lanes that go on in trace(): what its first step found (the other path wrote it already).
+  if (side_by_side)
+    for (std::uint32_t m = active & ~local; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      FirstHit& f = slots[i].first;
+      f.hit = hits[i];
+      f.emitter = -1;
+      if ((lit >> i) & 1u) surface.get(i, r.time[i], f.sp);
+    }
 
   // The shadow rays to each point light, as local_illumination() casts them (sample_light,
   // shadow_ray: the same arithmetic, side by side), in one packet per light.
