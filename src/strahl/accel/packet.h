@@ -183,12 +183,13 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_crossings_lanes(const kernel:
 // The one-leaf sphere loops of nearest_hit and occluded (accel.h) for a packet: sphere by sphere,
 // all lanes at once, each lane's far end lowered as it finds nearer hits, exactly as its own loop
 // would; spheres no lane's ray can meet (packet_cone) skipped.
+// The lanes' nearest sphere hits in (t_min[i], t_far[i]): t_far[i] lowered to it and prim[i] the
+// sphere's index (as a Real, so that the lanes' update is one width), −1 where there is none.
 template <int N>
-STRAHL_HOST_DEVICE inline void sphere_leaf_nearest_packet(const PrimitiveSet& p, std::uint32_t active, const PacketRays<N>& r,
-                                                          const Real* t_min, const Real* t_max, NearestHit* out) {
-  // (the sphere's index kept as a Real beside t, so that the lanes' update is one width)
-  Real t_far[N], t[N], prim[N];
-  for (int i = 0; i < N; ++i) t_far[i] = t_max[i], prim[i] = 0;
+STRAHL_HOST_DEVICE inline void sphere_leaf_nearest_lanes(const PrimitiveSet& p, std::uint32_t active, const PacketRays<N>& r,
+                                                         const Real* t_min, Real* t_far, Real* prim) {
+  Real t[N];
+  for (int i = 0; i < N; ++i) prim[i] = -1;
   const PacketCone cone = p.sphere_count > 1 ? packet_cone<N>(r, active, t_min) : PacketCone{};
   for (std::uint32_t k = 0; k < p.sphere_count; ++k) {
     if (!cone_may_meet(cone, p.spheres[k])) continue;
@@ -199,10 +200,18 @@ STRAHL_HOST_DEVICE inline void sphere_leaf_nearest_packet(const PrimitiveSet& p,
       prim[i] = nearer ? Real(k) : prim[i];
     }
   }
+}
+
+template <int N>
+STRAHL_HOST_DEVICE inline void sphere_leaf_nearest_packet(const PrimitiveSet& p, std::uint32_t active, const PacketRays<N>& r,
+                                                          const Real* t_min, const Real* t_max, NearestHit* out) {
+  Real t_far[N], prim[N];
+  for (int i = 0; i < N; ++i) t_far[i] = t_max[i];
+  sphere_leaf_nearest_lanes<N>(p, active, r, t_min, t_far, prim);
   for (std::uint32_t m = active; m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     out[i] = NearestHit{};
-    if (t_far[i] < t_max[i]) out[i] = NearestHit{std::uint32_t(prim[i]), kernel::TriangleHit{t_far[i], 0, 0}};
+    if (prim[i] >= 0) out[i] = NearestHit{std::uint32_t(prim[i]), kernel::TriangleHit{t_far[i], 0, 0}};
   }
 }
 

@@ -31,30 +31,40 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect_plane_lanes(const kernel::
 template <int N>
 STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint32_t active, const Ray* rays,
                                                   const PacketRays<N>& r, Hit* hits) {
-  Real t_min[N], t_max[N];
+  // The planes, the lanes side by side (the plane's index kept as a Real beside t, so that the
+  // lanes' update is one width; −1: none).
+  Real t_min[N], t_max[N], t[N], plane[N];
+  for (int i = 0; i < N; ++i) t_min[i] = 0, t_max[i] = kInfinity, plane[i] = -1;
+  for (std::uint32_t k = 0; k < s.plane_count; ++k) {
+    intersect_plane_lanes<N>(s.planes[k], r, t_min, t_max, t);
+    for (int i = 0; i < N; ++i) {
+      const bool nearer = t[i] < t_max[i];
+      t_max[i] = nearer ? t[i] : t_max[i];
+      plane[i] = nearer ? Real(k) : plane[i];
+    }
+  }
+  if (is_sphere_leaf(s.accel) && s.solid_count == s.bounded_solid_count &&
+      s.moving_sphere_count + s.moving_triangle_count == 0 && s.instance_count == 0) {
+    // Planes and one leaf of spheres (the lecture's scenes): the spheres side by side too, and
+    // each lane's Hit written once.
+    Real sphere[N];
+    sphere_leaf_nearest_lanes<N>(s.accel.prims, active, r, t_min, t_max, sphere);
+    for (int i = 0; i < N; ++i) {
+      Hit hit;
+      hit.t = t_max[i];  // (kInfinity where nothing was hit)
+      hit.kind = sphere[i] >= 0 ? ShapeKind::Sphere : plane[i] >= 0 ? ShapeKind::Plane : ShapeKind::None;
+      hit.index = sphere[i] >= 0 ? std::uint32_t(sphere[i]) : plane[i] >= 0 ? std::uint32_t(plane[i]) : 0;
+      hits[i] = hit;
+    }
+    return;
+  }
   for (int i = 0; i < N; ++i) {
     hits[i] = Hit{};
-    t_min[i] = 0;
-    t_max[i] = kInfinity;
-  }
-  if (s.plane_count > 0) {
-    // (the plane's index kept as a Real beside t, so that the lanes' update is one width)
-    Real t[N], plane[N];
-    for (int i = 0; i < N; ++i) plane[i] = -1;
-    for (std::uint32_t k = 0; k < s.plane_count; ++k) {
-      intersect_plane_lanes<N>(s.planes[k], r, t_min, t_max, t);
-      for (int i = 0; i < N; ++i) {
-        const bool nearer = t[i] < t_max[i];
-        t_max[i] = nearer ? t[i] : t_max[i];
-        plane[i] = nearer ? Real(k) : plane[i];
-      }
+    if (plane[i] >= 0) {
+      hits[i].t = t_max[i];
+      hits[i].kind = ShapeKind::Plane;
+      hits[i].index = std::uint32_t(plane[i]);
     }
-    for (int i = 0; i < N; ++i)
-      if (plane[i] >= 0) {
-        hits[i].t = t_max[i];
-        hits[i].kind = ShapeKind::Plane;
-        hits[i].index = std::uint32_t(plane[i]);
-      }
   }
   for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k) {
     for (std::uint32_t m = active; m != 0; m &= m - 1) {
