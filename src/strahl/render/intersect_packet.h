@@ -105,10 +105,11 @@ STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint3
   }
 }
 
-// transmittance(s, r.ray(i), distance[i]) for each active lane, into tr[i].
+// transmittance(s, r.ray(i), distance[i]) for each active lane, into (tx[i], ty[i], tz[i]); the
+// other lanes get 0 or 1 (every lane is written).
 template <int N>
 STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
-                                                    const Real* distance, Vec3* tr) {
+                                                    const Real* distance, Real* tx, Real* ty, Real* tz) {
   const bool moving = s.moving_sphere_count + s.moving_triangle_count > 0;
   Real t_min[N], t[N];
   for (int i = 0; i < N; ++i) t_min[i] = 0;
@@ -117,13 +118,16 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
     // then the spheres of the one leaf in index order (for_each_crossing's naive loop) — with
     // the lanes side by side at each plane and sphere.
     std::uint32_t open = active;  // lanes whose light is not blocked yet
-    for (int i = 0; i < N; ++i) tr[i] = Vec3(1);
+    for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 1;
     const auto cross = [&](int i, const Material& material, int n) {
-      for (int c = 0; c < n; ++c)
-        if (!attenuate(material, tr[i])) {
+      for (int c = 0; c < n; ++c) {
+        Vec3 tr(tx[i], ty[i], tz[i]);
+        if (!attenuate(material, tr)) {
           open &= ~(1u << i);
           return;
         }
+        tx[i] = tr.x, ty[i] = tr.y, tz[i] = tr.z;
+      }
     };
     for (std::uint32_t k = 0; k < s.plane_count; ++k) {
       intersect_plane_lanes<N>(s.planes[k], r, t_min, distance, t);
@@ -150,14 +154,19 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
         cross(i, material, n[i]);
       }
     }
-    for (std::uint32_t m = active & ~open; m != 0; m &= m - 1) tr[wide_bvh_detail::lowest_bit(m)] = Vec3(0);
+    for (std::uint32_t m = active & ~open; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      tx[i] = ty[i] = tz[i] = 0;
+    }
     return;
   }
   if (!(s.opaque && !moving)) {
     // Crossings to count and attenuate by: the single-ray query, lane by lane.
+    for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
     for (std::uint32_t m = active; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
-      tr[i] = transmittance(s, r.ray(i), distance[i]);
+      const Vec3 tr = transmittance(s, r.ray(i), distance[i]);
+      tx[i] = tr.x, ty[i] = tr.y, tz[i] = tr.z;
     }
     return;
   }
@@ -184,10 +193,7 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
       const int i = wide_bvh_detail::lowest_bit(m);
       if (instance_occluded(s, r.ray(i), 0, distance[i])) blocked |= 1u << i;
     }
-  for (std::uint32_t m = active; m != 0; m &= m - 1) {
-    const int i = wide_bvh_detail::lowest_bit(m);
-    tr[i] = ((blocked >> i) & 1u) ? Vec3(0) : Vec3(1);
-  }
+  for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = ((blocked >> i) & 1u) ? Real(0) : Real(1);
 }
 
 }  // namespace strahl

@@ -24,12 +24,13 @@ STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) { r
 // shade_from()'s term of one point or directional light of intensity `radiance`, added to r in
 // the lanes of `lanes` — the same operations on the same values, lane by lane: Lambert,
 // Blinn-Phong where dot(n, h) > 0 and k_s is not black, times the intensity and the shadow ray's
-// transmittance tr; 0 where tr is black (in shadow) or where the lane cast no shadow ray (not in
+// transmittance (tr_x, tr_y, tr_z); 0 where it is black (in shadow) or where the lane cast no shadow ray (not in
 // `cast`: dot(n, to_light) ≤ 0).
 template <int N>
 STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
     const Vec3& radiance, std::uint32_t lanes, std::uint32_t cast, const Real* __restrict n_dot_l,
-    const Real* __restrict n_dot_h, const Vec3* __restrict tr, const Real* __restrict cr, const Real* __restrict cg,
+    const Real* __restrict n_dot_h, const Real* __restrict tr_x, const Real* __restrict tr_y,
+    const Real* __restrict tr_z, const Real* __restrict cr, const Real* __restrict cg,
     const Real* __restrict cb, const Real* __restrict kd, const Real* __restrict sr, const Real* __restrict sg,
     const Real* __restrict sb, const Real* __restrict shiny, const Real* __restrict shininess, Real* __restrict rr,
     Real* __restrict rg, Real* __restrict rb) {
@@ -60,7 +61,7 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
   // The transmittances side by side, 0 in the lanes that add nothing: then every test below is
   // one on Reals, and the loop runs the lanes together.
   Real tx[N], ty[N], tz[N];
-  for (int i = 0; i < N; ++i) tx[i] = tr[i].x, ty[i] = tr[i].y, tz[i] = tr[i].z;
+  for (int i = 0; i < N; ++i) tx[i] = tr_x[i], ty[i] = tr_y[i], tz[i] = tr_z[i];
   for (std::uint32_t m = ~(lanes & cast) & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     tx[i] = ty[i] = tz[i] = 0;
@@ -258,7 +259,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
       const int i = wide_bvh_detail::lowest_bit(m);
       if (!(n_dot_l[i] <= 0)) cast |= 1u << i;
     }
-    Vec3 tr[N];
+    Real tx[N], ty[N], tz[N];
     for (std::uint32_t m = lit & ~local; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       slots[i].first.lights[k].sample = LightSample{Vec3(lx[i], ly[i], lz[i]), distance[i]};
@@ -270,14 +271,16 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
         shadow.dx[i] = lx[i], shadow.dy[i] = ly[i], shadow.dz[i] = lz[i], shadow.time[i] = r.time[i];
       }
       for (std::uint32_t m = cast; m != 0; m &= m - 1) ++counters.shadow;
-      transmittance_packet<N>(s, cast, shadow, distance, tr);
+      transmittance_packet<N>(s, cast, shadow, distance, tx, ty, tz);
       for (std::uint32_t m = cast & ~local; m != 0; m &= m - 1) {
         const int i = wide_bvh_detail::lowest_bit(m);
-        slots[i].first.lights[k].transmittance = tr[i];
+        slots[i].first.lights[k].transmittance = Vec3(tx[i], ty[i], tz[i]);
         slots[i].first.lights[k].n_dot_h = n_dot_h[i];
       }
+    } else {
+      for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
     }
-    if (local != 0) add_light_lanes<N>(light.radiance, local, cast, n_dot_l, n_dot_h, tr, cr, cg, cb, kd, sr, sg, sb, shiny, shininess, rr,
+    if (local != 0) add_light_lanes<N>(light.radiance, local, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb, shiny, shininess, rr,
                                        rg, rb);
   }
 
