@@ -1,7 +1,8 @@
 // surface_lanes() (render/surface_lanes.h) against surface_at(), lane for lane: every field of the
 // surface point bit for bit (point, normals, texture coordinate, material, time, offset) on random
 // rays through scenes of spheres and planes at scales 1e-3 … 1e4 and 1e5 from the origin, with
-// lanes that miss and inactive lanes; a lane that hit another kind of shape makes it decline.
+// lanes that miss, inactive lanes and packets whose lanes all hit one shape (fetched once); a lane
+// that hit another kind of shape makes it decline.
 
 #include <gtest/gtest.h>
 
@@ -34,18 +35,24 @@ Scene scene_at(Real scale, const Vec3& shift, std::uint64_t seed) {
 }
 
 template <int N>
-void check(Real scale, const Vec3& shift, std::uint64_t seed, std::size_t& spheres, std::size_t& planes) {
+void check(Real scale, const Vec3& shift, std::uint64_t seed, std::size_t& spheres, std::size_t& planes,
+           std::size_t& uniform) {
   const RenderScene rs = compile(scene_at(scale, shift, seed));
   const SceneView view = rs.view();
   test::Random rng(seed + 1);
   for (int packet = 0; packet < 200; ++packet) {
     Ray rays[N];
     Hit hits[N];
-    const Vec3 o = shift + rng.point(-1.5, 1.5) * scale;
+    const Vec3 o = shift + rng.point(-1.5, 1.5) * scale, d = rng.direction();
     for (int i = 0; i < N; ++i) {
-      rays[i] = Ray{packet % 2 ? o : shift + rng.point(-1.5, 1.5) * scale, rng.direction(), rng.uniform(0, 1)};
+      // One origin or many; every third packet a narrow cone, whose lanes mostly hit one shape.
+      const Vec3 dir = packet % 3 == 2 ? normalize(d + rng.direction() * 1e-4) : rng.direction();
+      rays[i] = Ray{packet % 2 ? o : shift + rng.point(-1.5, 1.5) * scale, dir, rng.uniform(0, 1)};
       hits[i] = closest_hit(view, rays[i], 0, kInfinity);
     }
+    int same = 1;
+    for (int i = 1; i < N; ++i) same &= int(hits[i].kind == hits[0].kind && hits[i].index == hits[0].index);
+    uniform += same && hits[0].found();
     const std::uint32_t active = packet % 3 == 0 ? std::uint32_t(rng.uniform(1, double(1u << N))) : (1u << N) - 1;
     const PacketRays<N> r(rays);
     SurfaceLanes<N> lanes;
@@ -78,15 +85,16 @@ void check(Real scale, const Vec3& shift, std::uint64_t seed, std::size_t& spher
 }
 
 TEST(SurfaceLanes, EqualSurfaceAtBitForBit) {
-  std::size_t spheres = 0, planes = 0;
+  std::size_t spheres = 0, planes = 0, uniform = 0;  // uniform: packets whose lanes all hit one shape
   std::uint64_t seed = 11;
   for (const Real scale : {1e-3, 1.0, 1e4})
     for (const Vec3& shift : {Vec3(0), Vec3(1e5, -1e5, 1e5)}) {
-      check<16>(scale, shift, seed++, spheres, planes);
-      check<8>(scale, shift, seed++, spheres, planes);
+      check<16>(scale, shift, seed++, spheres, planes, uniform);
+      check<8>(scale, shift, seed++, spheres, planes, uniform);
     }
   EXPECT_GT(spheres, 1000u);
   EXPECT_GT(planes, 5000u);
+  EXPECT_GT(uniform, 250u);
 }
 
 }  // namespace

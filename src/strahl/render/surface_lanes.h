@@ -34,49 +34,77 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Real max_abs_of(Real x, Real y, Real z) {
   return a > b ? (a > c ? a : c) : (b > c ? b : c);
 }
 
+// What surface_at() reads of the shape hit: a sphere's centre c and 1/radius, or a plane's normal
+// and frame (sphere = 1 or 0 selects between them); the magnitude passed to ray_offset; the
+// material. False for other kinds of shape; all zero for no hit.
+struct ShapeParams {
+  Real sphere = 0, cx = 0, cy = 0, cz = 0, inv_r = 0, nx = 0, ny = 0, nz = 0, tx = 0, ty = 0, tz = 0, bx = 0, by = 0,
+       bz = 0, magnitude = 0;
+  std::uint32_t material = 0;
+};
+STRAHL_HOST_DEVICE inline bool shape_params(const SceneView& s, const Hit& hit, ShapeParams& q) {
+  q = ShapeParams{};
+  if (hit.kind == ShapeKind::Sphere) {
+    const kernel::Sphere& k = s.spheres[hit.index];
+    q.sphere = 1;
+    q.cx = k.center.x, q.cy = k.center.y, q.cz = k.center.z;
+    q.inv_r = Real(1) / k.radius;  // (normal_at: (p − c) / R, vec3.h's division)
+    q.magnitude = max_abs_component(k.center) + k.radius;
+    q.material = k.material;
+    return true;
+  }
+  if (hit.kind == ShapeKind::Plane) {
+    const kernel::Plane& k = s.planes[hit.index];
+    q.nx = k.normal.x, q.ny = k.normal.y, q.nz = k.normal.z;
+    q.tx = k.tangent.x, q.ty = k.tangent.y, q.tz = k.tangent.z;
+    q.bx = k.bitangent.x, q.by = k.bitangent.y, q.bz = k.bitangent.z;
+    q.magnitude = std::fabs(k.distance);
+    q.material = k.material;
+    return true;
+  }
+  return hit.kind == ShapeKind::None;
+}
+
 // The surface points of the active lanes' hits into `out`, when every active lane hit a sphere,
 // a plane or nothing: true, and `lit` the lanes that hit (inactive and missing lanes' values are
 // zeros). False, with `out` and `lit` unspecified, when some lane hit another kind of shape.
 template <int N>
 STRAHL_HOST_DEVICE inline bool surface_lanes(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
                                              const Hit* hits, SurfaceLanes<N>& out, std::uint32_t& lit) {
-  // Per lane, the shape's parameters: a sphere's centre c and 1/radius, or a plane's normal and
-  // frame (sphere = 1 or 0 selects); the magnitude passed to ray_offset. All zero to begin with
-  // (one block of stores) and in the lanes that hit nothing.
-  struct {
-    Real t[N], sphere[N], cx[N], cy[N], cz[N], inv_r[N], nx[N], ny[N], nz[N], tx[N], ty[N], tz[N], bx[N], by[N],
-        bz[N], magnitude[N];
-  } g = {};
-  Real *const t = g.t, *const sphere = g.sphere, *const cx = g.cx, *const cy = g.cy, *const cz = g.cz,
-       *const inv_r = g.inv_r, *const nx = g.nx, *const ny = g.ny, *const nz = g.nz, *const tx = g.tx,
-       *const ty = g.ty, *const tz = g.tz, *const bx = g.bx, *const by = g.by, *const bz = g.bz,
-       *const magnitude = g.magnitude;
+  // The shapes' parameters per lane (ShapeParams, side by side) and the hits' t (0 where none).
+  Real t[N], sphere[N], cx[N], cy[N], cz[N], inv_r[N], nx[N], ny[N], nz[N], tx[N], ty[N], tz[N], bx[N], by[N],
+      bz[N], magnitude[N];
   lit = 0;
-  for (int i = 0; i < N; ++i) out.material[i] = 0;
+  for (int i = 0; i < N; ++i) t[i] = 0;
+  const int first = active != 0 ? wide_bvh_detail::lowest_bit(active) : 0;
+  int same = 1;  // do all active lanes hit the same shape (as a pixel's samples mostly do)?
   for (std::uint32_t m = active; m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
-    const Hit& hit = hits[i];
-    if (hit.kind == ShapeKind::Sphere) {
-      const kernel::Sphere& k = s.spheres[hit.index];
-      sphere[i] = 1;
-      cx[i] = k.center.x, cy[i] = k.center.y, cz[i] = k.center.z;
-      inv_r[i] = Real(1) / k.radius;  // (normal_at: (p − c) / R, vec3.h's division)
-      magnitude[i] = max_abs_component(k.center) + k.radius;
-      out.material[i] = k.material;
-    } else if (hit.kind == ShapeKind::Plane) {
-      const kernel::Plane& k = s.planes[hit.index];
-      nx[i] = k.normal.x, ny[i] = k.normal.y, nz[i] = k.normal.z;
-      tx[i] = k.tangent.x, ty[i] = k.tangent.y, tz[i] = k.tangent.z;
-      bx[i] = k.bitangent.x, by[i] = k.bitangent.y, bz[i] = k.bitangent.z;
-      magnitude[i] = std::fabs(k.distance);
-      out.material[i] = k.material;
-    } else if (hit.kind != ShapeKind::None) {
-      return false;
-    } else {
-      continue;
+    same &= int(hits[i].kind == hits[first].kind) & int(hits[i].index == hits[first].index);
+  }
+  ShapeParams q;
+  if (same != 0) {  // its parameters fetched once, in every lane
+    if (!shape_params(s, hits[first], q)) return false;
+    for (int i = 0; i < N; ++i) {
+      sphere[i] = q.sphere, cx[i] = q.cx, cy[i] = q.cy, cz[i] = q.cz, inv_r[i] = q.inv_r;
+      nx[i] = q.nx, ny[i] = q.ny, nz[i] = q.nz, tx[i] = q.tx, ty[i] = q.ty, tz[i] = q.tz;
+      bx[i] = q.bx, by[i] = q.by, bz[i] = q.bz, magnitude[i] = q.magnitude, out.material[i] = q.material;
     }
-    t[i] = hit.t;
-    lit |= 1u << i;
+    if (hits[first].kind != ShapeKind::None) lit = active;
+  } else {
+    for (int i = 0; i < N; ++i) {
+      const bool on = (active >> i) & 1u;
+      if (on && !shape_params(s, hits[i], q)) return false;
+      if (!on) q = ShapeParams{};
+      sphere[i] = q.sphere, cx[i] = q.cx, cy[i] = q.cy, cz[i] = q.cz, inv_r[i] = q.inv_r;
+      nx[i] = q.nx, ny[i] = q.ny, nz[i] = q.nz, tx[i] = q.tx, ty[i] = q.ty, tz[i] = q.tz;
+      bx[i] = q.bx, by[i] = q.by, bz[i] = q.bz, magnitude[i] = q.magnitude, out.material[i] = q.material;
+      if (on && hits[i].kind != ShapeKind::None) lit |= 1u << i;
+    }
+  }
+  for (std::uint32_t m = lit; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    t[i] = hits[i].t;
   }
   for (int i = 0; i < N; ++i) {
     // ray.at(t), normal_at or the plane's normal, the texture coordinate, ray_offset.
@@ -97,6 +125,7 @@ STRAHL_HOST_DEVICE inline bool surface_lanes(const SceneView& s, std::uint32_t a
     const int i = wide_bvh_detail::lowest_bit(m);
     out.px[i] = out.py[i] = out.pz[i] = out.gx[i] = out.gy[i] = out.gz[i] = out.offset[i] = 0;
     out.ux[i] = out.uy[i] = out.uz[i] = 0;
+    out.material[i] = 0;
   }
   return true;
 }
