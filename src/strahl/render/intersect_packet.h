@@ -26,11 +26,10 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect_plane_lanes(const kernel::
   }
 }
 
-// closest_hit(s, rays[i], 0, kInfinity) for each active lane, into hits[i]; r holds the same rays
-// side by side.
+// closest_hit(s, r.ray(i), 0, kInfinity) for each active lane, into hits[i].
 template <int N>
-STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint32_t active, const Ray* rays,
-                                                  const PacketRays<N>& r, Hit* hits) {
+STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
+                                                  Hit* hits) {
   // The planes, the lanes side by side (the plane's index kept as a Real beside t, so that the
   // lanes' update is one width; −1: none).
   Real t_min[N], t_max[N], t[N], plane[N];
@@ -58,6 +57,9 @@ STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint3
     }
     return;
   }
+  UninitializedLanes<Ray, N> ray_slots;  // the rays one by one, for the queries below
+  Ray* const rays = ray_slots.at;
+  for (int i = 0; i < N; ++i) rays[i] = r.ray(i);
   for (int i = 0; i < N; ++i) {
     hits[i] = Hit{};
     if (plane[i] >= 0) {

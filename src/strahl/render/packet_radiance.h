@@ -120,24 +120,23 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   s.camera.directions<N>(film_x, film_y, dx, dy, dz);
   const Camera& camera = s.camera;
   for (int i = 0; i < N; ++i) time[i] = camera.shutter_open + time[i] * (camera.shutter_close - camera.shutter_open);
-  UninitializedLanes<Ray, N> ray_slots;  // (every lane assigned below)
-  Ray* const rays = ray_slots.at;
-  for (int i = 0; i < N; ++i) rays[i] = Ray{camera.eye, Vec3(dx[i], dy[i], dz[i]), time[i]};
-  PacketRays<N> r;  // the same rays side by side
-  if (camera.lens_radius > 0) {
-    for (int i = 0; i < N; ++i) camera.through_lens(rays[i], cs[i < count ? i : 0].lens);
-    r = PacketRays<N>(rays);
-  } else {
-    for (int i = 0; i < N; ++i) {
-      r.ox[i] = camera.eye.x, r.oy[i] = camera.eye.y, r.oz[i] = camera.eye.z;
-      r.dx[i] = dx[i], r.dy[i] = dy[i], r.dz[i] = dz[i], r.time[i] = time[i];
-    }
+  PacketRays<N> r;  // the camera rays, side by side
+  for (int i = 0; i < N; ++i) {
+    r.ox[i] = camera.eye.x, r.oy[i] = camera.eye.y, r.oz[i] = camera.eye.z;
+    r.dx[i] = dx[i], r.dy[i] = dy[i], r.dz[i] = dz[i], r.time[i] = time[i];
   }
+  if (camera.lens_radius > 0)
+    for (int i = 0; i < N; ++i) {
+      Ray ray = r.ray(i);
+      camera.through_lens(ray, cs[i < count ? i : 0].lens);
+      r.ox[i] = ray.origin.x, r.oy[i] = ray.origin.y, r.oz[i] = ray.origin.z;
+      r.dx[i] = ray.direction.x, r.dy[i] = ray.direction.y, r.dz[i] = ray.direction.z;
+    }
   counters.camera += std::uint64_t(count);
 
   UninitializedLanes<Hit, N> hit_slots;  // (closest_hit_packet sets every lane)
   Hit* const hits = hit_slots.at;
-  closest_hit_packet<N>(s, active, rays, r, hits);
+  closest_hit_packet<N>(s, active, r, hits);
 
   // trace()'s first step up to the shadow rays: emitter, surface point, normal — side by side
   // (surface_lanes) where every lane hit a sphere, a plane or nothing and there are no area
@@ -163,12 +162,13 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     lit = 0;
     for (int i = 0; i < count; ++i) {
       FirstHit& f = slots[i].first;
+      const Ray ray = r.ray(i);
       f.hit = hits[i];
-      f.emitter = s.area_light_count > 0 ? nearest_emitter(s, rays[i], f.hit.t) : -1;
+      f.emitter = s.area_light_count > 0 ? nearest_emitter(s, ray, f.hit.t) : -1;
       if (f.emitter >= 0 || !f.hit.found()) continue;
-      surface_at(s, rays[i], f.hit, f.sp);
+      surface_at(s, ray, f.hit, f.sp);
       const SurfacePoint& sp = f.sp;
-      const bool front = dot(rays[i].direction, sp.geometric_normal) < 0;
+      const bool front = dot(ray.direction, sp.geometric_normal) < 0;
       const Vec3 n = front ? sp.normal : -sp.normal;
       px[i] = sp.p.x, py[i] = sp.p.y, pz[i] = sp.p.z;
       nx[i] = n.x, ny[i] = n.y, nz[i] = n.z;
@@ -300,11 +300,12 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
       if (!(m.reflectivity > 0) && !(m.transparency > 0)) {
         // trace() would spawn no ray here: its colour is the local illumination alone.
         const Vec3 n(nx[i], ny[i], nz[i]);
-        L[i] = guard_sample(local_illumination(s, f.sp, n, -rays[i].direction, counters, rng, f.lights), counters);
+        const Vec3 view(vx[i], vy[i], vz[i]);  // (−direction)
+        L[i] = guard_sample(local_illumination(s, f.sp, n, view, counters, rng, f.lights), counters);
         continue;
       }
     }
-    L[i] = guard_sample(trace(s, rays[i], counters, rng, &f), counters);
+    L[i] = guard_sample(trace(s, r.ray(i), counters, rng, &f), counters);
   }
 }
 
