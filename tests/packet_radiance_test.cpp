@@ -146,7 +146,7 @@ TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
   const auto with = [](Real shininess, Real specular) {
     Material m = material_with_color(Vec3(0.6, 0.3, 0.2));
     m.shininess = shininess;
-    m.specular = Vec3(specular);
+    m.specular = Vec3(specular, specular * 0.8, specular * 0.5);  // (coloured: the channels must not mix)
     return m;
   };
   scene.addSceneObject(new Sphere(Vec3(0.3, 0.3, 0.4), 0.15, with(12.5, 0.5)));

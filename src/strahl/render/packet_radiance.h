@@ -189,32 +189,55 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   // one: the ambient term now, each light's term as its shadow rays come back.
   std::uint32_t local = 0;
   Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shiny[N], shininess[N], rr[N], rg[N], rb[N];
-  // The terms of the last material without a checker (a lane of the same material takes them).
-  std::uint32_t plain = ~0u;  // its index (~0u: none yet)
-  LocalTerms terms{};
-  for (std::uint32_t m = s.area_light_count == 0 ? lit : 0; m != 0; m &= m - 1) {
-    const int i = wide_bvh_detail::lowest_bit(m);
-    const std::uint32_t material_index = surface.material[i];
-    if (material_index != plain) {
-      const Material& material = s.materials[material_index];
-      if (material.reflectivity > 0 || material.transparency > 0) continue;
-      const LocalTerms t = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.settings.ambient_light);
-      if (material.checker_size <= 0) plain = material_index, terms = t;
-      local |= 1u << i;
-      cr[i] = t.c.x, cg[i] = t.c.y, cb[i] = t.c.z, rr[i] = t.ambient.x, rg[i] = t.ambient.y, rb[i] = t.ambient.z;
-      kd[i] = t.kd, sr[i] = t.ks.x, sg[i] = t.ks.y, sb[i] = t.ks.z, shiny[i] = t.shiny, shininess[i] = t.shininess;
-      continue;
-    }
-    local |= 1u << i;
-    cr[i] = terms.c.x, cg[i] = terms.c.y, cb[i] = terms.c.z;
-    rr[i] = terms.ambient.x, rg[i] = terms.ambient.y, rb[i] = terms.ambient.z;
-    kd[i] = terms.kd, sr[i] = terms.ks.x, sg[i] = terms.ks.y, sb[i] = terms.ks.z, shiny[i] = terms.shiny;
-    shininess[i] = terms.shininess;
+  // All lit lanes on one material without a checker (as a pixel's samples mostly are): its terms
+  // computed once and set in every lit lane side by side. Else lane by lane, the terms of the last
+  // material without a checker kept for the next lane of the same material.
+  const int first_lit = lit != 0 ? wide_bvh_detail::lowest_bit(lit) : 0;
+  int one_material = int(lit != 0 && s.area_light_count == 0);
+  for (std::uint32_t m = lit; m != 0; m &= m - 1)
+    one_material &= int(surface.material[wide_bvh_detail::lowest_bit(m)] == surface.material[first_lit]);
+  if (one_material != 0) {
+    const Material& material = s.materials[surface.material[first_lit]];
+    if (material.reflectivity > 0 || material.transparency > 0 || material.checker_size > 0) one_material = 0;
   }
-  // The other lanes' values are not used; they are set all the same.
-  for (std::uint32_t m = ~local & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
-    const int i = wide_bvh_detail::lowest_bit(m);
-    cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
+  if (one_material != 0) {
+    const Vec3 texcoord(surface.ux[first_lit], surface.uy[first_lit], surface.uz[first_lit]);  // (no checker: unused)
+    const LocalTerms t = local_terms(s.materials[surface.material[first_lit]], texcoord, s.settings.ambient_light);
+    local = lit;
+    for (int i = 0; i < N; ++i) {
+      const bool on = (lit >> i) & 1u;
+      cr[i] = on ? t.c.x : 0, cg[i] = on ? t.c.y : 0, cb[i] = on ? t.c.z : 0;
+      rr[i] = on ? t.ambient.x : 0, rg[i] = on ? t.ambient.y : 0, rb[i] = on ? t.ambient.z : 0;
+      kd[i] = on ? t.kd : 0, sr[i] = on ? t.ks.x : 0, sg[i] = on ? t.ks.y : 0, sb[i] = on ? t.ks.z : 0;
+      shiny[i] = on ? t.shiny : 0, shininess[i] = on ? t.shininess : 0;
+    }
+  } else {
+    std::uint32_t plain = ~0u;  // its index (~0u: none yet)
+    LocalTerms terms{};
+    for (std::uint32_t m = s.area_light_count == 0 ? lit : 0; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      const std::uint32_t material_index = surface.material[i];
+      if (material_index != plain) {
+        const Material& material = s.materials[material_index];
+        if (material.reflectivity > 0 || material.transparency > 0) continue;
+        const LocalTerms t = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.settings.ambient_light);
+        if (material.checker_size <= 0) plain = material_index, terms = t;
+        local |= 1u << i;
+        cr[i] = t.c.x, cg[i] = t.c.y, cb[i] = t.c.z, rr[i] = t.ambient.x, rg[i] = t.ambient.y, rb[i] = t.ambient.z;
+        kd[i] = t.kd, sr[i] = t.ks.x, sg[i] = t.ks.y, sb[i] = t.ks.z, shiny[i] = t.shiny, shininess[i] = t.shininess;
+        continue;
+      }
+      local |= 1u << i;
+      cr[i] = terms.c.x, cg[i] = terms.c.y, cb[i] = terms.c.z;
+      rr[i] = terms.ambient.x, rg[i] = terms.ambient.y, rb[i] = terms.ambient.z;
+      kd[i] = terms.kd, sr[i] = terms.ks.x, sg[i] = terms.ks.y, sb[i] = terms.ks.z, shiny[i] = terms.shiny;
+      shininess[i] = terms.shininess;
+    }
+    // The other lanes' values are not used; they are set all the same.
+    for (std::uint32_t m = ~local & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
+    }
   }
   // The lanes that go on in trace(): what its first step found (the other path wrote it already).
   if (side_by_side)
