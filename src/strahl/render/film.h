@@ -61,6 +61,21 @@ class FilmLayout {
     }
     add_wide(tile, x, row, cs, L);
   }
+  // add_sample for samples cs[0 … count − 1] of one pixel (x, row), in that order, with the
+  // pixel's sums held in registers between them (the same additions).
+  void add_pixel_samples(TileWork& tile, int x, int row, const CameraSample* cs, const Vec3* L, int count) const {
+    const std::size_t own = tile.rect.index(x, row);
+    if (stats_)
+      for (int j = 0; j < count; ++j) film_add_stats(tile.stats[own], L[j]);
+    if (local_) {
+      double* const p = &tile.local[own * 4];
+      double sums[4] = {p[0], p[1], p[2], p[3]};
+      for (int j = 0; j < count; ++j) film_add_local(sums, L[j]);
+      p[0] = sums[0], p[1] = sums[1], p[2] = sums[2], p[3] = sums[3];
+      return;
+    }
+    for (int j = 0; j < count; ++j) add_wide(tile, x, row, cs[j], L[j]);
+  }
 
  private:
   void add_wide(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const;

@@ -19,10 +19,8 @@ bool render_samples_packed(const SceneView& view, const PixelSequence& sequence,
     if (stop.requested()) return false;
     const int count = end - k < N ? int(end - k) : N;
     packet_radiance<N>(view, sequence, k, count, cs, L, work.counters);
-    for (int j = 0; j < count; ++j) {
-      film.add_sample(work, x, row, cs[j], L[j]);
-      ++work.taken[i];
-    }
+    film.add_pixel_samples(work, x, row, cs, L, count);
+    work.taken[i] += std::uint32_t(count);
   }
   return true;
 }
