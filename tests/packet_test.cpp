@@ -341,7 +341,8 @@ void check_cone(std::uint64_t seed) {
       t_max[i] = rng.coin() ? kInfinity : t_min[i] + rng.uniform(0, 4) * scale;
     }
     const std::uint32_t active = trial % 3 == 0 ? std::uint32_t(rng.uniform(1, double(1u << N))) : (1u << N) - 1;
-    const PacketRays<N> r(rays);
+    PacketRays<N> r(rays);
+    r.unit = kind != 3;  // (unit directions: the cone takes them as they are)
     const PacketCone cone = packet_cone<N>(r, active, t_min);
     for (int k = 0; k < 16; ++k) {
       kernel::Sphere sphere;

@@ -28,8 +28,11 @@ union UninitializedLanes {
 template <int N>
 struct PacketRays {
   Real ox[N], oy[N], oz[N], dx[N], dy[N], dz[N], time[N];
+  // Every lane's direction is a unit vector up to rounding (the packet front end's camera and
+  // shadow rays): packet_cone() then needs no lengths.
+  bool unit = false;
 
-  PacketRays() = default;  // (uninitialised: for filling lane by lane)
+  PacketRays() = default;  // (the lanes uninitialised: for filling lane by lane)
   STRAHL_HOST_DEVICE explicit PacketRays(const Ray* rays) {
     for (int i = 0; i < N; ++i) {
       ox[i] = rays[i].origin.x, oy[i] = rays[i].origin.y, oz[i] = rays[i].origin.z;
@@ -71,14 +74,17 @@ STRAHL_HOST_DEVICE inline PacketCone packet_cone(const PacketRays<N>& r, std::ui
   // apex; an inactive lane (garbage) gets 1 and 0, a NaN or infinite one marks the cone unusable.
   Real cos_lane[N], spread2[N];
   std::uint32_t unusable = 0;  // lanes whose values are NaN or infinite
+  if (r.unit)
+    for (int i = 0; i < N; ++i) cos_lane[i] = ux * r.dx[i] + uy * r.dy[i] + uz * r.dz[i];
+  else
+    for (int i = 0; i < N; ++i)
+      cos_lane[i] = (ux * r.dx[i] + uy * r.dy[i] + uz * r.dz[i]) /
+                    std::sqrt(r.dx[i] * r.dx[i] + r.dy[i] * r.dy[i] + r.dz[i] * r.dz[i]);
   for (int i = 0; i < N; ++i) {
-    const Real c = (ux * r.dx[i] + uy * r.dy[i] + uz * r.dz[i]) /
-                   std::sqrt(r.dx[i] * r.dx[i] + r.dy[i] * r.dy[i] + r.dz[i] * r.dz[i]);
     const Real ex = r.ox[i] - ax, ey = r.oy[i] - ay, ez = r.oz[i] - az;
     const Real e2 = ex * ex + ey * ey + ez * ez;
-    cos_lane[i] = c;
     spread2[i] = e2;
-    unusable |= std::uint32_t(!(c >= -2) | !(e2 < kInfinity) | !(t_min[i] >= 0)) << i;
+    unusable |= std::uint32_t(!(cos_lane[i] >= -2) | !(e2 < kInfinity) | !(t_min[i] >= 0)) << i;
   }
   if ((unusable & active) != 0) return k;
   for (std::uint32_t m = ~active & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
@@ -104,19 +110,20 @@ STRAHL_HOST_DEVICE inline PacketCone packet_cone(const PacketRays<N>& r, std::ui
 // False only when no ray of the cone's packet can meet the sphere — then none of the sphere lane
 // tests below finds a root in any lane, computed as they compute it: the sphere is grown by the
 // rays' spread and by 1e-8 of the distances involved (the lane tests' rounding is some 1e-16 of
-// them), and the cone of apex half-angle θ misses it when the angle α between the axis and the
-// centre exceeds θ + β, β the angle the grown sphere subtends (sin β = R/|v|): cos α < cos(θ + β).
+// them), and the cone of half-angle θ misses it when the angle α between the axis and the centre
+// exceeds θ + β, β the angle the grown sphere of radius R subtends from the apex:
+// cos α < cos(θ + β), with cos α = a·v/|v|, sin β = R/|v| and cos β = √(|v|² − R²)/|v| — here
+// multiplied by |v|, and |v| in the margins bounded by its 1-norm (no square root, no division
+// but one root).
 STRAHL_HOST_DEVICE inline bool cone_may_meet(const PacketCone& k, const kernel::Sphere& sphere) {
   if (!k.valid) return true;
   const Vec3 v = sphere.center - k.apex;
-  const Real distance = v.length();
+  const Real reach = std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z);  // ≥ |v|
   const Real grown = sphere.radius + k.spread;
-  const Real radius = grown + Real(1e-8) * (distance + grown);
-  if (!(distance > radius)) return true;  // the apex inside (or NaN)
-  const Real sin_b = radius / distance, cos_b = std::sqrt(1 - sin_b * sin_b);
-  const Real cos_a = dot(k.axis, v) / distance;
-  const Real cos_sum = k.cos_theta * cos_b - k.sin_theta * sin_b;  // cos(θ + β), θ + β ≤ π
-  return !(cos_a < cos_sum - Real(1e-12));
+  const Real radius = grown + Real(1e-8) * (reach + grown);
+  const Real v2 = dot(v, v), r2 = radius * radius;
+  if (!(v2 > r2)) return true;  // the apex inside the grown sphere (or NaN)
+  return !(dot(k.axis, v) < k.cos_theta * std::sqrt(v2 - r2) - k.sin_theta * radius - Real(1e-12) * reach);
 }
 
 // The two roots of the sphere's quadratic along every lane's ray, t0 ≤ t1, as kernel::intersect

@@ -121,6 +121,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   const Camera& camera = s.camera;
   for (int i = 0; i < N; ++i) time[i] = camera.shutter_open + time[i] * (camera.shutter_close - camera.shutter_open);
   PacketRays<N> r;  // the camera rays, side by side
+  r.unit = true;     // (Camera::directions and through_lens normalise them)
   for (int i = 0; i < N; ++i) {
     r.ox[i] = camera.eye.x, r.oy[i] = camera.eye.y, r.oz[i] = camera.eye.z;
     r.dx[i] = dx[i], r.dy[i] = dy[i], r.dz[i] = dz[i], r.time[i] = time[i];
@@ -289,6 +290,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     }
     if (cast != 0) {
       PacketRays<N> shadow;
+      shadow.unit = true;  // (to_light: normalised above)
       for (int i = 0; i < N; ++i) {
         shadow.ox[i] = ox[i], shadow.oy[i] = oy[i], shadow.oz[i] = oz[i];
         shadow.dx[i] = lx[i], shadow.dy[i] = ly[i], shadow.dz[i] = lz[i], shadow.time[i] = r.time[i];
