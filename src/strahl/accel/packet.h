@@ -113,8 +113,7 @@ STRAHL_HOST_DEVICE inline PacketCone packet_cone(const PacketRays<N>& r, std::ui
 // them), and the cone of half-angle θ misses it when the angle α between the axis and the centre
 // exceeds θ + β, β the angle the grown sphere of radius R subtends from the apex:
 // cos α < cos(θ + β), with cos α = a·v/|v|, sin β = R/|v| and cos β = √(|v|² − R²)/|v| — here
-// multiplied by |v|, and |v| in the margins bounded by its 1-norm (no square root, no division
-// but one root).
+// multiplied by |v|, and |v| in the margins bounded by its 1-norm: one square root, no division.
 STRAHL_HOST_DEVICE inline bool cone_may_meet(const PacketCone& k, const kernel::Sphere& sphere) {
   if (!k.valid) return true;
   const Vec3 v = sphere.center - k.apex;
@@ -189,9 +188,9 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_crossings_lanes(const kernel:
 
 // The one-leaf sphere loops of nearest_hit and occluded (accel.h) for a packet: sphere by sphere,
 // all lanes at once, each lane's far end lowered as it finds nearer hits, exactly as its own loop
-// would; spheres no lane's ray can meet (packet_cone) skipped.
-// The lanes' nearest sphere hits in (t_min[i], t_far[i]): t_far[i] lowered to it and prim[i] the
-// sphere's index (as a Real, so that the lanes' update is one width), −1 where there is none.
+// would; spheres no lane's ray can meet (packet_cone) skipped. Here the lanes' nearest sphere hits
+// in (t_min[i], t_far[i]): t_far[i] lowered to it and prim[i] the sphere's index (as a Real, so
+// that the lanes' update is one width), −1 where there is none.
 template <int N>
 STRAHL_HOST_DEVICE inline void sphere_leaf_nearest_lanes(const PrimitiveSet& p, std::uint32_t active, const PacketRays<N>& r,
                                                          const Real* t_min, Real* t_far, Real* prim) {

@@ -24,8 +24,8 @@ STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) { r
 // shade_from()'s term of one point or directional light of intensity `radiance`, added to r in
 // the lanes of `lanes` — the same operations on the same values, lane by lane: Lambert,
 // Blinn-Phong where dot(n, h) > 0 and k_s is not black, times the intensity and the shadow ray's
-// transmittance (tr_x, tr_y, tr_z); 0 where it is black (in shadow) or where the lane cast no shadow ray (not in
-// `cast`: dot(n, to_light) ≤ 0).
+// transmittance (tr_x, tr_y, tr_z); 0 where it is black (in shadow) or where the lane cast no
+// shadow ray (not in `cast`: dot(n, to_light) ≤ 0).
 template <int N>
 STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
     const Vec3& radiance, std::uint32_t lanes, std::uint32_t cast, const Real* __restrict n_dot_l,
@@ -141,23 +141,23 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
 
   // trace()'s first step up to the shadow rays: emitter, surface point, normal — side by side
   // (surface_lanes) where every lane hit a sphere, a plane or nothing and there are no area
-  // lights, else lane by lane; the points, normals and offsets side by side for the shadow rays
-  // (0 in lanes that do not shade), the materials and texture coordinates in `surface`. The lanes
-  // that go on in trace() get their FirstHit below, once known.
+  // lights, else lane by lane; the points, geometric normals, offsets, materials and texture
+  // coordinates in `surface`, the normals towards the viewer in (nx, ny, nz) (0 in lanes that do
+  // not shade). The lanes that go on in trace() get their FirstHit below, once known.
   FirstHitSlot slots[N];
-  Real px[N], py[N], pz[N], nx[N], ny[N], nz[N], gx[N], gy[N], gz[N], offset[N], vx[N], vy[N], vz[N];
+  SurfaceLanes<N> surface;
+  Real* const px = surface.px; Real* const py = surface.py; Real* const pz = surface.pz;
+  Real* const gx = surface.gx; Real* const gy = surface.gy; Real* const gz = surface.gz;
+  Real* const offset = surface.offset;
+  Real nx[N], ny[N], nz[N], vx[N], vy[N], vz[N];
   for (int i = 0; i < N; ++i) vx[i] = -r.dx[i], vy[i] = -r.dy[i], vz[i] = -r.dz[i];  // (the rays' directions)
   std::uint32_t lit = 0;  // lanes that hit a surface (and no emitter): they shade
-  SurfaceLanes<N> surface;
   const bool side_by_side = s.area_light_count == 0 && surface_lanes<N>(s, active, r, hits, surface, lit);
   if (side_by_side) {
     for (int i = 0; i < N; ++i) {
-      const Real x = surface.gx[i], y = surface.gy[i], z = surface.gz[i];
+      const Real x = gx[i], y = gy[i], z = gz[i];
       const bool front = r.dx[i] * x + r.dy[i] * y + r.dz[i] * z < 0;  // dot(direction, geometric normal)
-      px[i] = surface.px[i], py[i] = surface.py[i], pz[i] = surface.pz[i];
       nx[i] = front ? x : -x, ny[i] = front ? y : -y, nz[i] = front ? z : -z;
-      gx[i] = x, gy[i] = y, gz[i] = z;
-      offset[i] = surface.offset[i];
     }
   } else {
     lit = 0;

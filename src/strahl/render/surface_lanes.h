@@ -82,23 +82,22 @@ STRAHL_HOST_DEVICE inline bool surface_lanes(const SceneView& s, std::uint32_t a
     const int i = wide_bvh_detail::lowest_bit(m);
     same &= int(hits[i].kind == hits[first].kind) & int(hits[i].index == hits[first].index);
   }
+  const auto put = [&](int i, const ShapeParams& q) {
+    sphere[i] = q.sphere, cx[i] = q.cx, cy[i] = q.cy, cz[i] = q.cz, inv_r[i] = q.inv_r;
+    nx[i] = q.nx, ny[i] = q.ny, nz[i] = q.nz, tx[i] = q.tx, ty[i] = q.ty, tz[i] = q.tz;
+    bx[i] = q.bx, by[i] = q.by, bz[i] = q.bz, magnitude[i] = q.magnitude, out.material[i] = q.material;
+  };
   ShapeParams q;
   if (same != 0) {  // its parameters fetched once, in every lane
     if (!shape_params(s, hits[first], q)) return false;
-    for (int i = 0; i < N; ++i) {
-      sphere[i] = q.sphere, cx[i] = q.cx, cy[i] = q.cy, cz[i] = q.cz, inv_r[i] = q.inv_r;
-      nx[i] = q.nx, ny[i] = q.ny, nz[i] = q.nz, tx[i] = q.tx, ty[i] = q.ty, tz[i] = q.tz;
-      bx[i] = q.bx, by[i] = q.by, bz[i] = q.bz, magnitude[i] = q.magnitude, out.material[i] = q.material;
-    }
+    for (int i = 0; i < N; ++i) put(i, q);
     if (hits[first].kind != ShapeKind::None) lit = active;
   } else {
     for (int i = 0; i < N; ++i) {
       const bool on = (active >> i) & 1u;
       if (on && !shape_params(s, hits[i], q)) return false;
       if (!on) q = ShapeParams{};
-      sphere[i] = q.sphere, cx[i] = q.cx, cy[i] = q.cy, cz[i] = q.cz, inv_r[i] = q.inv_r;
-      nx[i] = q.nx, ny[i] = q.ny, nz[i] = q.nz, tx[i] = q.tx, ty[i] = q.ty, tz[i] = q.tz;
-      bx[i] = q.bx, by[i] = q.by, bz[i] = q.bz, magnitude[i] = q.magnitude, out.material[i] = q.material;
+      put(i, q);
       if (on && hits[i].kind != ShapeKind::None) lit |= 1u << i;
     }
   }
