@@ -92,7 +92,7 @@ def test_the_gil_is_released_while_rendering():
 
     def renderer():
         start = time.monotonic()
-        results["image"] = strahl.render(strahl.lecture_scene(), width=160, height=90, spp=256, threads=1)
+        results["image"] = strahl.render(strahl.lecture_scene(), width=160, height=90, spp=1024, threads=1)
         results["seconds"] = time.monotonic() - start
 
     t = threading.Thread(target=ticker)
