@@ -22,7 +22,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect_plane_lanes(const kernel::
   for (int i = 0; i < N; ++i) {
     const Real denom = nx * r.dx[i] + ny * r.dy[i] + nz * r.dz[i];
     const Real u = (p.distance - (nx * r.ox[i] + ny * r.oy[i] + nz * r.oz[i])) / denom;
-    t[i] = (denom != 0) & (u > t_min[i]) & (u < t_max[i]) ? u : kInfinity;
+    t[i] = ((denom != 0) & (u > t_min[i]) & (u < t_max[i])) ? u : kInfinity;
   }
 }
 
