@@ -229,9 +229,11 @@ TEST(PacketFrontEnd, LanesOfNeighbouringPixelsEqualTheSingleSamplePath) {
   }
 }
 
-// The tile renderer (one sample per pixel: packets of neighbouring pixels; several: packets of a
-// pixel's samples; the Sobol film positions computed lane by lane in both) against pixel_sample()
-// one sample at a time into the same film layout: the same sums, statistics and counts, bit for bit.
+// The tile renderer (fewer than 16 samples per pixel: packets gathered across pixels, a pixel's
+// samples running on from one packet into the next; 16 or more: whole packets of a pixel's own,
+// the rest gathered; the Sobol film positions computed lane by lane in both) against
+// pixel_sample() one sample at a time into the same film layout: the same sums, statistics and
+// counts, bit for bit. per_pixel 0: every pixel its own number of samples, 0 … 20.
 TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
   for (const char* file : {"lecture-whitted.yaml", "depth-of-field.yaml"}) {
     Scene scene = load_scene(std::string(STRAHL_SOURCE_DIR) + "/scenes/" + file);
@@ -240,7 +242,7 @@ TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
     const RenderScene rs = compile(scene);
     const SceneView view = rs.view();
     for (const SamplerKind kind : {SamplerKind::Adaptive, SamplerKind::Sobol, SamplerKind::Stratified, SamplerKind::Grid})
-      for (const std::uint32_t per_pixel : {1u, 3u, 16u}) {
+      for (const std::uint32_t per_pixel : {1u, 3u, 16u, 0u}) {
         SamplingSettings sampling;
         sampling.sampler = kind;
         sampling.spp = 16;
@@ -259,6 +261,7 @@ TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
               const std::size_t i = w->rect.index(x, row);
               w->first[i] = std::uint32_t(x + 2 * row) % 7;        // rows of samples of differing numbers
               w->count[i] = (x * row) % 5 == 1 ? 0u : per_pixel;  // and gaps in them
+              if (per_pixel == 0) w->count[i] = std::uint32_t(3 * x + 5 * row) % 21;
             }
         }
         const StopToken stop;
@@ -282,6 +285,7 @@ TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
         for (std::size_t i = 0; i < tiled.stats.size(); ++i) {
           ASSERT_EQ(tiled.stats[i].n, alone.stats[i].n) << what << " pixel " << i;
           ASSERT_EQ(tiled.stats[i].sum, alone.stats[i].sum) << what << " pixel " << i;
+          ASSERT_EQ(tiled.stats[i].sum_sq, alone.stats[i].sum_sq) << what << " pixel " << i;
         }
         EXPECT_TRUE(same_counts(tiled.counters, alone.counters)) << what;
       }

@@ -25,33 +25,38 @@ bool render_samples_packed(const SceneView& view, const PixelSequence& sequence,
   return true;
 }
 
-// Pixels of one row with one sample each (a 1-spp pass: the adaptive sampler's first, the
-// viewer's), gathered into packets of up to 16 neighbours (render/packet_radiance.h).
-class NeighbourPackets {
+// Samples of pixels with fewer than 16 to take (the adaptive sampler's passes of 1, 2, 4, 8 per
+// pixel, the viewer's 1-spp frames, a 3×3 grid), gathered across the tile into packets of up to
+// 16 lanes (render/packet_radiance.h): a pixel's samples lie in consecutive lanes in sample order
+// (or run on into the next packet), and each packet's samples reach the film in lane order, so
+// every pixel's sums take the same additions in the same order as sample by sample.
+class SamplePackets {
  public:
-  NeighbourPackets(const SceneView& view, const FilmLayout& film, TileWork& work)
+  SamplePackets(const SceneView& view, const FilmLayout& film, TileWork& work)
       : view_(view), film_(film), work_(work) {}
 
-  // Pixel (x, row), entry i of the tile, takes its sample `index` of `sequence`; false when stopped.
-  bool add(const PixelSequence& sequence, std::uint32_t index, int x, int row, std::size_t i, const StopToken& stop) {
-    if (count_ > 0 && row != row_) {
-      if (!flush(stop)) return false;
-    }
-    row_ = row;
+  // Pixel (x, row), entry i of the tile, takes samples first … first + count − 1 of `sequence`;
+  // false when stopped.
+  bool add(const PixelSequence& sequence, std::uint32_t first, std::uint32_t count, int x, int row, std::size_t i,
+           const StopToken& stop) {
     // (The same for every pixel of a render: one sampler, one camera.)
     sobol_ = (sequence.kind == SamplerKind::Sobol || sequence.kind == SamplerKind::Adaptive) && !sequence.uses_lens &&
              !sequence.uses_time;
-    if (sobol_) {  // the film positions come in flush(), the lanes side by side
-      s0_[count_] = sequence.h[0], s1_[count_] = sequence.h[1], s2_[count_] = sequence.h[2];
-      px_[count_] = Real(sequence.x), py_[count_] = Real(sequence.y);
-    } else {
-      cs_[count_] = sequence.sample(index);
+    for (std::uint32_t index = first; index < first + count; ++index) {
+      if (sobol_) {  // the film positions come in flush(), the lanes side by side
+        s0_[count_] = sequence.h[0], s1_[count_] = sequence.h[1], s2_[count_] = sequence.h[2];
+        px_[count_] = Real(sequence.x), py_[count_] = Real(sequence.y);
+      } else {
+        cs_[count_] = sequence.sample(index);
+      }
+      key_[count_] = sequence.stream;
+      index_[count_] = index;
+      x_[count_] = x;
+      row_[count_] = row;
+      entry_[count_] = i;
+      if (++count_ == kLanes && !flush(stop)) return false;
     }
-    key_[count_] = sequence.stream;
-    index_[count_] = index;
-    x_[count_] = x;
-    entry_[count_] = i;
-    return ++count_ < kLanes || flush(stop);
+    return true;
   }
 
   // Traces the gathered samples; false (and nothing traced) when stopped.
@@ -67,9 +72,13 @@ class NeighbourPackets {
       packet_radiance_of<16>(view_, cs_, key_, index_, count_, L_, work_.counters);
     else
       packet_radiance_of<8>(view_, cs_, key_, index_, count_, L_, work_.counters);
-    for (int j = 0; j < count_; ++j) {
-      film_.add_sample(work_, x_[j], row_, cs_[j], L_[j]);
-      ++work_.taken[entry_[j]];
+    // Each pixel's run of lanes together (its sums in registers between them).
+    for (int j = 0; j < count_;) {
+      int run = 1;
+      while (j + run < count_ && entry_[j + run] == entry_[j]) ++run;
+      film_.add_pixel_samples(work_, x_[j], row_[j], &cs_[j], &L_[j], run);
+      work_.taken[entry_[j]] += std::uint32_t(run);
+      j += run;
     }
     count_ = 0;
     return true;
@@ -80,14 +89,14 @@ class NeighbourPackets {
   const SceneView& view_;
   const FilmLayout& film_;
   TileWork& work_;
-  int count_ = 0, row_ = 0;
+  int count_ = 0;
   CameraSample cs_[kLanes];
   std::uint64_t key_[kLanes];
   std::uint32_t index_[kLanes];
   bool sobol_ = false;  // Sobol film positions without lens and time: computed in flush()
   std::uint32_t s0_[kLanes], s1_[kLanes], s2_[kLanes];
   Real px_[kLanes], py_[kLanes];
-  int x_[kLanes];
+  int x_[kLanes], row_[kLanes];
   std::size_t entry_[kLanes];
   Vec3 L_[kLanes];
 };
@@ -98,21 +107,21 @@ void render_tile(const SceneView& view, const PixelSampler& sampler, const FilmL
                  TileWork& work) {
   const TileRect& r = work.rect;
   const bool packets = packet_radiance_supported(view);
-  NeighbourPackets neighbours(view, film, work);
+  SamplePackets gathered(view, film, work);
   for (int row = r.row0; row < r.row1; ++row)
     for (int x = r.x0; x < r.x1; ++x) {
       const std::size_t i = r.index(x, row);
-      const std::uint32_t begin = work.first[i], end = begin + work.count[i];
+      std::uint32_t begin = work.first[i];
+      const std::uint32_t end = begin + work.count[i];
       if (begin == end) continue;
       const PixelSequence sequence = pixel_sequence(view, sampler, x, row);
-      if (packets && end - begin == 1) {
-        if (!neighbours.add(sequence, begin, x, row, i, stop)) return;
-        continue;
-      }
-      if (packets && end - begin > 1) {
-        const bool done = end - begin >= 16 ? render_samples_packed<16>(view, sequence, film, stop, work, x, row, i, begin, end)
-                                            : render_samples_packed<8>(view, sequence, film, stop, work, x, row, i, begin, end);
-        if (!done) return;
+      if (packets) {
+        // Whole packets of 16 of the pixel's own, the rest gathered with other pixels' samples.
+        const std::uint32_t whole = (end - begin) / 16 * 16;
+        if (whole > 0 && !render_samples_packed<16>(view, sequence, film, stop, work, x, row, i, begin, begin + whole))
+          return;
+        begin += whole;
+        if (begin < end && !gathered.add(sequence, begin, end - begin, x, row, i, stop)) return;
         continue;
       }
       for (std::uint32_t k = begin; k < end; ++k) {
@@ -123,7 +132,7 @@ void render_tile(const SceneView& view, const PixelSampler& sampler, const FilmL
         ++work.taken[i];
       }
     }
-  neighbours.flush(stop);
+  gathered.flush(stop);
 }
 
 }  // namespace strahl
