@@ -78,11 +78,13 @@ class AdaptivePlanner {
     const std::size_t n = counts.size();
     if (seen_.size() != n || add.size() != n || full) {
       add.resize(n);
-      seen_.assign(n, ~std::uint32_t(0));  // every pixel changed
-      over_.assign(n, 0);
-      mark_.assign(n, 0);
-      planned_.clear();
-      return plan_every_pixel(film, counts, max_spp, threshold, add, headroom);
+      if (seen_.size() != n) {  // fresh pages, first touched by plan_every_pixel's threads
+        seen_ = ZeroedArray<std::uint32_t>(n);
+        over_ = ZeroedArray<std::uint8_t>(n);
+        mark_ = ZeroedArray<std::uint8_t>(n);
+        near_ = ZeroedArray<std::uint8_t>(n);
+      }
+      return plan_every_pixel(film, counts, max_spp, threshold, add, headroom);  // (sets seen_, over_)
     }
     // mark_ of the pixels next to a change 2 (their errors are recomputed), of the pixels next to
     // those 1 (their decisions are taken again); touched_ lists them, to clear them afterwards.
@@ -93,7 +95,7 @@ class AdaptivePlanner {
       if (counts[p] != seen_[p]) changed_.push_back(p);
       add[p] = 0;
     }
-    if (changed_.size() > n / 8) return plan_every_pixel(film, counts, max_spp, threshold, add, headroom);
+    if (changed_.size() > n / 32) return plan_every_pixel(film, counts, max_spp, threshold, add, headroom);
     const auto around = [&](std::size_t p, std::uint8_t level) {
       const int x = int(p % std::size_t(w)), row = int(p / std::size_t(w));
       for (int ny = std::max(0, row - 1); ny <= std::min(h - 1, row + 1); ++ny)
@@ -145,76 +147,27 @@ class AdaptivePlanner {
   }
 
   // The plan when much changed (the first pass): every error, then every decision — pixel_error()
-  // and more() for every pixel, computed row by row: each pixel's mean divided out once (NaN where
-  // a pixel has no sample: std::max never takes it), and the 3×3 neighbourhoods read with the
-  // image's edge rows and columns standing in for those beyond it (which only repeats a
-  // neighbour, or the pixel itself, whose contrast to itself is 0).
+  // and more() for every pixel, computed row by row in bands of rows on all threads (each pixel's
+  // answer depends only on the film, so it is the same for any split): each pixel's mean divided out
+  // once (NaN where a pixel has no sample: std::max never takes it), and the 3×3 neighbourhoods read
+  // with the image's edge rows and columns standing in for those beyond it (which only repeats a
+  // neighbour, or the pixel itself, whose contrast to itself is 0). render/adaptive.cpp.
   std::uint64_t plan_every_pixel(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
-                                 double threshold, std::vector<std::uint32_t>& add, std::uint64_t* headroom) {
-    const std::size_t w = std::size_t(film.width()), h = std::size_t(film.height());
-    const ZeroedArray<PixelStats>& stats = film.pixel_stats();
-    seen_ = counts;
-    mean_.resize(stats.size());
-    for (std::size_t p = 0; p < stats.size(); ++p)
-      mean_[p] = stats[p].n > 0 ? stats[p].sum / stats[p].n : std::numeric_limits<double>::quiet_NaN();
-    row_.resize(w);
-    for (std::size_t row = 0; row < h; ++row) {
-      const double* above = &mean_[(row > 0 ? row - 1 : row) * w];
-      const double* here = &mean_[row * w];
-      const double* below = &mean_[(row + 1 < h ? row + 1 : row) * w];
-      // contrast_error's largest difference to a neighbour, for every pixel of the row.
-      const auto contrast = [&](std::size_t x, std::size_t l, std::size_t r) {
-        const double m = here[x];
-        double e = 0;
-        e = std::max(e, std::abs(m - above[l])), e = std::max(e, std::abs(m - above[x])), e = std::max(e, std::abs(m - above[r]));
-        e = std::max(e, std::abs(m - here[l])), e = std::max(e, std::abs(m - here[r]));
-        e = std::max(e, std::abs(m - below[l])), e = std::max(e, std::abs(m - below[x])), e = std::max(e, std::abs(m - below[r]));
-        return e;
-      };
-      row_[0] = contrast(0, 0, w > 1 ? 1 : 0);
-      for (std::size_t x = 1; x + 1 < w; ++x) row_[x] = contrast(x, x - 1, x + 1);
-      if (w > 1) row_[w - 1] = contrast(w - 1, w - 2, w - 1);
-      for (std::size_t x = 0; x < w; ++x) {
-        const PixelStats& s = stats[row * w + x];
-        over_[row * w + x] = (s.n == 1 ? row_[x] / std::max(here[x], 0.01) : relative_error(s)) > threshold;
-      }
-    }
-    // more(): a pixel refines when its 3×3 neighbourhood has one over the threshold — the largest
-    // over_ along each row's neighbours, then down the columns.
-    near_.resize(over_.size());
-    for (std::size_t row = 0; row < h; ++row) {
-      const std::uint8_t* o = &over_[row * w];
-      std::uint8_t* n = &near_[row * w];
-      for (std::size_t x = 0; x < w; ++x) n[x] = o[x] | o[x > 0 ? x - 1 : x] | o[x + 1 < w ? x + 1 : x];
-    }
-    std::uint64_t total = 0, room = 0;
-    planned_.clear();
-    for (std::size_t row = 0; row < h; ++row) {
-      const std::uint8_t* above = &near_[(row > 0 ? row - 1 : row) * w];
-      const std::uint8_t* here = &near_[row * w];
-      const std::uint8_t* below = &near_[(row + 1 < h ? row + 1 : row) * w];
-      for (std::size_t x = 0; x < w; ++x) {
-        const std::size_t p = row * w + x;
-        const std::uint32_t c = counts[p];
-        add[p] = (above[x] | here[x] | below[x]) != 0 && c < max_spp ? std::min(std::max(c, 1u), max_spp - c) : 0;
-        if (add[p] == 0) continue;
-        planned_.push_back(std::uint32_t(p));
-        total += add[p];
-        room += max_spp - c;
-      }
-    }
-    if (headroom != nullptr) *headroom = room;
-    return total;
-  }
+                                 double threshold, std::vector<std::uint32_t>& add, std::uint64_t* headroom);
 
-  std::vector<std::uint32_t> seen_;  // the counts at the last plan
-  std::vector<std::uint8_t> over_;   // error > threshold, as of the last plan
-  std::vector<std::uint8_t> mark_;   // all 0 between plans
+  ZeroedArray<std::uint32_t> seen_;  // the counts at the last plan
+  ZeroedArray<std::uint8_t> over_;   // error > threshold, as of the last plan
+  ZeroedArray<std::uint8_t> mark_;   // all 0 between plans
+  ZeroedArray<std::uint8_t> near_;   // plan_every_pixel: over_ of a pixel or its row neighbours
   std::vector<std::uint32_t> touched_;
   std::vector<std::uint32_t> changed_;  // the pixels whose counts changed since the last plan
   std::vector<std::uint32_t> planned_;  // the pixels the last plan gave samples
-  std::vector<double> mean_, row_;      // plan_every_pixel's pixel means, one row's contrasts
-  std::vector<std::uint8_t> near_;      // plan_every_pixel: over_ of a pixel or its row neighbours
+  // plan_every_pixel: each band's planned pixels and sums (joined in band order).
+  struct Band {
+    std::vector<std::uint32_t> planned;
+    std::uint64_t total = 0, room = 0;
+  };
+  std::vector<Band> bands_;
 };
 
 }  // namespace strahl
