@@ -123,7 +123,10 @@ struct PixelSequence {
   std::uint64_t seed = 0, pixel = 0, key = 0;  // key: what hash() mixes (0 when no hash is needed)
   std::uint64_t stream = 0;  // pixel_key(seed, pixel): the per-sample random numbers are keyed_bits(stream, …)
   int x = 0, y = 0;
-  std::uint32_t h[9] = {};  // grid/stratified: round 0's film, lens, time orders; sobol: 3 per pair
+  // Grid/stratified: round 0's film, lens, time orders; sobol: 3 per pair; 0 where unused. Left
+  // unset by `PixelSequence p;` (PixelSampler::pixel sets it: zeroing it per pixel cost a `rep
+  // stos`), zero in `PixelSequence{}`.
+  std::uint32_t h[9];
   // Whether the camera uses the lens and time dimensions (a thin lens, an open shutter). When it
   // does not, sample() leaves them at lens (0.5, 0.5) and time 0 without computing them; the film
   // positions are the same either way (each dimension has its own random numbers and orders).
@@ -246,7 +249,7 @@ struct PixelSampler {
   // and their hashes are not computed (h[] holds 0 there).
   STRAHL_HOST_DEVICE PixelSequence pixel(int x, int y, std::uint64_t pixel_index, bool uses_lens = true,
                                          bool uses_time = true) const {
-    PixelSequence p;
+    PixelSequence p;  // (h[] is set below: no block of zeros first)
     p.kind = kind;
     p.side = side;
     p.side_shift = -1;
@@ -265,14 +268,13 @@ struct PixelSampler {
                                                                                       : 0;
     p.uses_lens = uses_lens;
     p.uses_time = uses_time;
-    if (hashes == 0) return p;
-    p.key = keyed_bits(p.stream, 0xffffffffu, 0);
+    p.key = hashes == 0 ? 0 : keyed_bits(p.stream, 0xffffffffu, 0);
     // Hash i serves the film (sobol: pair 0, hashes 0–2; strata: order 0), the lens (pair 1; order
-    // 1) or the time (pair 2; order 2).
-    for (int i = 0; i < hashes; ++i) {
+    // 1) or the time (pair 2; order 2); 0 where not needed.
+    for (int i = 0; i < 9; ++i) {
       const int use = hashes == 9 ? i / 3 : i;
-      if ((use == 1 && !uses_lens) || (use == 2 && !uses_time)) continue;
-      p.h[i] = p.hash(std::uint32_t(i));
+      const bool needed = i < hashes && !(use == 1 && !uses_lens) && !(use == 2 && !uses_time);
+      p.h[i] = needed ? p.hash(std::uint32_t(i)) : 0;
     }
     return p;
   }
