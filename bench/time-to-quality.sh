@@ -57,7 +57,7 @@ for variant in 0 1; do
     done
   done
   # One sample per pixel, then refinement where a pixel stands out from its neighbours.
-  for thr in 0.2 0.1 0.07 0.05; do
+  for thr in 0.5 0.3 0.2 0.1 0.07 0.05; do
     t=$(wall "$build/bin/strahl" "$scene" "${size[@]}" --sampler adaptive --spp 16 --adaptive-min 1 \
           --adaptive-threshold $thr -q -o s.pfm)
     e=$(rmse ref.pfm s.pfm)
