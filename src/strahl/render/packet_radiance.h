@@ -311,9 +311,10 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
 
   // The local lanes' colours, guarded as guard_sample() does, side by side.
   const std::uint32_t valid = valid_lanes<N>(rr, rg, rb);
-  for (std::uint32_t m = local; m != 0; m &= m - 1) {
-    const int i = wide_bvh_detail::lowest_bit(m);
-    L[i] = ((valid >> i) & 1u) ? Vec3(rr[i], rg[i], rb[i]) : Vec3(0);
+  // (Every lane below count, without a branch: the lanes that go on in trace() overwrite theirs.)
+  for (int i = 0; i < count; ++i) {
+    const bool ok = (valid >> i) & 1u;
+    L[i] = Vec3(ok ? rr[i] : Real(0), ok ? rg[i] : Real(0), ok ? rb[i] : Real(0));
   }
   for (std::uint32_t m = local & ~valid; m != 0; m &= m - 1) ++counters.invalid_samples;
   for (std::uint32_t lanes = active & ~local; lanes != 0; lanes &= lanes - 1) {
