@@ -50,19 +50,12 @@ class FilmLayout {
   void prepare(TileWork& tile) const;
   // A sample of pixel (x, row) (inside the tile) at film position cs.film_x/film_y (raster units,
   // y up from the bottom row, as the pixel sampler made it) with radiance `L`.
-  // Inline: it runs once per camera sample.
   void add_sample(TileWork& tile, int x, int row, const CameraSample& cs, const Vec3& L) const {
-    // The arithmetic is render/film_sample.h's, which the CUDA kernel runs too.
-    const std::size_t own = tile.rect.index(x, row);
-    if (stats_) film_add_stats(tile.stats[own], L);
-    if (local_) {
-      film_add_local(&tile.local[own * 4], L);
-      return;
-    }
-    add_wide(tile, x, row, cs, L);
+    add_pixel_samples(tile, x, row, &cs, &L, 1);
   }
   // add_sample for samples cs[0 … count − 1] of one pixel (x, row), in that order, with the
-  // pixel's sums held in registers between them (the same additions).
+  // pixel's sums held in registers between them (the same additions). Inline: it runs once per
+  // camera sample or packet; the arithmetic is render/film_sample.h's, which the CUDA kernel runs too.
   void add_pixel_samples(TileWork& tile, int x, int row, const CameraSample* cs, const Vec3* L, int count) const {
     const std::size_t own = tile.rect.index(x, row);
     if (stats_)

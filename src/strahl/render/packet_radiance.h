@@ -214,25 +214,21 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     }
   } else {
     std::uint32_t plain = ~0u;  // its index (~0u: none yet)
-    LocalTerms terms{};
+    LocalTerms terms{}, fresh{};
     for (std::uint32_t m = s.area_light_count == 0 ? lit : 0; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       const std::uint32_t material_index = surface.material[i];
+      const LocalTerms* t = &terms;
       if (material_index != plain) {
         const Material& material = s.materials[material_index];
         if (material.reflectivity > 0 || material.transparency > 0) continue;
-        const LocalTerms t = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.settings.ambient_light);
-        if (material.checker_size <= 0) plain = material_index, terms = t;
-        local |= 1u << i;
-        cr[i] = t.c.x, cg[i] = t.c.y, cb[i] = t.c.z, rr[i] = t.ambient.x, rg[i] = t.ambient.y, rb[i] = t.ambient.z;
-        kd[i] = t.kd, sr[i] = t.ks.x, sg[i] = t.ks.y, sb[i] = t.ks.z, shiny[i] = t.shiny, shininess[i] = t.shininess;
-        continue;
+        fresh = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.settings.ambient_light);
+        if (material.checker_size <= 0) plain = material_index, terms = fresh;
+        t = &fresh;
       }
       local |= 1u << i;
-      cr[i] = terms.c.x, cg[i] = terms.c.y, cb[i] = terms.c.z;
-      rr[i] = terms.ambient.x, rg[i] = terms.ambient.y, rb[i] = terms.ambient.z;
-      kd[i] = terms.kd, sr[i] = terms.ks.x, sg[i] = terms.ks.y, sb[i] = terms.ks.z, shiny[i] = terms.shiny;
-      shininess[i] = terms.shininess;
+      cr[i] = t->c.x, cg[i] = t->c.y, cb[i] = t->c.z, rr[i] = t->ambient.x, rg[i] = t->ambient.y, rb[i] = t->ambient.z;
+      kd[i] = t->kd, sr[i] = t->ks.x, sg[i] = t->ks.y, sb[i] = t->ks.z, shiny[i] = t->shiny, shininess[i] = t->shininess;
     }
     // The other lanes' values are not used; they are set all the same.
     for (std::uint32_t m = ~local & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
