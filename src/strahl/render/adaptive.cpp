@@ -59,7 +59,9 @@ std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, const std::vec
       // more(): a pixel refines when its 3×3 neighbourhood has one over the threshold — the largest
       // over_ along each row's neighbours here, down the columns below.
       std::uint8_t* n = &near_[row * w];
-      for (std::size_t x = 0; x < w; ++x) n[x] = o[x] | o[x > 0 ? x - 1 : x] | o[x + 1 < w ? x + 1 : x];
+      n[0] = o[0] | o[w > 1 ? 1 : 0];
+      for (std::size_t x = 1; x + 1 < w; ++x) n[x] = o[x - 1] | o[x] | o[x + 1];
+      if (w > 1) n[w - 1] = o[w - 2] | o[w - 1];
     }
   });
   bands_.resize((h + kBandRows - 1) / kBandRows);

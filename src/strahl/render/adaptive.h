@@ -96,8 +96,19 @@ class AdaptivePlanner {
       add[p] = 0;
     }
     if (changed_.size() > n / 32) return plan_every_pixel(film, counts, max_spp, threshold, add, headroom);
+    // The 3×3 neighbourhood of a pixel away from the image's edges, row by row.
+    const std::ptrdiff_t sw = w;
+    const std::ptrdiff_t nine[9] = {-sw - 1, -sw, -sw + 1, -1, 0, 1, sw - 1, sw, sw + 1};
     const auto around = [&](std::size_t p, std::uint8_t level) {
       const int x = int(p % std::size_t(w)), row = int(p / std::size_t(w));
+      if (x > 0 && x + 1 < w && row > 0 && row + 1 < h) {
+        for (const std::ptrdiff_t d : nine) {
+          const std::size_t q = std::size_t(std::ptrdiff_t(p) + d);
+          if (mark_[q] == 0) touched_.push_back(std::uint32_t(q));
+          if (mark_[q] < level) mark_[q] = level;
+        }
+        return;
+      }
       for (int ny = std::max(0, row - 1); ny <= std::min(h - 1, row + 1); ++ny)
         for (int nx = std::max(0, x - 1); nx <= std::min(w - 1, x + 1); ++nx) {
           const std::size_t q = std::size_t(ny) * std::size_t(w) + std::size_t(nx);
@@ -122,7 +133,15 @@ class AdaptivePlanner {
     planned_.clear();
     for (const std::uint32_t p : touched_) {
       mark_[p] = 0;
-      add[p] = more(int(p % std::uint32_t(w)), int(p / std::uint32_t(w)), w, h, counts[p], max_spp);
+      const int x = int(p % std::uint32_t(w)), row = int(p / std::uint32_t(w));
+      if (x > 0 && x + 1 < w && row > 0 && row + 1 < h) {  // more(), away from the edges
+        std::uint8_t any = 0;
+        for (const std::ptrdiff_t d : nine) any |= over_[std::size_t(std::ptrdiff_t(p) + d)];
+        const std::uint32_t c = counts[p];
+        add[p] = any != 0 && c < max_spp ? std::min(std::max(c, 1u), max_spp - c) : 0;
+      } else {
+        add[p] = more(x, row, w, h, counts[p], max_spp);
+      }
       if (add[p] == 0) continue;
       planned_.push_back(p);
       total += add[p];
