@@ -76,7 +76,7 @@ std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, const std::vec
       for (std::size_t x = 0; x < w; ++x) {
         const std::size_t p = row * w + x;
         const std::uint32_t c = counts[p];
-        add[p] = (above[x] | here[x] | below[x]) != 0 && c < max_spp ? std::min(std::max(c, 1u), max_spp - c) : 0;
+        add[p] = doubled((above[x] | here[x] | below[x]) != 0, c, max_spp);
         if (add[p] == 0) continue;
         b.planned.push_back(std::uint32_t(p));
         b.total += add[p];

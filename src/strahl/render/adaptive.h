@@ -138,7 +138,7 @@ class AdaptivePlanner {
         std::uint8_t any = 0;
         for (const std::ptrdiff_t d : nine) any |= over_[std::size_t(std::ptrdiff_t(p) + d)];
         const std::uint32_t c = counts[p];
-        add[p] = any != 0 && c < max_spp ? std::min(std::max(c, 1u), max_spp - c) : 0;
+        add[p] = doubled(any != 0, c, max_spp);
       } else {
         add[p] = more(x, row, w, h, counts[p], max_spp);
       }
@@ -162,6 +162,11 @@ class AdaptivePlanner {
     for (int ny = std::max(0, row - 1); ny <= std::min(h - 1, row + 1) && !refine; ++ny)
       for (int nx = std::max(0, x - 1); nx <= std::min(w - 1, x + 1) && !refine; ++nx)
         refine = over_[std::size_t(ny) * std::size_t(w) + std::size_t(nx)] != 0;
+    return doubled(refine, c, max_spp);
+  }
+  // The samples a pixel with c takes next when it refines: its count doubled (at least 1 more, at
+  // most up to max_spp); none when it does not.
+  static std::uint32_t doubled(bool refine, std::uint32_t c, std::uint32_t max_spp) {
     return refine && c < max_spp ? std::min(std::max(c, 1u), max_spp - c) : 0;
   }
 
