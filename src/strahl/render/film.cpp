@@ -93,6 +93,8 @@ void Film::begin_tile(TileWork& t) const {
   const bool counted = t.count.size() == r.pixels(), known_first = t.first.size() == r.pixels();
   for (int row = r.row0; row < r.row1; ++row) {
     const std::size_t own = std::size_t(row - r.row0) * tw, p = index(r.x0, row);
+    // A row whose pixels take no samples (most rows of a sparse pass's tile): nothing to carry in.
+    if (counted && !any_counted(&t.count[own], tw)) continue;
     // A row of pixels without samples so far (the first pass) starts from zero: the film's state of
     // them is zero, and not reading it leaves its pages untouched until the tile is merged.
     if (known_first && !any_counted(&t.first[own], tw)) {
@@ -121,7 +123,8 @@ void Film::merge(const TileWork& t) {
   const std::size_t tw = std::size_t(r.width());
   for (int row = r.row0; row < r.row1; ++row) {
     const std::size_t own = std::size_t(row - r.row0) * tw, p = index(r.x0, row);
-    // The pixels that took samples (all of a row, or the few of a sparse pass).
+    // The pixels that took samples (all of a row, or the few of a sparse pass; often none).
+    if (!any_counted(&t.taken[own], tw)) continue;
     const bool whole = all_counted(&t.taken[own], tw);
     for (std::size_t k = 0; k < tw; ++k) {
       if (!whole && t.taken[own + k] == 0) continue;
