@@ -68,24 +68,6 @@ Film::Film(const FilmLayout& layout) : layout_(layout) {
     fixed_ = ZeroedArray<std::int64_t>(pixels * 4);
 }
 
-namespace {
-
-// Whether every entry of a tile row's counts is above 0 (then the row's state moves as one block).
-bool all_counted(const std::uint32_t* count, std::size_t n) {
-  std::uint32_t none = 0;
-  for (std::size_t k = 0; k < n; ++k) none |= std::uint32_t(count[k] == 0);
-  return none == 0;
-}
-
-// Whether any entry of a tile row's counts is above 0.
-bool any_counted(const std::uint32_t* count, std::size_t n) {
-  std::uint32_t any = 0;
-  for (std::size_t k = 0; k < n; ++k) any |= count[k];
-  return any != 0;
-}
-
-}  // namespace
-
 void Film::begin_tile(TileWork& t) const {
   layout_.prepare(t);
   const TileRect& r = t.rect;

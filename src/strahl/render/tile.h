@@ -62,4 +62,19 @@ struct TileWork {
   }
 };
 
+// Whether every entry of a tile row's counts (n of them) is above 0: then the row's state moves as
+// one block.
+inline bool all_counted(const std::uint32_t* count, std::size_t n) {
+  std::uint32_t none = 0;
+  for (std::size_t k = 0; k < n; ++k) none |= std::uint32_t(count[k] == 0);
+  return none == 0;
+}
+
+// Whether any entry of a tile row's counts is above 0 (most rows of a sparse pass's tile have none).
+inline bool any_counted(const std::uint32_t* count, std::size_t n) {
+  std::uint32_t any = 0;
+  for (std::size_t k = 0; k < n; ++k) any |= count[k];
+  return any != 0;
+}
+
 }  // namespace strahl

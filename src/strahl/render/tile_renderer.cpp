@@ -111,10 +111,7 @@ void render_tile(const SceneView& view, const PixelSampler& sampler, const FilmL
   const std::size_t tw = std::size_t(r.width());
   for (int row = r.row0; row < r.row1; ++row) {
     // A row without samples to take (most rows of a sparse adaptive pass's tile) in one test.
-    const std::uint32_t* counts = &work.count[r.index(r.x0, row)];
-    std::uint32_t any = 0;
-    for (std::size_t k = 0; k < tw; ++k) any |= counts[k];
-    if (any == 0) continue;
+    if (!any_counted(&work.count[r.index(r.x0, row)], tw)) continue;
     for (int x = r.x0; x < r.x1; ++x) {
       const std::size_t i = r.index(x, row);
       std::uint32_t begin = work.first[i];
