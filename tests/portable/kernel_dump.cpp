@@ -111,7 +111,8 @@ void dump_packets(const AccelView& a, const std::vector<Ray>& rays) {
 }
 
 void dump_queries(const char* name, const AccelView& a, const std::vector<Ray>& rays) {
-  std::printf("# %s: %u primitives, %zu rays\n", name, a.prims.size(), rays.size());
+  std::printf("# %s: %u primitives, %zu rays%s\n", name, a.prims.size(), rays.size(),
+              a.sphere_quads != nullptr ? ", one leaf of sphere quads" : "");
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const Ray& ray = rays[i];
     const NearestHit h = nearest_hit(a, ray, 1e-9, kInfinity);
@@ -157,9 +158,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s <strahl source dir>\n", argv[0]);
     return 1;
   }
-#if defined(STRAHL_WIDE_BVH_AVX) && defined(STRAHL_TRIANGLE_BLOCK_AVX)
+#if defined(STRAHL_WIDE_BVH_AVX) && defined(STRAHL_TRIANGLE_BLOCK_AVX) && defined(STRAHL_SPHERE_QUAD_AVX)
   std::fprintf(stderr, "kernel path: avx\n");
-#elif !defined(STRAHL_WIDE_BVH_AVX) && !defined(STRAHL_TRIANGLE_BLOCK_AVX)
+#elif !defined(STRAHL_WIDE_BVH_AVX) && !defined(STRAHL_TRIANGLE_BLOCK_AVX) && !defined(STRAHL_SPHERE_QUAD_AVX)
   std::fprintf(stderr, "kernel path: portable\n");
 #else
   std::fprintf(stderr, "kernel path: mixed\n");
@@ -171,6 +172,19 @@ int main(int argc, char** argv) {
       const Accel accel = build_accel(AccelKind::Bvh, soup.set());
       const std::string name = "soup " + std::to_string(seed);
       dump_queries(name.c_str(), accel.view(soup.set()), awkward_rays(soup, seed + 100, 3000));
+    }
+    // Spheres only, few enough for one leaf (the sphere quads of geometry/sphere_quad.h):
+    // overlapping, nested and touching, rays from inside them too.
+    for (const int count : {3, 4, 7}) {
+      Soup spheres;
+      std::mt19937_64 rng{std::uint64_t(count)};
+      std::uniform_real_distribution<double> u(-1, 1);
+      for (int i = 0; i < count; ++i)
+        spheres.spheres.push_back({Vec3{u(rng), u(rng), u(rng)} * 2.0, 0.4 + 0.6 * (u(rng) + 1), 0});
+      spheres.spheres.push_back({spheres.spheres[0].center, spheres.spheres[0].radius * 0.5, 0});  // nested
+      const Accel accel = build_accel(AccelKind::Bvh, spheres.set());
+      const std::string name = "spheres " + std::to_string(count + 1);
+      dump_queries(name.c_str(), accel.view(spheres.set()), awkward_rays(spheres, std::uint64_t(count) + 200, 2000));
     }
     for (const char* scene : {"lecture.yaml", "lecture-whitted.yaml", "lecture-distributed.yaml", "mesh.yaml",
                               "glossy.yaml", "motion-blur.yaml"})

@@ -84,6 +84,7 @@ Accel build_accel(AccelKind kind, const PrimitiveSet& prims) {
       break;
 #endif
   }
+  if (is_sphere_leaf(a.view(prims))) a.sphere_quads = kernel::sphere_quads(prims.spheres, prims.sphere_count);
   a.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return a;
 }

@@ -18,6 +18,7 @@
 #include "strahl/accel/naive.h"
 #include "strahl/accel/octree.h"
 #include "strahl/accel/wide_bvh.h"
+#include "strahl/geometry/sphere_quad.h"
 #if defined(STRAHL_HAVE_EMBREE)
 #include "strahl/accel/embree_accel.h"
 #endif
@@ -55,6 +56,9 @@ struct AccelView {
   // the queries run the naive loop over them, the same search without the traversal's and the
   // blocks' bookkeeping.
   bool one_leaf = false;
+  // That leaf holds spheres only: the same spheres four by four (geometry/sphere_quad.h), tested
+  // four at a time by the one-leaf queries below; null otherwise.
+  const kernel::SphereQuad* sphere_quads = nullptr;
 };
 
 // Owns whichever structure was built. It holds primitive indices, not pointers, so the scene that
@@ -68,6 +72,7 @@ struct Accel {
   EmbreeAccel embree;
 #endif
   AccelBuildStats stats;
+  std::vector<kernel::SphereQuad> sphere_quads;  // the one leaf's spheres, where it holds only spheres
 
   AccelView view(const PrimitiveSet& prims) const {
     AccelView v;
@@ -82,6 +87,7 @@ struct Accel {
     v.one_leaf = (kind == AccelKind::Bvh && bvh.root_leaf_count > 0) ||
                  (kind == AccelKind::KdTree && !kdtree.nodes.empty() && kdtree.nodes[0].is_leaf()) ||
                  (kind == AccelKind::Octree && !octree.nodes.empty() && octree.nodes[0].is_leaf());
+    if (!sphere_quads.empty()) v.sphere_quads = sphere_quads.data();
     return v;
   }
 };
@@ -120,10 +126,20 @@ STRAHL_HOST_DEVICE inline bool is_sphere_leaf(const AccelView& a) {
   return a.one_leaf && a.prims.size() == a.prims.sphere_count;
 }
 
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE NearestHit sphere_leaf_nearest(const PrimitiveSet& p, const Ray& ray, Real t_min,
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE NearestHit sphere_leaf_nearest(const AccelView& a, const Ray& ray, Real t_min,
                                                                       Real t_max) {
+  const PrimitiveSet& p = a.prims;
   NearestHit result;
   Real t_far = t_max;
+  if (a.sphere_quads != nullptr) {
+    const std::uint32_t quads = kernel::sphere_quad_count(p.sphere_count);
+    for (std::uint32_t j = 0; j < quads; ++j) {
+      const int lane = kernel::intersect_nearest(a.sphere_quads[j], ray, t_min, t_far, t_far);
+      if (lane >= 0) result.prim = j * kernel::kSphereQuadWidth + std::uint32_t(lane);
+    }
+    if (t_far < t_max) result.hit = {t_far, 0, 0};
+    return result;
+  }
   for (std::uint32_t i = 0; i < p.sphere_count; ++i) {
     const Real t = kernel::intersect(p.spheres[i], ray, t_min, t_far);
     if (t < t_far) {
@@ -135,8 +151,15 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE NearestHit sphere_leaf_nearest(const Prim
   return result;
 }
 
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_leaf_occluded(const PrimitiveSet& p, const Ray& ray, Real t_min,
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_leaf_occluded(const AccelView& a, const Ray& ray, Real t_min,
                                                                  Real t_max) {
+  const PrimitiveSet& p = a.prims;
+  if (a.sphere_quads != nullptr) {
+    const std::uint32_t quads = kernel::sphere_quad_count(p.sphere_count);
+    for (std::uint32_t j = 0; j < quads; ++j)
+      if (kernel::intersect_any(a.sphere_quads[j], ray, t_min, t_max)) return true;
+    return false;
+  }
   for (std::uint32_t i = 0; i < p.sphere_count; ++i)
     if (kernel::intersect(p.spheres[i], ray, t_min, t_max) < kInfinity) return true;
   return false;
@@ -159,7 +182,7 @@ STRAHL_HOST_DEVICE inline NearestHit nearest_hit(const AccelView& a, const Ray& 
     spatial_nearest(a.octree, a.prims, ray, t_min, t_max, result.prim, result.hit);
     return result;
   }
-  if (is_sphere_leaf(a)) return sphere_leaf_nearest(a.prims, ray, t_min, t_max);
+  if (is_sphere_leaf(a)) return sphere_leaf_nearest(a, ray, t_min, t_max);
   const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
     const kernel::TriangleHit h = intersect_primitive(a.prims, prim, ray, shear, t_min, t_far);
@@ -184,7 +207,7 @@ STRAHL_HOST_DEVICE inline bool occluded(const AccelView& a, const Ray& ray, Real
     if (a.kind == AccelKind::KdTree) return spatial_occluded(a.kdtree, a.prims, ray, t_min, t_max);
     if (a.kind == AccelKind::Octree) return spatial_occluded(a.octree, a.prims, ray, t_min, t_max);
   }
-  if (is_sphere_leaf(a)) return sphere_leaf_occluded(a.prims, ray, t_min, t_max);
+  if (is_sphere_leaf(a)) return sphere_leaf_occluded(a, ray, t_min, t_max);
   bool found = false;
   const kernel::RayShear shear = ray_shear_for(a.prims, ray.direction);
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {

@@ -27,9 +27,9 @@ namespace strahl::cuda_detail {
 // device_view clears their pointers.)
 static_assert(sizeof(SceneView) - sizeof(AccelView) == 464 && sizeof(PrimitiveSet) == 144 &&
 #if defined(STRAHL_HAVE_EMBREE)
-                  sizeof(AccelView) == 400,
+                  sizeof(AccelView) == 408,
 #else
-                  sizeof(AccelView) == 392,
+                  sizeof(AccelView) == 400,
 #endif
               "SceneView changed: upload and map its new arrays in cuda/device.cu, then update these sizes");
 
@@ -199,7 +199,8 @@ struct Device::Impl {
     out.instance_bvh = {};
     out.groups = nullptr;
     return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) &&
-           map(out.accel.prims.spheres) && map(out.accel.prims.triangles) && map(out.accel.bvh.nodes) &&
+           map(out.accel.prims.spheres) && map(out.accel.sphere_quads) && map(out.accel.prims.triangles) &&
+           map(out.accel.bvh.nodes) &&
            map(out.accel.bvh.leaves) && map(out.moving_spheres) && map(out.moving_triangles) &&
            map(out.moving_bvh.nodes) && map(out.moving_bvh.prims) && map(out.materials) && map(out.lights) &&
            map(out.solids) && map(out.accel.prims.solids) && map(out.accel.prims.shapes.boxes) &&
@@ -274,7 +275,8 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
   cudaError_t e = cudaSuccess;
   const auto ok = [&](cudaError_t r) { return (e = r) == cudaSuccess; };
   if (!(ok(m.copy_array(rs.spheres)) && ok(m.copy_array(rs.planes)) && ok(m.copy_array(rs.triangles)) &&
-        ok(m.copy_array(rs.vertex_normals)) && ok(m.copy_array(rs.accel.bvh.nodes)) &&
+        ok(m.copy_array(rs.vertex_normals)) && ok(m.copy_array(rs.accel.sphere_quads)) &&
+        ok(m.copy_array(rs.accel.bvh.nodes)) &&
         ok(m.copy_array(rs.accel.bvh.leaves)) && ok(m.copy_array(rs.moving_spheres)) &&
         ok(m.copy_array(rs.moving_triangles)) && ok(m.copy_array(rs.moving_bvh.nodes)) &&
         ok(m.copy_array(rs.moving_bvh.prims)) && ok(m.copy_array(rs.materials)) && ok(m.copy_array(rs.lights)) &&

@@ -22,7 +22,7 @@ STRAHL_HOST_DEVICE inline Hit closest_hit(const SceneView& s, const Ray& ray, Re
     const kernel::SolidCrossing c = kernel::intersect(s.accel.prims.shapes, s.solids[i], ray, t_min, hit.t);
     if (c.t < hit.t) { hit.t = c.t; hit.kind = ShapeKind::Solid; hit.index = i; hit.b1 = c.part; }
   }
-  const NearestHit nearest = is_sphere_leaf(s.accel) ? sphere_leaf_nearest(s.accel.prims, ray, t_min, hit.t)
+  const NearestHit nearest = is_sphere_leaf(s.accel) ? sphere_leaf_nearest(s.accel, ray, t_min, hit.t)
                                                      : nearest_hit(s.accel, ray, t_min, hit.t);
   if (nearest.hit.t < hit.t) {
     hit.t = nearest.hit.t;
@@ -72,12 +72,24 @@ STRAHL_HOST_DEVICE STRAHL_DEVICE_NOINLINE Vec3 transmittance(const SceneView& s,
   }
   // Nothing transparent: the first surface found blocks the light (any-hit, no crossings to count).
   if (s.opaque && s.moving_sphere_count + s.moving_triangle_count == 0) {
-    const bool blocked = is_sphere_leaf(s.accel) ? sphere_leaf_occluded(s.accel.prims, ray, 0, distance)
+    const bool blocked = is_sphere_leaf(s.accel) ? sphere_leaf_occluded(s.accel, ray, 0, distance)
                                                  : occluded(s.accel, ray, 0, distance);
     return blocked || (s.instance_count > 0 && instance_occluded(s, ray, 0, distance)) ? Vec3(0) : tr;
   }
   if (is_sphere_leaf(s.accel) && s.moving_sphere_count + s.moving_triangle_count == 0 && s.instance_count == 0) {
     // One leaf of spheres: for_each_crossing's naive loop, without its visitor.
+    if (s.accel.sphere_quads != nullptr) {
+      const std::uint32_t quads = kernel::sphere_quad_count(s.accel.prims.sphere_count);
+      for (std::uint32_t j = 0; j < quads; ++j) {
+        int n[kernel::kSphereQuadWidth];
+        kernel::crossings(s.accel.sphere_quads[j], ray, 0, distance, n);
+        for (int k = 0; k < kernel::kSphereQuadWidth; ++k)
+          for (int c = 0; c < n[k]; ++c)
+            if (!attenuate(s.materials[s.accel.prims.spheres[j * kernel::kSphereQuadWidth + std::uint32_t(k)].material], tr))
+              return Vec3(0);
+      }
+      return tr;
+    }
     for (std::uint32_t i = 0; i < s.accel.prims.sphere_count; ++i) {
       const kernel::Sphere& sphere = s.accel.prims.spheres[i];
       const int n = kernel::crossings(sphere, ray, 0, distance);
