@@ -21,7 +21,7 @@ void for_each_band(std::size_t h, F&& f) {
 
 }  // namespace
 
-std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, const std::vector<std::uint32_t>& counts,
+std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, std::span<const std::uint32_t> counts,
                                                 std::uint32_t max_spp, double threshold, std::vector<std::uint32_t>& add,
                                                 std::uint64_t* headroom) {
   const std::size_t w = std::size_t(film.width()), h = std::size_t(film.height());

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "strahl/render/film.h"
@@ -71,7 +72,7 @@ class AdaptivePlanner {
  public:
   // `full`: examine every pixel (what the incremental plan must equal; tests).
   // `headroom`, where given, receives Σ (max_spp − counts[p]) over the pixels planned more samples.
-  std::uint64_t plan(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
+  std::uint64_t plan(const Film& film, std::span<const std::uint32_t> counts, std::uint32_t max_spp,
                      double threshold, std::vector<std::uint32_t>& add, bool full = false,
                      std::uint64_t* headroom = nullptr) {
     const int w = film.width(), h = film.height();
@@ -176,7 +177,7 @@ class AdaptivePlanner {
   // once (NaN where a pixel has no sample: std::max never takes it), and the 3×3 neighbourhoods read
   // with the image's edge rows and columns standing in for those beyond it (which only repeats a
   // neighbour, or the pixel itself, whose contrast to itself is 0). render/adaptive.cpp.
-  std::uint64_t plan_every_pixel(const Film& film, const std::vector<std::uint32_t>& counts, std::uint32_t max_spp,
+  std::uint64_t plan_every_pixel(const Film& film, std::span<const std::uint32_t> counts, std::uint32_t max_spp,
                                  double threshold, std::vector<std::uint32_t>& add, std::uint64_t* headroom);
 
   ZeroedArray<std::uint32_t> seen_;  // the counts at the last plan

@@ -66,12 +66,10 @@ RenderJob::RenderJob(const SceneView& view, const SamplingSettings& sampling, Jo
   if (adaptive_) planner_ = std::make_unique<AdaptivePlanner>();
   progressive_ = adaptive_ || options_.time_limit > 0 || options_.checkpoint_interval > 0 || options_.progressive;
   const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
-  counts_.assign(pixels, 0);
+  counts_ = ZeroedArray<std::uint32_t>(pixels);  // fresh pages, first touched by the threads that deliver tiles
   // First pass: all samples, or 1 (progressive), or the adaptive minimum.
-  const std::uint32_t first =
+  dense_pending_ =
       adaptive_ ? std::min(max_spp_, std::uint32_t(std::max(1, sampling.adaptive_min))) : progressive_ ? 1 : max_spp_;
-  pending_.assign(pixels, first);
-  add_.assign(pixels, 0);
   take_pass();
   planned_.store(std::uint64_t(max_spp_) * pixels);
 }
@@ -95,7 +93,7 @@ void RenderJob::run(TileBackend& backend) {
   std::optional<Watchdog> watchdog;
   if (timed) watchdog.emplace(deadline, time_out);
 
-  bool more = !counts_.empty() && add_[0] > 0;
+  bool more = !counts_.empty() && dense_add_ > 0;  // (the first pass is dense)
   while (more) {
     next_.store(0);
     backend.render_pass(*this);
@@ -115,12 +113,9 @@ bool RenderJob::take_pass() {
   std::uint64_t n = 0;
   const std::uint32_t cap = options_.max_pass_samples;
   if (!sparse_) {
-    for (std::size_t p = 0; p < pending_.size(); ++p) {
-      add_[p] = cap > 0 ? std::min(pending_[p], cap) : pending_[p];
-      pending_[p] -= add_[p];
-      n += add_[p];
-    }
-    return n > 0;
+    dense_add_ = cap > 0 ? std::min(dense_pending_, cap) : dense_pending_;
+    dense_pending_ -= dense_add_;
+    return dense_add_ > 0 && !counts_.empty();
   }
   for (const std::uint32_t p : pass_pixels_) add_[p] = 0;
   pass_pixels_.clear();
@@ -145,8 +140,10 @@ bool RenderJob::plan_next_pass() {
   ++pass_;
   if (take_pass()) return true;  // the rest of a pass split by max_pass_samples
   if (adaptive_) {
-    if (!sparse_) {  // from now on the passes are sparse (pending_ and add_ are all 0 here: nothing was left to take)
+    if (!sparse_) {  // from now on the passes are sparse (the dense pass left nothing pending)
       busy_.assign(std::size_t(tile_count()), 0);
+      add_ = ZeroedArray<std::uint32_t>(counts_.size());
+      dense_add_ = 0;
       sparse_ = true;
     }
     // Samples the render may still take in all: an upper bound that shrinks pass by pass (the
@@ -158,7 +155,7 @@ bool RenderJob::plan_next_pass() {
   } else {
     // Double every pixel's count (all pixels have the same).
     const std::uint32_t c = counts_[0];
-    std::fill(pending_.begin(), pending_.end(), std::min(c, max_spp_ - c));
+    dense_pending_ = std::min(c, max_spp_ - c);
   }
   return take_pass();
 }
@@ -183,7 +180,10 @@ void RenderJob::tile(int index, TileWork& w) const {
     const std::size_t p = std::size_t(row) * std::size_t(width_) + std::size_t(w.rect.x0);
     const std::size_t i = std::size_t(row - w.rect.row0) * tw;
     std::copy_n(&counts_[p], tw, &w.first[i]);
-    std::copy_n(&add_[p], tw, &w.count[i]);
+    if (sparse_)
+      std::copy_n(&add_[p], tw, &w.count[i]);
+    else
+      std::fill_n(&w.count[i], tw, dense_add_);
   }
   film_.begin_tile(w);
 }
@@ -278,7 +278,7 @@ RenderStats RenderJob::stats() const {
   s.time_limited = out_of_time_.load();
   s.samples = done_.load();
   s.passes = passes_.load();
-  s.pixel_samples = counts_;
+  s.pixel_samples.assign(counts_.begin(), counts_.end());
   s.replayed_tiles = replayed_.load();
   return s;
 }

@@ -26,6 +26,7 @@
 #include "strahl/render/film.h"
 #include "strahl/render/ray_counters.h"
 #include "strahl/render/scene_view.h"
+#include "strahl/util/zeroed_array.h"
 #include "strahl/render/stop_token.h"
 #include "strahl/render/tile.h"
 #include "strahl/sampling/pixel_sampler.h"
@@ -150,15 +151,18 @@ class RenderJob {
 
   StopToken stop_;
   std::atomic<bool> out_of_time_{false}, cancelled_{false};
-  std::vector<std::uint32_t> counts_;  // samples per pixel taken so far (row-major from the top)
-  std::vector<std::uint32_t> add_;     // samples per pixel of the current pass
-  // Samples per pixel still to take in the planned pass, when max_pass_samples splits it; the
-  // adaptive decisions are taken only after the whole of it, so the split leaves the image alone.
-  std::vector<std::uint32_t> pending_;
-  // Adaptive passes after the first are sparse: the pixels with pending_ > 0, the pixels with
-  // add_ > 0, and which tiles have any of those (busy_), so that a pass costs what its samples
-  // cost, not a walk over the whole image. Dense passes (sparse_ false) give every pixel the same.
+  ZeroedArray<std::uint32_t> counts_;  // samples per pixel taken so far (row-major from the top)
+  // Dense passes (sparse_ false) give every pixel the same: dense_add_ samples in the current
+  // pass, dense_pending_ still to take in the planned pass when max_pass_samples splits it (the
+  // adaptive decisions are taken only after the whole of it, so the split leaves the image alone).
+  std::uint32_t dense_add_ = 0, dense_pending_ = 0;
+  // Adaptive passes after the first are sparse, per pixel: add_ the samples of the current pass,
+  // pending_ those still to take in the planned pass; the pixels with pending_ > 0, the pixels
+  // with add_ > 0, and which tiles have any of those (busy_), so that a pass costs what its
+  // samples cost, not a walk over the whole image.
   bool sparse_ = false;
+  ZeroedArray<std::uint32_t> add_;
+  std::vector<std::uint32_t> pending_;
   std::vector<std::uint32_t> pending_pixels_, pass_pixels_;
   std::vector<std::uint8_t> busy_;
   int pass_ = 0;
