@@ -13,17 +13,25 @@
 #include "strahl/image/metrics.h"
 #include "strahl/render/adaptive.h"
 #include "strahl/render/aov.h"
+#include "strahl/render/cpu_backend.h"
+#include "strahl/render/render_job.h"
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
 namespace strahl::film_test {
 namespace {
 
-Image render_with(const RenderScene& rs, int threads, int tile, RenderStats* stats = nullptr) {
-  RenderOptions o;
-  o.threads = threads;
+// The image, and where given the render's statistics and samples per pixel.
+Image render_with(const RenderScene& rs, int threads, int tile, RenderStats* stats = nullptr,
+                  std::vector<std::uint32_t>* pixel_samples = nullptr) {
+  JobOptions o;
   o.tile_size = tile;
-  return render(rs, o, stats);
+  RenderJob job(rs.view(), rs.sampling, o);
+  CpuBackend cpu(threads);
+  job.run(cpu);
+  if (stats) *stats = job.stats();
+  if (pixel_samples) pixel_samples->assign(job.pixel_samples().begin(), job.pixel_samples().end());
+  return job.image();
 }
 
 SamplingSettings sampling(SamplerKind kind, int spp, FilterKind filter = FilterKind::Box, Real radius = 0.5) {
@@ -51,15 +59,17 @@ TEST(Film, EverySamplerAndFilterIsIndependentOfThreadsAndTiles) {
         sampling(SamplerKind::Adaptive, 8, FilterKind::Mitchell, 2)}) {
     const RenderScene rs = whitted(s);
     RenderStats ref_stats;
-    const Image reference = render_with(rs, 1, 32, &ref_stats);
+    std::vector<std::uint32_t> ref_pixel_samples;
+    const Image reference = render_with(rs, 1, 32, &ref_stats, &ref_pixel_samples);
     for (const auto& [threads, tile] : {std::pair{2, 7}, std::pair{2, 1}, std::pair{0, 16}}) {
       RenderStats stats;
-      const Image img = render_with(rs, threads, tile, &stats);
+      std::vector<std::uint32_t> pixel_samples;
+      const Image img = render_with(rs, threads, tile, &stats, &pixel_samples);
       EXPECT_TRUE(img == reference) << sampler_name(s.sampler) << " " << filter_name(s.filter.kind) << ", " << threads
                                     << " threads, tile " << tile << ": max difference "
                                     << test::max_abs_diff(img, reference);
       EXPECT_EQ(stats.samples, ref_stats.samples);
-      EXPECT_EQ(stats.pixel_samples, ref_stats.pixel_samples);
+      EXPECT_EQ(pixel_samples, ref_pixel_samples);
     }
   }
 }
@@ -117,14 +127,15 @@ TEST(Adaptive, SpendsSamplesOnEdgesAndBeatsStratifiedAtTheSameCount) {
   s.settings.sampling.adaptive_min = 4;
   s.settings.sampling.adaptive_threshold = 0.02;
   RenderStats stats;
-  const Image adaptive = test::render_image(s, 0, 32, &stats);
+  std::vector<std::uint32_t> pixel_samples;
+  const Image adaptive = render_with(compile(s), 0, 32, &stats, &pixel_samples);
   // Edge pixels (reference strictly between black and white) against flat ones.
   double edge_samples = 0, flat_samples = 0;
   int edges = 0, flats = 0, flats_at_minimum = 0;
   for (int row = 0; row < n; ++row)
     for (int x = 0; x < n; ++x) {
       const float v = reference.at(x, row).r;
-      const double c = stats.pixel_samples[std::size_t(row * n + x)];
+      const double c = pixel_samples[std::size_t(row * n + x)];
       if (v > 0.02f && v < 0.98f) {
         edge_samples += c;
         ++edges;
@@ -135,7 +146,7 @@ TEST(Adaptive, SpendsSamplesOnEdgesAndBeatsStratifiedAtTheSameCount) {
       }
     }
   std::uint32_t most = 0;
-  for (std::uint32_t c : stats.pixel_samples) most = std::max(most, c);
+  for (std::uint32_t c : pixel_samples) most = std::max(most, c);
   EXPECT_LE(most, 256u);
   ASSERT_GT(edges, 20);
   ASSERT_GT(flats, 200);

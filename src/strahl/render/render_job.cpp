@@ -278,7 +278,6 @@ RenderStats RenderJob::stats() const {
   s.time_limited = out_of_time_.load();
   s.samples = done_.load();
   s.passes = passes_.load();
-  s.pixel_samples.assign(counts_.begin(), counts_.end());
   s.replayed_tiles = replayed_.load();
   return s;
 }

@@ -20,6 +20,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "strahl/image/image.h"
@@ -69,7 +70,6 @@ struct RenderStats {
   std::uint64_t samples = 0;  // camera samples taken (replayed tiles' included)
   std::uint64_t replayed_tiles = 0;  // tiles taken from JobOptions::replay instead of rendered
   int passes = 0;
-  std::vector<std::uint32_t> pixel_samples{};  // samples per pixel, row-major from the top
 };
 
 class RenderJob;
@@ -130,6 +130,8 @@ class RenderJob {
   int passes_done() const { return passes_.load(std::memory_order_relaxed); }
   // After run().
   RenderStats stats() const;
+  // Samples per pixel taken, row-major from the top (the job's own array: no copy of it).
+  std::span<const std::uint32_t> pixel_samples() const { return {counts_.data(), counts_.size()}; }
 
  private:
   using Clock = std::chrono::steady_clock;
