@@ -113,6 +113,7 @@ bool RenderJob::take_pass() {
   std::uint64_t n = 0;
   const std::uint32_t cap = options_.max_pass_samples;
   if (!sparse_) {
+    dense_taken_ += dense_add_;  // the pass before this one is complete
     dense_add_ = cap > 0 ? std::min(dense_pending_, cap) : dense_pending_;
     dense_pending_ -= dense_add_;
     return dense_add_ > 0 && !counts_.empty();
@@ -154,8 +155,7 @@ bool RenderJob::plan_next_pass() {
     planned_.store(done_.load() + headroom);
   } else {
     // Double every pixel's count (all pixels have the same).
-    const std::uint32_t c = counts_[0];
-    dense_pending_ = std::min(c, max_spp_ - c);
+    dense_pending_ = std::min(dense_taken_, max_spp_ - dense_taken_);
   }
   return take_pass();
 }
@@ -179,11 +179,13 @@ void RenderJob::tile(int index, TileWork& w) const {
   for (int row = w.rect.row0; row < w.rect.row1; ++row) {
     const std::size_t p = std::size_t(row) * std::size_t(width_) + std::size_t(w.rect.x0);
     const std::size_t i = std::size_t(row - w.rect.row0) * tw;
-    std::copy_n(&counts_[p], tw, &w.first[i]);
-    if (sparse_)
+    if (sparse_) {
+      std::copy_n(&counts_[p], tw, &w.first[i]);
       std::copy_n(&add_[p], tw, &w.count[i]);
-    else
+    } else {  // (counts_ not read: its pages are first touched by deliver's writes)
+      std::fill_n(&w.first[i], tw, dense_taken_);
       std::fill_n(&w.count[i], tw, dense_add_);
+    }
   }
   film_.begin_tile(w);
 }
@@ -237,7 +239,13 @@ void RenderJob::deliver(const TileWork& work) {
   for (int row = r.row0; row < r.row1; ++row) {
     std::uint32_t* count = &counts_[std::size_t(row) * std::size_t(width_) + std::size_t(r.x0)];
     const std::uint32_t* taken = &work.taken[std::size_t(row - r.row0) * tw];
-    for (std::size_t k = 0; k < tw; ++k) count[k] += taken[k];
+    // A dense pass's counts are written, not read: the first touch of counts_'s fresh pages is a
+    // write (reading one first maps the shared zero page, and the write after it then costs a
+    // copy-on-write fault and a TLB flush on every core).
+    if (sparse_)
+      for (std::size_t k = 0; k < tw; ++k) count[k] += taken[k];
+    else
+      for (std::size_t k = 0; k < tw; ++k) count[k] = dense_taken_ + taken[k];
   }
   const std::uint64_t n = work.samples_taken();
   {

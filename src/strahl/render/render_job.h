@@ -154,10 +154,11 @@ class RenderJob {
   StopToken stop_;
   std::atomic<bool> out_of_time_{false}, cancelled_{false};
   ZeroedArray<std::uint32_t> counts_;  // samples per pixel taken so far (row-major from the top)
-  // Dense passes (sparse_ false) give every pixel the same: dense_add_ samples in the current
-  // pass, dense_pending_ still to take in the planned pass when max_pass_samples splits it (the
-  // adaptive decisions are taken only after the whole of it, so the split leaves the image alone).
-  std::uint32_t dense_add_ = 0, dense_pending_ = 0;
+  // Dense passes (sparse_ false) give every pixel the same: dense_taken_ samples before the
+  // current pass, dense_add_ in it, dense_pending_ still to take in the planned pass when
+  // max_pass_samples splits it (the adaptive decisions are taken only after the whole of it, so
+  // the split leaves the image alone). A pass starts only when the one before it is complete.
+  std::uint32_t dense_taken_ = 0, dense_add_ = 0, dense_pending_ = 0;
   // Adaptive passes after the first are sparse, per pixel: add_ the samples of the current pass,
   // pending_ those still to take in the planned pass; the pixels with pending_ > 0, the pixels
   // with add_ > 0, and which tiles have any of those (busy_), so that a pass costs what its
