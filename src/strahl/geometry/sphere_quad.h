@@ -57,6 +57,14 @@ inline std::vector<SphereQuad> sphere_quads(const Sphere* spheres, std::uint32_t
   return quads;
 }
 
+// Lane k as a sphere (the portable paths test it with the scalar functions).
+STRAHL_HOST_DEVICE inline Sphere quad_sphere(const SphereQuad& s, int k) {
+  Sphere sphere;
+  sphere.center = Vec3(s.cx[k], s.cy[k], s.cz[k]);
+  sphere.radius = s.radius[k];
+  return sphere;
+}
+
 #if defined(STRAHL_SPHERE_QUAD_AVX)
 namespace sphere_quad_detail {
 
@@ -117,10 +125,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect(const SphereQuad& s, const
   _mm256_storeu_pd(t, result);
 #else
   for (int k = 0; k < kSphereQuadWidth; ++k) {
-    Sphere sphere;
-    sphere.center = Vec3(s.cx[k], s.cy[k], s.cz[k]);
-    sphere.radius = s.radius[k];
-    t[k] = intersect(sphere, ray, t_min, t_max);
+    t[k] = intersect(quad_sphere(s, k), ray, t_min, t_max);
   }
 #endif
 }
@@ -150,10 +155,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE int intersect_nearest(const SphereQuad& s
 #else
   int lane = -1;
   for (int k = 0; k < kSphereQuadWidth; ++k) {
-    Sphere sphere;
-    sphere.center = Vec3(s.cx[k], s.cy[k], s.cz[k]);
-    sphere.radius = s.radius[k];
-    const Real root = intersect(sphere, ray, t_min, t_max);
+    const Real root = intersect(quad_sphere(s, k), ray, t_min, t_max);
     if (root < t_max) {
       t_max = t = root;
       lane = k;
@@ -192,10 +194,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void crossings(const SphereQuad& s, const
   for (int k = 0; k < kSphereQuadWidth; ++k) n[k] = ((first >> k) & 1) + ((second >> k) & 1);
 #else
   for (int k = 0; k < kSphereQuadWidth; ++k) {
-    Sphere sphere;
-    sphere.center = Vec3(s.cx[k], s.cy[k], s.cz[k]);
-    sphere.radius = s.radius[k];
-    n[k] = crossings(sphere, ray, t_min, t_max);
+    n[k] = crossings(quad_sphere(s, k), ray, t_min, t_max);
   }
 #endif
 }

@@ -144,7 +144,6 @@ bool RenderJob::plan_next_pass() {
     if (!sparse_) {  // from now on the passes are sparse (the dense pass left nothing pending)
       busy_.assign(std::size_t(tile_count()), 0);
       add_ = ZeroedArray<std::uint32_t>(counts_.size());
-      dense_add_ = 0;
       sparse_ = true;
     }
     // Samples the render may still take in all: an upper bound that shrinks pass by pass (the
