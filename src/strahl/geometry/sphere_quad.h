@@ -102,6 +102,21 @@ STRAHL_FORCE_INLINE __m256d inside(__m256d t, __m256d t_min, __m256d t_max) {
   return _mm256_and_pd(_mm256_cmp_pd(t, t_min, _CMP_GT_OQ), _mm256_cmp_pd(t, t_max, _CMP_LT_OQ));
 }
 
+// Each sphere's nearest root in (t_min, t_max), kInfinity where it has none; returns the mask of
+// the lanes that have one.
+STRAHL_FORCE_INLINE int nearest_roots(const SphereQuad& s, const Ray& ray, Real t_min, Real t_max, __m256d& root) {
+  __m256d t0, t1;
+  root = _mm256_set1_pd(kInfinity);
+  if (!roots(s, ray, t0, t1)) return 0;
+  // if (t0 > t1) swap: the comparison is false for NaN, which leaves the pair as it is.
+  const __m256d swap = _mm256_cmp_pd(t0, t1, _CMP_GT_OQ);
+  const __m256d near = _mm256_blendv_pd(t0, t1, swap), far = _mm256_blendv_pd(t1, t0, swap);
+  const __m256d lo = _mm256_set1_pd(t_min), hi = _mm256_set1_pd(t_max);
+  const __m256d near_in = inside(near, lo, hi), far_in = inside(far, lo, hi);
+  root = _mm256_blendv_pd(_mm256_blendv_pd(root, far, far_in), near, near_in);
+  return _mm256_movemask_pd(_mm256_or_pd(near_in, far_in));
+}
+
 }  // namespace sphere_quad_detail
 #endif
 
@@ -110,19 +125,9 @@ STRAHL_FORCE_INLINE __m256d inside(__m256d t, __m256d t_min, __m256d t_max) {
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect(const SphereQuad& s, const Ray& ray, Real t_min, Real t_max,
                                                       Real* t) {
 #if defined(STRAHL_SPHERE_QUAD_AVX)
-  using namespace sphere_quad_detail;
-  __m256d t0, t1;
-  if (!roots(s, ray, t0, t1)) {
-    for (int k = 0; k < kSphereQuadWidth; ++k) t[k] = kInfinity;
-    return;
-  }
-  // if (t0 > t1) swap: the comparison is false for NaN, which leaves the pair as it is.
-  const __m256d swap = _mm256_cmp_pd(t0, t1, _CMP_GT_OQ);
-  const __m256d near = _mm256_blendv_pd(t0, t1, swap), far = _mm256_blendv_pd(t1, t0, swap);
-  const __m256d lo = _mm256_set1_pd(t_min), hi = _mm256_set1_pd(t_max);
-  const __m256d result = _mm256_blendv_pd(_mm256_blendv_pd(_mm256_set1_pd(kInfinity), far, inside(far, lo, hi)), near,
-                                          inside(near, lo, hi));
-  _mm256_storeu_pd(t, result);
+  __m256d root;
+  sphere_quad_detail::nearest_roots(s, ray, t_min, t_max, root);
+  _mm256_storeu_pd(t, root);
 #else
   for (int k = 0; k < kSphereQuadWidth; ++k) {
     t[k] = intersect(quad_sphere(s, k), ray, t_min, t_max);
@@ -136,17 +141,11 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect(const SphereQuad& s, const
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE int intersect_nearest(const SphereQuad& s, const Ray& ray, Real t_min, Real t_max,
                                                              Real& t) {
 #if defined(STRAHL_SPHERE_QUAD_AVX)
-  using namespace sphere_quad_detail;
-  __m256d t0, t1;
-  if (!roots(s, ray, t0, t1)) return -1;
-  const __m256d swap = _mm256_cmp_pd(t0, t1, _CMP_GT_OQ);
-  const __m256d near = _mm256_blendv_pd(t0, t1, swap), far = _mm256_blendv_pd(t1, t0, swap);
-  const __m256d lo = _mm256_set1_pd(t_min), hi = _mm256_set1_pd(t_max);
-  const __m256d near_in = inside(near, lo, hi), far_in = inside(far, lo, hi);
-  const int mask = _mm256_movemask_pd(_mm256_or_pd(near_in, far_in));
+  __m256d nearest;
+  const int mask = sphere_quad_detail::nearest_roots(s, ray, t_min, t_max, nearest);
   if (mask == 0) return -1;
   alignas(32) Real root[kSphereQuadWidth];
-  _mm256_store_pd(root, _mm256_blendv_pd(far, near, near_in));
+  _mm256_store_pd(root, nearest);
   int lane = __builtin_ctz(unsigned(mask));
   for (int k = lane + 1; k < kSphereQuadWidth; ++k)
     if (((mask >> k) & 1) && root[k] < root[lane]) lane = k;
