@@ -166,6 +166,86 @@ TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
   EXPECT_GT(tally.secondary, 0u);
 }
 
+// A mirror floor under a mirror sphere, a glass sphere, a matte one, a checkered mirror and a
+// rough one, a coloured background: most packets' lanes meet a perfect mirror first, and their
+// reflected rays meet the floor, the spheres (another mirror, glass: on alone in trace() at
+// depth 2), the sky or nothing.
+Scene mirror_floor_scene(Real floor_reflectivity) {
+  Scene scene;
+  test::set_camera(scene, Vec3(0, 1.5, 3), Vec3(0, 0.2, 0), Vec3(0, 1, 0), -1, 1, -0.6, 0.6, 1.5, 20, 12);
+  Material floor = test::phong(Vec3(0.3, 0.4, 0.5), 0.1, 0.5, Vec3(0.6, 0.5, 0.4), 50);
+  floor.reflectivity = floor_reflectivity;
+  scene.add(Plane(Vec3(0, 1, 0), 0, floor));
+  Material mirror = test::phong(Vec3(0.8, 0.2, 0.2), 0, 0, Vec3(0.6), 100);
+  mirror.reflectivity = 1;
+  scene.add(Sphere(Vec3(-0.6, 0.4, 0), 0.4, mirror));
+  Material glass = test::clear_glass(1.5);
+  glass.reflectivity = 0.1;
+  glass.specular = Vec3(0.6);
+  glass.shininess = 100;
+  scene.add(Sphere(Vec3(0.6, 0.35, 0.3), 0.35, glass));
+  scene.add(Sphere(Vec3(0, 0.3, -0.8), 0.3, test::phong(Vec3(0.2, 0.8, 0.3), 0.1, 0.7, Vec3(0.5), 20)));
+  Material checker = mirror;
+  checker.reflectivity = 0.7;
+  checker.checker_size = 0.1;
+  checker.diffuse = 0.5;
+  scene.add(Sphere(Vec3(0.2, 0.2, 0.9), 0.2, checker));
+  Material rough = mirror;
+  rough.roughness = 0.2;
+  scene.add(Sphere(Vec3(-0.4, 0.15, 1.0), 0.15, rough));
+  scene.add(point_light(Vec3(1, 2, 1), Vec3(1, 0.9, 0.8)));
+  scene.add(directional_light(normalize(Vec3(-0.3, -1, -0.2)), Vec3(0.2, 0.3, 0.4)));
+  scene.settings.background = Vec3(0.1, 0.2, 0.3);
+  return scene;
+}
+
+// The lanes whose first hit is a perfect mirror take their reflected rays together
+// (packet_mirror_step) — each sample as it would be alone, bit for bit, and the ray counts equal:
+// with the recursion depth, the ray budget and min_weight cutting the mirror rays (or not) at
+// every depth, and with mirrors the packet step leaves to trace() (rough, too weak).
+TEST(PacketFrontEnd, MirrorLanesTakeTheirReflectedRaysTogether) {
+  {  // The precondition: a packet of camera rays onto the mirror floor is all mirror lanes.
+    const RenderScene rs = compile(mirror_floor_scene(1));
+    const SceneView view = rs.view();
+    PacketRays<16> r;
+    for (int i = 0; i < 16; ++i) {
+      const Vec3 d = normalize(Vec3(Real(i % 4) * 0.01 + 0.1, 0, Real(i / 4) * 0.01 + 1.9) - Vec3(0, 1.5, 3));
+      r.ox[i] = 0, r.oy[i] = 1.5, r.oz[i] = 3, r.dx[i] = d.x, r.dy[i] = d.y, r.dz[i] = d.z, r.time[i] = 0;
+    }
+    r.unit = true;
+    PacketStep<16> step;
+    RayCounters counters;
+    packet_step<16>(view, 0xffffu, r, step, counters);
+    EXPECT_EQ(step.lit, 0xffffu);
+    EXPECT_EQ(step.local, 0u);
+    EXPECT_EQ(mirror_lanes<16>(view, step), 0xffffu);
+    EXPECT_EQ(counters.shadow, 32u);
+  }
+  struct Variant {
+    const char* what;
+    Real floor_reflectivity;
+    int max_depth, ray_budget;
+    Real min_weight;
+  };
+  const int budget = int(kDefaultRayBudget);
+  for (const Variant v : {Variant{"defaults", 1, 8, budget, 1e-3}, Variant{"partial floor", 0.6, 8, budget, 1e-3},
+                          Variant{"depth 2", 1, 2, budget, 1e-3}, Variant{"depth 3", 0.6, 3, budget, 1e-3},
+                          Variant{"depth 1", 1, 1, budget, 1e-3}, Variant{"budget 0", 1, 8, 0, 1e-3},
+                          Variant{"budget 1", 1, 8, 1, 1e-3}, Variant{"budget 2", 0.6, 8, 2, 1e-3},
+                          Variant{"min_weight above the floor", 0.6, 8, budget, 0.65},
+                          Variant{"min_weight 1", 1, 8, budget, 1}}) {
+    Scene scene = mirror_floor_scene(v.floor_reflectivity);
+    scene.settings.max_depth = v.max_depth;
+    scene.settings.ray_budget = v.ray_budget;
+    scene.settings.min_weight = v.min_weight;
+    Tally tally;
+    expect_scene_packets_match(scene, v.what, tally);
+    if (v.max_depth > 1 && v.ray_budget > 0 && v.floor_reflectivity >= v.min_weight) {  // the floor reflects
+      EXPECT_GT(tally.secondary, tally.samples / 4) << v.what;
+    }
+  }
+}
+
 // Lanes shaded side by side (no mirror, no glass) whose radiance overflows — two lights of 1e308,
 // each finite, whose terms add up to infinity where both light the surface — become black and are
 // counted, as guard_sample() does for the single sample, in packets of good and bad lanes.

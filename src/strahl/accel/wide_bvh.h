@@ -130,6 +130,15 @@ STRAHL_HOST_DEVICE inline int lowest_bit(unsigned m) {
 #endif
 }
 
+// The number of bits set in m.
+STRAHL_HOST_DEVICE inline int popcount(unsigned m) {
+#if defined(__CUDA_ARCH__)
+  return __popc(m);
+#else
+  return __builtin_popcount(m);
+#endif
+}
+
 struct StackEntry {
   std::uint32_t child, count;
   float t_near;

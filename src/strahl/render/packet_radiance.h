@@ -104,37 +104,25 @@ STRAHL_HOST_DEVICE inline LocalTerms local_terms(const Material& material, const
   return t;
 }
 
-// The camera samples cs[0 … count − 1] (count ≤ N), lane i sample number index[i] of the pixel
-// whose random numbers are keyed by key[i] (PixelSequence::stream): their radiance (guarded as
-// sample_radiance's) into L[]. The lanes may be samples of one pixel or of several.
+// What the first step of a packet of rays found (packet_step): the lanes that hit a surface,
+// their normals, and either their colour or, for the lanes that go on in trace(), its FirstHit.
 template <int N>
-STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const CameraSample* cs, const std::uint64_t* key,
-                                                  const std::uint32_t* index, int count, Vec3* L,
-                                                  RayCounters& counters) {
-  const std::uint32_t active = count >= 32 ? ~0u : (1u << count) - 1;
-  // The camera rays: directions side by side (Camera::directions, generate_ray's arithmetic).
-  Real film_x[N], film_y[N], time[N], dx[N], dy[N], dz[N];
-  for (int i = 0; i < count; ++i) film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y, time[i] = cs[i].time;
-  for (int i = count; i < N; ++i)  // inactive lanes: nobody reads them
-    film_x[i] = film_x[0], film_y[i] = film_y[0], time[i] = time[0];
-  s.camera.directions<N>(film_x, film_y, dx, dy, dz);
-  const Camera& camera = s.camera;
-  for (int i = 0; i < N; ++i) time[i] = camera.shutter_open + time[i] * (camera.shutter_close - camera.shutter_open);
-  PacketRays<N> r;  // the camera rays, side by side
-  r.unit = true;     // (Camera::directions and through_lens normalise them)
-  for (int i = 0; i < N; ++i) {
-    r.ox[i] = camera.eye.x, r.oy[i] = camera.eye.y, r.oz[i] = camera.eye.z;
-    r.dx[i] = dx[i], r.dy[i] = dy[i], r.dz[i] = dz[i], r.time[i] = time[i];
-  }
-  if (camera.lens_radius > 0)
-    for (int i = 0; i < N; ++i) {
-      Ray ray = r.ray(i);
-      camera.through_lens(ray, cs[i < count ? i : 0].lens);
-      r.ox[i] = ray.origin.x, r.oy[i] = ray.origin.y, r.oz[i] = ray.origin.z;
-      r.dx[i] = ray.direction.x, r.dy[i] = ray.direction.y, r.dz[i] = ray.direction.z;
-    }
-  counters.camera += std::uint64_t(count);
+struct PacketStep {
+  FirstHitSlot slots[N];      // the lanes of `active & ~local`: what trace()'s first step finds
+  Real nx[N], ny[N], nz[N];   // the normals towards the viewer (0 in lanes that do not shade)
+  Real rr[N], rg[N], rb[N];   // the local lanes' colours (not guarded)
+  std::uint32_t lit = 0;      // lanes that hit a surface (and no emitter): they shade
+  std::uint32_t local = 0;    // lanes whose material spawns no ray, shaded here (point lights only)
+};
 
+// trace()'s first step for the active lanes of r (camera rays, or the packet's mirror rays), the
+// lanes side by side: the nearest hits, then, light by light, the shadow rays from those hits
+// (one packet per light); the lanes whose material spawns no ray are shaded too, when every
+// light is a point or a directional one (add_light_lanes). The same hits, shadow rays and
+// arithmetic as trace()'s, lane by lane; no random numbers are drawn.
+template <int N>
+STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
+                                           PacketStep<N>& out, RayCounters& counters) {
   UninitializedLanes<Hit, N> hit_slots;  // (closest_hit_packet sets every lane)
   Hit* const hits = hit_slots.at;
   closest_hit_packet<N>(s, active, r, hits);
@@ -144,14 +132,16 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   // lights, else lane by lane; the points, geometric normals, offsets, materials and texture
   // coordinates in `surface`, the normals towards the viewer in (nx, ny, nz) (0 in lanes that do
   // not shade). The lanes that go on in trace() get their FirstHit below, once known.
-  FirstHitSlot slots[N];
+  FirstHitSlot* const slots = out.slots;
   SurfaceLanes<N> surface;
   Real* const px = surface.px; Real* const py = surface.py; Real* const pz = surface.pz;
   Real* const gx = surface.gx; Real* const gy = surface.gy; Real* const gz = surface.gz;
   Real* const offset = surface.offset;
-  Real nx[N], ny[N], nz[N], vx[N], vy[N], vz[N];
+  Real* const nx = out.nx; Real* const ny = out.ny; Real* const nz = out.nz;
+  Real vx[N], vy[N], vz[N];
   for (int i = 0; i < N; ++i) vx[i] = -r.dx[i], vy[i] = -r.dy[i], vz[i] = -r.dz[i];  // (the rays' directions)
-  std::uint32_t lit = 0;  // lanes that hit a surface (and no emitter): they shade
+  std::uint32_t& lit = out.lit;  // lanes that hit a surface (and no emitter): they shade
+  lit = 0;
   const bool side_by_side = s.area_light_count == 0 && surface_lanes<N>(s, active, r, hits, surface, lit);
   if (side_by_side) {
     for (int i = 0; i < N; ++i) {
@@ -161,7 +151,8 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     }
   } else {
     lit = 0;
-    for (int i = 0; i < count; ++i) {
+    for (std::uint32_t m = active; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
       FirstHit& f = slots[i].first;
       const Ray ray = r.ray(i);
       f.hit = hits[i];
@@ -188,8 +179,10 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   // Lanes whose material spawns no ray get their colour here, the local illumination alone
   // (local_illumination's arithmetic, side by side), when every light is a point or directional
   // one: the ambient term now, each light's term as its shadow rays come back.
-  std::uint32_t local = 0;
-  Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shiny[N], shininess[N], rr[N], rg[N], rb[N];
+  std::uint32_t& local = out.local;
+  local = 0;
+  Real* const rr = out.rr; Real* const rg = out.rg; Real* const rb = out.rb;
+  Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shiny[N], shininess[N];
   // All lit lanes on one material without a checker (as a pixel's samples mostly are): its terms
   // computed once and set in every lit lane side by side. Else lane by lane, the terms of the last
   // material without a checker kept for the next lane of the same material.
@@ -305,24 +298,146 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
                                        rg, rb);
   }
 
+}
+
+// The packet's mirror step takes its mirror lanes' reflected rays together when at least this
+// many lanes have one (fewer go on alone in trace()).
+inline constexpr int kMirrorPacketLanes = 4;
+
+// Which lanes of a first step trace() would continue with a mirror ray alone (a perfect mirror
+// that transmits nothing, the reflected ray's weight and the budget allowing it), and draw no
+// random numbers for: the lanes packet_mirror_step() takes. None in scenes with area lights.
+template <int N>
+STRAHL_HOST_DEVICE inline std::uint32_t mirror_lanes(const SceneView& s, const PacketStep<N>& step) {
+  const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
+  if (s.area_light_count > 0 || max_depth < 2 || s.settings.ray_budget == 0) return 0;
+  std::uint32_t mirror = 0;
+  for (std::uint32_t m = step.lit & ~step.local; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    const Material& material = s.materials[step.slots[i].first.sp.material];
+    // trace(): k_r > 0 and k_r · 1 ≥ min_weight, no transparency (no refracted ray, no total
+    // internal reflection), no roughness (no random direction).
+    if (material.reflectivity > 0 && !(material.transparency > 0) && !(material.roughness > 0) &&
+        material.reflectivity >= s.settings.min_weight)
+      mirror |= 1u << i;
+  }
+  return mirror;
+}
+
+// The mirror lanes of a first step (mirror_lanes) finished as trace() finishes them: each lane's
+// local colour, then its reflected ray — these taken together as a second packet step — and the
+// colour local + k_r · (the reflected ray's radiance), guarded, into L[]. A reflected ray that
+// meets another mirror or glass goes on alone in trace() at depth 2.
+template <int N>
+STRAHL_HOST_DEVICE STRAHL_NOINLINE void packet_mirror_step(const SceneView& s, const PacketRays<N>& r,
+                                                           const PacketStep<N>& step, std::uint32_t mirror,
+                                                           const std::uint64_t* key, const std::uint32_t* index,
+                                                           Vec3* L, RayCounters& counters) {
+  Vec3 local[N];
+  Real kr[N];
+  PacketRays<N> reflected;
+  reflected.unit = false;  // (reflect() keeps unit length only up to rounding)
+  for (std::uint32_t m = mirror; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    const FirstHit& f = step.slots[i].first;
+    SampleStream rng{key[i], index[i]};  // (point lights: nothing drawn)
+    const Vec3 n(step.nx[i], step.ny[i], step.nz[i]);
+    const Vec3 direction(r.dx[i], r.dy[i], r.dz[i]);
+    local[i] = local_illumination(s, f.sp, n, -direction, counters, rng, f.lights);
+    kr[i] = s.materials[f.sp.material].reflectivity;
+    ++counters.reflection;
+    const Ray ray = spawn_ray(f.sp, reflect(direction, n), r.time[i]);
+    reflected.ox[i] = ray.origin.x, reflected.oy[i] = ray.origin.y, reflected.oz[i] = ray.origin.z;
+    reflected.dx[i] = ray.direction.x, reflected.dy[i] = ray.direction.y, reflected.dz[i] = ray.direction.z;
+    reflected.time[i] = ray.time;
+  }
+  const int first = wide_bvh_detail::lowest_bit(mirror);
+  for (std::uint32_t m = ~mirror & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {  // lanes nobody reads
+    const int i = wide_bvh_detail::lowest_bit(m);
+    reflected.ox[i] = reflected.ox[first], reflected.oy[i] = reflected.oy[first], reflected.oz[i] = reflected.oz[first];
+    reflected.dx[i] = reflected.dx[first], reflected.dy[i] = reflected.dy[first], reflected.dz[i] = reflected.dz[first];
+    reflected.time[i] = reflected.time[first];
+  }
+  PacketStep<N> next;
+  packet_step<N>(s, mirror, reflected, next, counters);
+  for (std::uint32_t m = mirror; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    Vec3 radiance;
+    if ((next.local >> i) & 1u) {
+      radiance = Vec3(next.rr[i], next.rg[i], next.rb[i]);
+    } else if (!((next.lit >> i) & 1u)) {
+      radiance = s.settings.background;  // (no area lights: nothing else to meet)
+    } else {
+      SampleStream rng{key[i], index[i]};
+      radiance = trace(s, reflected.ray(i), counters, rng, &next.slots[i].first, TraceStart{2, kr[i], 1});
+    }
+    L[i] = guard_sample(local[i] + radiance * kr[i], counters);
+  }
+}
+
+// The camera samples cs[0 … count − 1] (count ≤ N), lane i sample number index[i] of the pixel
+// whose random numbers are keyed by key[i] (PixelSequence::stream): their radiance (guarded as
+// sample_radiance's) into L[]. The lanes may be samples of one pixel or of several.
+template <int N>
+STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const CameraSample* cs, const std::uint64_t* key,
+                                                  const std::uint32_t* index, int count, Vec3* L,
+                                                  RayCounters& counters) {
+  const std::uint32_t active = count >= 32 ? ~0u : (1u << count) - 1;
+  // The camera rays: directions side by side (Camera::directions, generate_ray's arithmetic).
+  Real film_x[N], film_y[N], time[N], dx[N], dy[N], dz[N];
+  for (int i = 0; i < count; ++i) film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y, time[i] = cs[i].time;
+  for (int i = count; i < N; ++i)  // inactive lanes: nobody reads them
+    film_x[i] = film_x[0], film_y[i] = film_y[0], time[i] = time[0];
+  s.camera.directions<N>(film_x, film_y, dx, dy, dz);
+  const Camera& camera = s.camera;
+  for (int i = 0; i < N; ++i) time[i] = camera.shutter_open + time[i] * (camera.shutter_close - camera.shutter_open);
+  PacketRays<N> r;  // the camera rays, side by side
+  r.unit = true;     // (Camera::directions and through_lens normalise them)
+  for (int i = 0; i < N; ++i) {
+    r.ox[i] = camera.eye.x, r.oy[i] = camera.eye.y, r.oz[i] = camera.eye.z;
+    r.dx[i] = dx[i], r.dy[i] = dy[i], r.dz[i] = dz[i], r.time[i] = time[i];
+  }
+  if (camera.lens_radius > 0)
+    for (int i = 0; i < N; ++i) {
+      Ray ray = r.ray(i);
+      camera.through_lens(ray, cs[i < count ? i : 0].lens);
+      r.ox[i] = ray.origin.x, r.oy[i] = ray.origin.y, r.oz[i] = ray.origin.z;
+      r.dx[i] = ray.direction.x, r.dy[i] = ray.direction.y, r.dz[i] = ray.direction.z;
+    }
+  counters.camera += std::uint64_t(count);
+
+  PacketStep<N> step;
+  packet_step<N>(s, active, r, step, counters);
+  const std::uint32_t lit = step.lit, local = step.local;
+
   // The local lanes' colours, guarded as guard_sample() does, side by side.
-  const std::uint32_t valid = valid_lanes<N>(rr, rg, rb);
+  const std::uint32_t valid = valid_lanes<N>(step.rr, step.rg, step.rb);
   // (Every lane below count, without a branch: the lanes that go on in trace() overwrite theirs.)
   for (int i = 0; i < count; ++i) {
     const bool ok = (valid >> i) & 1u;
-    L[i] = Vec3(ok ? rr[i] : Real(0), ok ? rg[i] : Real(0), ok ? rb[i] : Real(0));
+    L[i] = Vec3(ok ? step.rr[i] : Real(0), ok ? step.rg[i] : Real(0), ok ? step.rb[i] : Real(0));
   }
   for (std::uint32_t m = local & ~valid; m != 0; m &= m - 1) ++counters.invalid_samples;
-  for (std::uint32_t lanes = active & ~local; lanes != 0; lanes &= lanes - 1) {
+  std::uint32_t rest = active & ~local;  // the lanes still to finish
+  const std::uint32_t mirror = mirror_lanes<N>(s, step);
+  if (wide_bvh_detail::popcount(mirror) >= kMirrorPacketLanes) {
+    packet_mirror_step<N>(s, r, step, mirror, key, index, L, counters);
+    rest &= ~mirror;
+  }
+  for (std::uint32_t lanes = rest; lanes != 0; lanes &= lanes - 1) {
     const int i = wide_bvh_detail::lowest_bit(lanes);
+    const FirstHit& f = step.slots[i].first;
+    if (!((lit >> i) & 1u) && f.emitter < 0) {
+      L[i] = guard_sample(s.settings.background, counters);  // trace(): the ray met nothing
+      continue;
+    }
     SampleStream rng{key[i], index[i]};
-    const FirstHit& f = slots[i].first;
     if ((lit >> i) & 1u) {
       const Material& m = s.materials[f.sp.material];
       if (!(m.reflectivity > 0) && !(m.transparency > 0)) {
         // trace() would spawn no ray here: its colour is the local illumination alone.
-        const Vec3 n(nx[i], ny[i], nz[i]);
-        const Vec3 view(vx[i], vy[i], vz[i]);  // (−direction)
+        const Vec3 n(step.nx[i], step.ny[i], step.nz[i]);
+        const Vec3 view(-r.dx[i], -r.dy[i], -r.dz[i]);
         L[i] = guard_sample(local_illumination(s, f.sp, n, view, counters, rng, f.lights), counters);
         continue;
       }

@@ -227,18 +227,25 @@ STRAHL_HOST_DEVICE inline bool start_refracted(const SceneView& s, TraceFrame& f
 // glossy directions) are drawn in the same order and the sums are the same as a recursive
 // trace()'s, bit for bit.
 //
-// `first`, where given, is the camera ray's first step already taken by the packet front end
-// (the same hit, surface point and shadow rays): trace() goes on from there.
+// `first`, where given, is the first step of `ray` already taken by the packet front end (the
+// same hit, surface point and shadow rays): trace() goes on from there. `start`, where given,
+// places `ray` deeper in a camera sample's ray tree (the packet front end's mirror rays, at depth
+// 2 in the scene's medium): its depth, its weight, and the rays already taken from the budget.
+struct TraceStart {
+  int depth = 1;
+  Real weight = 1;
+  std::uint32_t spent = 0;  // ≤ the scene's ray_budget
+};
 STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng,
-                                     const FirstHit* first = nullptr) {
+                                     const FirstHit* first = nullptr, const TraceStart& start = {}) {
   TraceFrameSlot stack[kMaxTraceDepth - 1];  // hits at depths 1 … max_depth − 1 (deeper ones spawn no rays)
-  int top = 0;                               // frames in use: `ray` is at depth top + 1
+  int top = 0;                               // frames in use: `ray` is at depth top + start.depth
   const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
   const Real min_weight = s.settings.min_weight;
   const Real time = ray.time;                // every ray of a camera sample sees the scene at one instant
-  std::uint32_t budget = s.settings.ray_budget;
+  std::uint32_t budget = s.settings.ray_budget - start.spent;
   MediumStack media(s.settings.medium_ior);  // the media of `ray`, restored on the way back up
-  Real weight = 1;                           // `ray`'s share of the pixel
+  Real weight = start.weight;                // `ray`'s share of the pixel
 
   for (;;) {
     // `ray`'s own colour, unless it spawns a child: then its frame is pushed and the child traced.
@@ -259,7 +266,7 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
       const Vec3 n = front ? sp.normal : -sp.normal;
       const Vec3 view = -ray.direction;
       color = local_illumination(s, sp, n, view, counters, rng, known != nullptr ? known->lights : nullptr);
-      if (top + 1 < max_depth) {
+      if (top + start.depth < max_depth) {
         Real kr = m.reflectivity;
         Real kt = m.transparency;
         Vec3 refracted_dir;
