@@ -218,7 +218,7 @@ TEST(PacketFrontEnd, MirrorLanesTakeTheirReflectedRaysTogether) {
     packet_step<16>(view, 0xffffu, r, step, counters);
     EXPECT_EQ(step.lit, 0xffffu);
     EXPECT_EQ(step.local, 0u);
-    EXPECT_EQ(mirror_lanes<16>(view, step), 0xffffu);
+    EXPECT_EQ(step.mirror, 0xffffu);
     EXPECT_EQ(counters.shadow, 32u);
   }
   struct Variant {

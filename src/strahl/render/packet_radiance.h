@@ -113,7 +113,22 @@ struct PacketStep {
   Real rr[N], rg[N], rb[N];   // the local lanes' colours (not guarded)
   std::uint32_t lit = 0;      // lanes that hit a surface (and no emitter): they shade
   std::uint32_t local = 0;    // lanes whose material spawns no ray, shaded here (point lights only)
+  std::uint32_t mirror = 0;   // lanes on a perfect mirror (packet_mirror), their local colour here too
 };
+
+// Whether the packet front end may take mirror rays together in scene s (packet_mirror_step):
+// no area lights (whose samples draw random numbers), a depth and a ray budget for them.
+STRAHL_HOST_DEVICE inline bool packet_mirrors(const SceneView& s) {
+  const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
+  return s.area_light_count == 0 && max_depth >= 2 && s.settings.ray_budget > 0;
+}
+
+// Whether trace() goes on from a camera ray's hit on material m with a mirror ray alone, drawing
+// no random numbers: k_r > 0 and k_r · 1 ≥ min_weight, no transparency (no refracted ray, no total
+// internal reflection), no roughness (no random direction).
+STRAHL_HOST_DEVICE inline bool packet_mirror(const SceneView& s, const Material& m) {
+  return m.reflectivity > 0 && !(m.transparency > 0) && !(m.roughness > 0) && m.reflectivity >= s.settings.min_weight;
+}
 
 // trace()'s first step for the active lanes of r (camera rays, or the packet's mirror rays), the
 // lanes side by side: the nearest hits, then, light by light, the shadow rays from those hits
@@ -178,9 +193,12 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
 
   // Lanes whose material spawns no ray get their colour here, the local illumination alone
   // (local_illumination's arithmetic, side by side), when every light is a point or directional
-  // one: the ambient term now, each light's term as its shadow rays come back.
+  // one: the ambient term now, each light's term as its shadow rays come back. So do the lanes
+  // on a perfect mirror, where the packet may take mirror rays (their local colour).
   std::uint32_t& local = out.local;
-  local = 0;
+  std::uint32_t& mirror = out.mirror;
+  local = mirror = 0;
+  const bool mirrors = packet_mirrors(s);
   Real* const rr = out.rr; Real* const rg = out.rg; Real* const rb = out.rb;
   Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shiny[N], shininess[N];
   // All lit lanes on one material without a checker (as a pixel's samples mostly are): its terms
@@ -190,14 +208,17 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   int one_material = int(lit != 0 && s.area_light_count == 0);
   for (std::uint32_t m = lit; m != 0; m &= m - 1)
     one_material &= int(surface.material[wide_bvh_detail::lowest_bit(m)] == surface.material[first_lit]);
+  bool one_mirror = false;
   if (one_material != 0) {
     const Material& material = s.materials[surface.material[first_lit]];
-    if (material.reflectivity > 0 || material.transparency > 0 || material.checker_size > 0) one_material = 0;
+    one_mirror = mirrors && packet_mirror(s, material);
+    if (((material.reflectivity > 0 || material.transparency > 0) && !one_mirror) || material.checker_size > 0)
+      one_material = 0;
   }
   if (one_material != 0) {
     const Vec3 texcoord(surface.ux[first_lit], surface.uy[first_lit], surface.uz[first_lit]);  // (no checker: unused)
     const LocalTerms t = local_terms(s.materials[surface.material[first_lit]], texcoord, s.settings.ambient_light);
-    local = lit;
+    (one_mirror ? mirror : local) = lit;
     for (int i = 0; i < N; ++i) {
       const bool on = (lit >> i) & 1u;
       cr[i] = on ? t.c.x : 0, cg[i] = on ? t.c.y : 0, cb[i] = on ? t.c.z : 0;
@@ -207,24 +228,30 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     }
   } else {
     std::uint32_t plain = ~0u;  // its index (~0u: none yet)
+    bool plain_mirror = false;  // whether it is a perfect mirror (packet_mirror)
     LocalTerms terms{}, fresh{};
     for (std::uint32_t m = s.area_light_count == 0 ? lit : 0; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       const std::uint32_t material_index = surface.material[i];
       const LocalTerms* t = &terms;
+      bool on_mirror = plain_mirror;
       if (material_index != plain) {
         const Material& material = s.materials[material_index];
-        if (material.reflectivity > 0 || material.transparency > 0) continue;
+        on_mirror = false;
+        if (material.reflectivity > 0 || material.transparency > 0) {
+          if (!(mirrors && packet_mirror(s, material))) continue;
+          on_mirror = true;
+        }
         fresh = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.settings.ambient_light);
-        if (material.checker_size <= 0) plain = material_index, terms = fresh;
+        if (material.checker_size <= 0) plain = material_index, terms = fresh, plain_mirror = on_mirror;
         t = &fresh;
       }
-      local |= 1u << i;
+      (on_mirror ? mirror : local) |= 1u << i;
       cr[i] = t->c.x, cg[i] = t->c.y, cb[i] = t->c.z, rr[i] = t->ambient.x, rg[i] = t->ambient.y, rb[i] = t->ambient.z;
       kd[i] = t->kd, sr[i] = t->ks.x, sg[i] = t->ks.y, sb[i] = t->ks.z, shiny[i] = t->shiny, shininess[i] = t->shininess;
     }
     // The other lanes' values are not used; they are set all the same.
-    for (std::uint32_t m = ~local & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
+    for (std::uint32_t m = ~(local | mirror) & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
     }
@@ -294,7 +321,7 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     } else {
       for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
     }
-    if (local != 0) add_light_lanes<N>(light.radiance, local, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb, shiny, shininess, rr,
+    if ((local | mirror) != 0) add_light_lanes<N>(light.radiance, local | mirror, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb, shiny, shininess, rr,
                                        rg, rb);
   }
 
@@ -304,46 +331,23 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
 // many lanes have one (fewer go on alone in trace()).
 inline constexpr int kMirrorPacketLanes = 4;
 
-// Which lanes of a first step trace() would continue with a mirror ray alone (a perfect mirror
-// that transmits nothing, the reflected ray's weight and the budget allowing it), and draw no
-// random numbers for: the lanes packet_mirror_step() takes. None in scenes with area lights.
-template <int N>
-STRAHL_HOST_DEVICE inline std::uint32_t mirror_lanes(const SceneView& s, const PacketStep<N>& step) {
-  const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
-  if (s.area_light_count > 0 || max_depth < 2 || s.settings.ray_budget == 0) return 0;
-  std::uint32_t mirror = 0;
-  for (std::uint32_t m = step.lit & ~step.local; m != 0; m &= m - 1) {
-    const int i = wide_bvh_detail::lowest_bit(m);
-    const Material& material = s.materials[step.slots[i].first.sp.material];
-    // trace(): k_r > 0 and k_r · 1 ≥ min_weight, no transparency (no refracted ray, no total
-    // internal reflection), no roughness (no random direction).
-    if (material.reflectivity > 0 && !(material.transparency > 0) && !(material.roughness > 0) &&
-        material.reflectivity >= s.settings.min_weight)
-      mirror |= 1u << i;
-  }
-  return mirror;
-}
-
-// The mirror lanes of a first step (mirror_lanes) finished as trace() finishes them: each lane's
-// local colour, then its reflected ray — these taken together as a second packet step — and the
-// colour local + k_r · (the reflected ray's radiance), guarded, into L[]. A reflected ray that
-// meets another mirror or glass goes on alone in trace() at depth 2.
+// The mirror lanes of a first step (PacketStep::mirror) finished as trace() finishes them: their
+// reflected rays taken together as a second packet step, and each lane's colour local + k_r ·
+// (the reflected ray's radiance), guarded, into L[]. A reflected ray that meets another mirror or
+// glass goes on alone in trace() at depth 2.
 template <int N>
 STRAHL_HOST_DEVICE STRAHL_NOINLINE void packet_mirror_step(const SceneView& s, const PacketRays<N>& r,
                                                            const PacketStep<N>& step, std::uint32_t mirror,
                                                            const std::uint64_t* key, const std::uint32_t* index,
                                                            Vec3* L, RayCounters& counters) {
-  Vec3 local[N];
   Real kr[N];
   PacketRays<N> reflected;
   reflected.unit = false;  // (reflect() keeps unit length only up to rounding)
   for (std::uint32_t m = mirror; m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     const FirstHit& f = step.slots[i].first;
-    SampleStream rng{key[i], index[i]};  // (point lights: nothing drawn)
     const Vec3 n(step.nx[i], step.ny[i], step.nz[i]);
     const Vec3 direction(r.dx[i], r.dy[i], r.dz[i]);
-    local[i] = local_illumination(s, f.sp, n, -direction, counters, rng, f.lights);
     kr[i] = s.materials[f.sp.material].reflectivity;
     ++counters.reflection;
     const Ray ray = spawn_ray(f.sp, reflect(direction, n), r.time[i]);
@@ -371,7 +375,7 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void packet_mirror_step(const SceneView& s, c
       SampleStream rng{key[i], index[i]};
       radiance = trace(s, reflected.ray(i), counters, rng, &next.slots[i].first, TraceStart{2, kr[i], 1});
     }
-    L[i] = guard_sample(local[i] + radiance * kr[i], counters);
+    L[i] = guard_sample(Vec3(step.rr[i], step.rg[i], step.rb[i]) + radiance * kr[i], counters);
   }
 }
 
@@ -419,10 +423,9 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   }
   for (std::uint32_t m = local & ~valid; m != 0; m &= m - 1) ++counters.invalid_samples;
   std::uint32_t rest = active & ~local;  // the lanes still to finish
-  const std::uint32_t mirror = mirror_lanes<N>(s, step);
-  if (wide_bvh_detail::popcount(mirror) >= kMirrorPacketLanes) {
-    packet_mirror_step<N>(s, r, step, mirror, key, index, L, counters);
-    rest &= ~mirror;
+  if (wide_bvh_detail::popcount(step.mirror) >= kMirrorPacketLanes) {
+    packet_mirror_step<N>(s, r, step, step.mirror, key, index, L, counters);
+    rest &= ~step.mirror;
   }
   for (std::uint32_t lanes = rest; lanes != 0; lanes &= lanes - 1) {
     const int i = wide_bvh_detail::lowest_bit(lanes);
