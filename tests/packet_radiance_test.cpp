@@ -240,6 +240,15 @@ TEST(PacketFrontEnd, MirrorLanesTakeTheirReflectedRaysTogether) {
     scene.settings.min_weight = v.min_weight;
     Tally tally;
     expect_scene_packets_match(scene, v.what, tally);
+    // The same with a mirror triangle and a moving sphere: the BVH's packet traversal and the
+    // moving shapes' lane-by-lane queries for the reflected rays.
+    Material mirror = test::phong(Vec3(0.2), 0, 0.1, Vec3(0.5), 80);
+    mirror.reflectivity = 0.9;
+    scene.add(Triangle(Vec3(-1.2, 0, -1), Vec3(1.2, 0, -1.4), Vec3(0, 1.2, -1.2), mirror));
+    Sphere moving(Vec3(0.9, 0.2, 1.2), 0.2, test::phong(Vec3(0.9, 0.9, 0.2), 0.1, 0.7, Vec3(0.4), 30));
+    moving.motion = Motion::linear(Vec3(0, 0.3, 0));
+    scene.add(moving);
+    expect_scene_packets_match(scene, std::string(v.what) + " + triangle, moving sphere", tally);
     if (v.max_depth > 1 && v.ray_budget > 0 && v.floor_reflectivity >= v.min_weight) {  // the floor reflects
       EXPECT_GT(tally.secondary, tally.samples / 4) << v.what;
     }
