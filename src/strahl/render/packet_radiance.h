@@ -5,8 +5,10 @@
 // intersect_packet.h, whose planes and sphere loops run the lanes side by side and whose BVH
 // fetches each node once per packet. A sample whose surface spawns no ray (no mirror, no
 // glass) in a scene of point and directional lights is shaded there too, the lanes side by side
-// (add_light_lanes); every other sample goes on alone in the one integrator, trace()
-// (render/whitted.h), from that first step (FirstHit): shading, reflected and refracted rays.
+// (add_light_lanes). So is a sample on a perfect mirror, and the packet's mirror samples take
+// their reflected rays together too, as a second such step (packet_mirror_step). Every other
+// sample goes on alone in the one integrator, trace() (render/whitted.h), from the step it
+// reached (FirstHit, TraceStart): shading, reflected and refracted rays.
 // The radiance of each sample is sample_radiance()'s bit for bit (same hits, same shadow rays,
 // same arithmetic; the counters the same too), except where a camera ray meets two triangles at
 // exactly the same t (accel/packet.h).
@@ -321,10 +323,10 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     } else {
       for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
     }
-    if ((local | mirror) != 0) add_light_lanes<N>(light.radiance, local | mirror, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb, shiny, shininess, rr,
-                                       rg, rb);
+    if ((local | mirror) != 0)
+      add_light_lanes<N>(light.radiance, local | mirror, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb,
+                         shiny, shininess, rr, rg, rb);
   }
-
 }
 
 // The packet's mirror step takes its mirror lanes' reflected rays together when at least this
@@ -337,9 +339,9 @@ inline constexpr int kMirrorPacketLanes = 4;
 // glass goes on alone in trace() at depth 2.
 template <int N>
 STRAHL_HOST_DEVICE STRAHL_NOINLINE void packet_mirror_step(const SceneView& s, const PacketRays<N>& r,
-                                                           const PacketStep<N>& step, std::uint32_t mirror,
-                                                           const std::uint64_t* key, const std::uint32_t* index,
-                                                           Vec3* L, RayCounters& counters) {
+                                                           const PacketStep<N>& step, const std::uint64_t* key,
+                                                           const std::uint32_t* index, Vec3* L, RayCounters& counters) {
+  const std::uint32_t mirror = step.mirror;
   Real kr[N];
   PacketRays<N> reflected;
   reflected.unit = false;  // (reflect() keeps unit length only up to rounding)
@@ -424,7 +426,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   for (std::uint32_t m = local & ~valid; m != 0; m &= m - 1) ++counters.invalid_samples;
   std::uint32_t rest = active & ~local;  // the lanes still to finish
   if (wide_bvh_detail::popcount(step.mirror) >= kMirrorPacketLanes) {
-    packet_mirror_step<N>(s, r, step, step.mirror, key, index, L, counters);
+    packet_mirror_step<N>(s, r, step, key, index, L, counters);
     rest &= ~step.mirror;
   }
   for (std::uint32_t lanes = rest; lanes != 0; lanes &= lanes - 1) {
