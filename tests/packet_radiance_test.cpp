@@ -199,10 +199,10 @@ Scene mirror_floor_scene(Real floor_reflectivity) {
   return scene;
 }
 
-// The lanes whose first hit is a perfect mirror take their reflected rays together
-// (packet_mirror_step) — each sample as it would be alone, bit for bit, and the ray counts equal:
-// with the recursion depth, the ray budget and min_weight cutting the mirror rays (or not) at
-// every depth, and with mirrors the packet step leaves to trace() (rough, too weak).
+// The lanes on mirrors and glass follow their ray trees together (packet_tree) — each sample as
+// it would be alone, bit for bit, and the ray counts equal: with the recursion depth, the ray
+// budget and min_weight cutting the reflected and refracted rays (or not) at every depth, and
+// with materials the packets leave to trace() (rough).
 TEST(PacketFrontEnd, MirrorLanesTakeTheirReflectedRaysTogether) {
   {  // The precondition: a packet of camera rays onto the mirror floor is all mirror lanes.
     const RenderScene rs = compile(mirror_floor_scene(1));
@@ -218,7 +218,7 @@ TEST(PacketFrontEnd, MirrorLanesTakeTheirReflectedRaysTogether) {
     packet_step<16>(view, 0xffffu, r, step, counters);
     EXPECT_EQ(step.lit, 0xffffu);
     EXPECT_EQ(step.local, 0u);
-    EXPECT_EQ(step.mirror, 0xffffu);
+    EXPECT_EQ(step.spawn, 0xffffu);
     EXPECT_EQ(counters.shadow, 32u);
   }
   struct Variant {
@@ -251,6 +251,47 @@ TEST(PacketFrontEnd, MirrorLanesTakeTheirReflectedRaysTogether) {
     expect_scene_packets_match(scene, std::string(v.what) + " + triangle, moving sphere", tally);
     if (v.max_depth > 1 && v.ray_budget > 0 && v.floor_reflectivity >= v.min_weight) {  // the floor reflects
       EXPECT_GT(tally.secondary, tally.samples / 4) << v.what;
+    }
+  }
+}
+
+// Glass in packets: a glass sphere in front of the camera holding another (nested media), with
+// Fresnel or without, filtering or clear, in a denser medium than air or not, thick enough for
+// total internal reflection, beside a mirror; the budget and the depth cutting the trees
+// anywhere — each sample as alone, bit for bit.
+TEST(PacketFrontEnd, GlassLanesFollowTheirRayTreesTogether) {
+  for (const bool fresnel : {false, true}) {
+    for (const bool filter : {false, true}) {
+      for (const Real medium : {Real(1), Real(1.2)}) {
+        for (const int budget : {int(kDefaultRayBudget), 3, 7}) {
+          for (const int depth : {8, 3, 12}) {
+            Scene scene = mirror_floor_scene(0.5);
+            Material glass = test::clear_glass(1.8);
+            glass.reflectivity = 0.1;
+            glass.fresnel = fresnel;
+            glass.filter = filter;
+            glass.color = Vec3(0.7, 0.8, 1.0);
+            glass.specular = Vec3(0.5);
+            glass.shininess = 60;
+            glass.diffuse = 0.1;
+            scene.add(Sphere(Vec3(0, 0.9, 1.6), 0.5, glass));
+            Material inner = glass;
+            inner.ior = 1.3;
+            scene.add(Sphere(Vec3(0.05, 0.9, 1.6), 0.2, inner));
+            scene.settings.medium_ior = medium;
+            scene.settings.ray_budget = budget;
+            scene.settings.max_depth = depth;
+            scene.settings.width = 12;
+            scene.settings.height = 8;
+            const std::string what = "glass fresnel " + std::to_string(fresnel) + " filter " + std::to_string(filter) +
+                                     " medium " + std::to_string(medium) + " budget " + std::to_string(budget) +
+                                     " depth " + std::to_string(depth);
+            Tally tally;
+            expect_scene_packets_match(scene, what, tally);
+            ASSERT_GT(tally.secondary, tally.samples) << what;
+          }
+        }
+      }
     }
   }
 }

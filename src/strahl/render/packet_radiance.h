@@ -5,10 +5,12 @@
 // intersect_packet.h, whose planes and sphere loops run the lanes side by side and whose BVH
 // fetches each node once per packet. A sample whose surface spawns no ray (no mirror, no
 // glass) in a scene of point and directional lights is shaded there too, the lanes side by side
-// (add_light_lanes). So is a sample on a perfect mirror, and the packet's mirror samples take
-// their reflected rays together too, as a second such step (packet_mirror_step). Every other
-// sample goes on alone in the one integrator, trace() (render/whitted.h), from the step it
-// reached (FirstHit, TraceStart): shading, reflected and refracted rays.
+// (add_light_lanes). So is a sample on a mirror or on glass, and the packet's samples there take
+// their reflected rays together, then their refracted rays, each as another such step, through
+// their ray trees (packet_tree) while enough lanes follow the same branch. Every other sample,
+// and every lane where too few go on together, goes on alone in the one integrator, trace()
+// (render/whitted.h), from the step it reached (FirstHit, TraceStart): shading, reflected and
+// refracted rays.
 // The radiance of each sample is sample_radiance()'s bit for bit (same hits, same shadow rays,
 // same arithmetic; the counters the same too), except where a camera ray meets two triangles at
 // exactly the same t (accel/packet.h).
@@ -115,21 +117,20 @@ struct PacketStep {
   Real rr[N], rg[N], rb[N];   // the local lanes' colours (not guarded)
   std::uint32_t lit = 0;      // lanes that hit a surface (and no emitter): they shade
   std::uint32_t local = 0;    // lanes whose material spawns no ray, shaded here (point lights only)
-  std::uint32_t mirror = 0;   // lanes on a perfect mirror (packet_mirror), their local colour here too
+  std::uint32_t spawn = 0;    // lanes on a mirror or glass the packet follows (packet_spawner), shaded here too
 };
 
-// Whether the packet front end may take mirror rays together in scene s (packet_mirror_step):
-// no area lights (whose samples draw random numbers), a depth and a ray budget for them.
-STRAHL_HOST_DEVICE inline bool packet_mirrors(const SceneView& s) {
+// Whether the packet front end follows reflected and refracted rays in packets in scene s
+// (packet_tree): no area lights (whose samples draw random numbers), a depth and a ray budget.
+STRAHL_HOST_DEVICE inline bool packet_trees(const SceneView& s) {
   const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
   return s.area_light_count == 0 && max_depth >= 2 && s.settings.ray_budget > 0;
 }
 
-// Whether trace() goes on from a camera ray's hit on material m with a mirror ray alone, drawing
-// no random numbers: k_r > 0 and k_r · 1 ≥ min_weight, no transparency (no refracted ray, no total
-// internal reflection), no roughness (no random direction).
-STRAHL_HOST_DEVICE inline bool packet_mirror(const SceneView& s, const Material& m) {
-  return m.reflectivity > 0 && !(m.transparency > 0) && !(m.roughness > 0) && m.reflectivity >= s.settings.min_weight;
+// Whether a hit on material m spawns rays that packet_tree() follows: reflected or refracted rays
+// whose directions draw no random numbers (no roughness).
+STRAHL_HOST_DEVICE inline bool packet_spawner(const Material& m) {
+  return (m.reflectivity > 0 || m.transparency > 0) && !(m.roughness > 0);
 }
 
 // trace()'s first step for the active lanes of r (camera rays, or the packet's mirror rays), the
@@ -196,11 +197,11 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   // Lanes whose material spawns no ray get their colour here, the local illumination alone
   // (local_illumination's arithmetic, side by side), when every light is a point or directional
   // one: the ambient term now, each light's term as its shadow rays come back. So do the lanes
-  // on a perfect mirror, where the packet may take mirror rays (their local colour).
+  // on a mirror or glass whose rays the packet follows (their local colour).
   std::uint32_t& local = out.local;
-  std::uint32_t& mirror = out.mirror;
-  local = mirror = 0;
-  const bool mirrors = packet_mirrors(s);
+  std::uint32_t& spawn = out.spawn;
+  local = spawn = 0;
+  const bool trees = packet_trees(s);
   Real* const rr = out.rr; Real* const rg = out.rg; Real* const rb = out.rb;
   Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shiny[N], shininess[N];
   // All lit lanes on one material without a checker (as a pixel's samples mostly are): its terms
@@ -210,17 +211,17 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   int one_material = int(lit != 0 && s.area_light_count == 0);
   for (std::uint32_t m = lit; m != 0; m &= m - 1)
     one_material &= int(surface.material[wide_bvh_detail::lowest_bit(m)] == surface.material[first_lit]);
-  bool one_mirror = false;
+  bool one_spawner = false;
   if (one_material != 0) {
     const Material& material = s.materials[surface.material[first_lit]];
-    one_mirror = mirrors && packet_mirror(s, material);
-    if (((material.reflectivity > 0 || material.transparency > 0) && !one_mirror) || material.checker_size > 0)
+    one_spawner = trees && packet_spawner(material);
+    if (((material.reflectivity > 0 || material.transparency > 0) && !one_spawner) || material.checker_size > 0)
       one_material = 0;
   }
   if (one_material != 0) {
     const Vec3 texcoord(surface.ux[first_lit], surface.uy[first_lit], surface.uz[first_lit]);  // (no checker: unused)
     const LocalTerms t = local_terms(s.materials[surface.material[first_lit]], texcoord, s.settings.ambient_light);
-    (one_mirror ? mirror : local) = lit;
+    (one_spawner ? spawn : local) = lit;
     for (int i = 0; i < N; ++i) {
       const bool on = (lit >> i) & 1u;
       cr[i] = on ? t.c.x : 0, cg[i] = on ? t.c.y : 0, cb[i] = on ? t.c.z : 0;
@@ -230,30 +231,30 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     }
   } else {
     std::uint32_t plain = ~0u;  // its index (~0u: none yet)
-    bool plain_mirror = false;  // whether it is a perfect mirror (packet_mirror)
+    bool plain_spawner = false;  // whether it spawns rays the packet follows (packet_spawner)
     LocalTerms terms{}, fresh{};
     for (std::uint32_t m = s.area_light_count == 0 ? lit : 0; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       const std::uint32_t material_index = surface.material[i];
       const LocalTerms* t = &terms;
-      bool on_mirror = plain_mirror;
+      bool spawner = plain_spawner;
       if (material_index != plain) {
         const Material& material = s.materials[material_index];
-        on_mirror = false;
+        spawner = false;
         if (material.reflectivity > 0 || material.transparency > 0) {
-          if (!(mirrors && packet_mirror(s, material))) continue;
-          on_mirror = true;
+          if (!(trees && packet_spawner(material))) continue;
+          spawner = true;
         }
         fresh = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.settings.ambient_light);
-        if (material.checker_size <= 0) plain = material_index, terms = fresh, plain_mirror = on_mirror;
+        if (material.checker_size <= 0) plain = material_index, terms = fresh, plain_spawner = spawner;
         t = &fresh;
       }
-      (on_mirror ? mirror : local) |= 1u << i;
+      (spawner ? spawn : local) |= 1u << i;
       cr[i] = t->c.x, cg[i] = t->c.y, cb[i] = t->c.z, rr[i] = t->ambient.x, rg[i] = t->ambient.y, rb[i] = t->ambient.z;
       kd[i] = t->kd, sr[i] = t->ks.x, sg[i] = t->ks.y, sb[i] = t->ks.z, shiny[i] = t->shiny, shininess[i] = t->shininess;
     }
     // The other lanes' values are not used; they are set all the same.
-    for (std::uint32_t m = ~(local | mirror) & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
+    for (std::uint32_t m = ~(local | spawn) & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       cr[i] = cg[i] = cb[i] = kd[i] = sr[i] = sg[i] = sb[i] = shiny[i] = shininess[i] = rr[i] = rg[i] = rb[i] = 0;
     }
@@ -323,61 +324,172 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     } else {
       for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
     }
-    if ((local | mirror) != 0)
-      add_light_lanes<N>(light.radiance, local | mirror, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb,
+    if ((local | spawn) != 0)
+      add_light_lanes<N>(light.radiance, local | spawn, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb,
                          shiny, shininess, rr, rg, rb);
   }
 }
 
-// The packet's mirror step takes its mirror lanes' reflected rays together when at least this
-// many lanes have one (fewer go on alone in trace()).
-inline constexpr int kMirrorPacketLanes = 4;
+// A packet's rays follow their ray trees together through at most this many levels, and a
+// branch (the reflected or the refracted rays of the lanes at one level) while at least this
+// many lanes take it; deeper, and where fewer take it, each lane goes on alone in trace().
+inline constexpr int kPacketTreeDepth = 8;
+inline constexpr int kPacketTreeLanes = 4;
 
-// The mirror lanes of a first step (PacketStep::mirror) finished as trace() finishes them: their
-// reflected rays taken together as a second packet step, and each lane's colour local + k_r ·
-// (the reflected ray's radiance), guarded, into L[]. A reflected ray that meets another mirror or
-// glass goes on alone in trace() at depth 2.
+// What trace() carries down a lane's ray tree, per lane: the ray's weight (its share of the
+// pixel), the rays left in the sample's budget, the media it travels in, its random numbers
+// (drawn only in trace(): where a lane goes on alone).
 template <int N>
-STRAHL_HOST_DEVICE STRAHL_NOINLINE void packet_mirror_step(const SceneView& s, const PacketRays<N>& r,
-                                                           const PacketStep<N>& step, const std::uint64_t* key,
-                                                           const std::uint32_t* index, Vec3* L, RayCounters& counters) {
-  const std::uint32_t mirror = step.mirror;
-  Real kr[N];
-  PacketRays<N> reflected;
-  reflected.unit = false;  // (reflect() keeps unit length only up to rounding)
-  for (std::uint32_t m = mirror; m != 0; m &= m - 1) {
+struct TreeLanes {
+  Real weight[N];
+  std::uint32_t budget[N];
+  UninitializedLanes<MediumStack, N> media;
+  SampleStream* rng;  // the lanes' streams (the camera samples')
+};
+
+template <int N>
+STRAHL_HOST_DEVICE void packet_tree(const SceneView& s, const PacketRays<N>& r, const PacketStep<N>& step,
+                                    std::uint32_t lanes, int depth, TreeLanes<N>& at, Vec3* color,
+                                    RayCounters& counters);
+
+// The radiance along the rays r of the lanes `lanes` at depth `depth` (each lane's weight,
+// budget and media in `at`) into color[] (not guarded): their first step together and on down
+// their trees (packet_tree) when enough lanes take the branch, else trace() lane by lane.
+template <int N>
+STRAHL_HOST_DEVICE STRAHL_NOINLINE void packet_branch(const SceneView& s, PacketRays<N>& r, std::uint32_t lanes,
+                                                      int depth, TreeLanes<N>& at, Vec3* color, RayCounters& counters) {
+  if (wide_bvh_detail::popcount(lanes) < kPacketTreeLanes || depth > kPacketTreeDepth) {
+    for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      const TraceStart start{depth, at.weight[i], s.settings.ray_budget - at.budget[i], &at.media.at[i], &at.budget[i]};
+      color[i] = trace(s, r.ray(i), counters, at.rng[i], nullptr, start);
+    }
+    return;
+  }
+  const int first = wide_bvh_detail::lowest_bit(lanes);
+  for (std::uint32_t m = ~lanes & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {  // lanes nobody reads
+    const int i = wide_bvh_detail::lowest_bit(m);
+    r.ox[i] = r.ox[first], r.oy[i] = r.oy[first], r.oz[i] = r.oz[first];
+    r.dx[i] = r.dx[first], r.dy[i] = r.dy[first], r.dz[i] = r.dz[first], r.time[i] = r.time[first];
+  }
+  PacketStep<N> step;
+  packet_step<N>(s, lanes, r, step, counters);
+  packet_tree<N>(s, r, step, lanes, depth, at, color, counters);
+}
+
+// The lanes `lanes` of the packet r at depth `depth`, whose first step is `step`, finished as
+// trace() finishes them (their weights, budgets and media in `at`, updated), into color[] (not
+// guarded): a local lane's colour is its local illumination, a lane that met nothing gets the
+// background; a lane on a mirror or glass (PacketStep::spawn) adds k_r times its reflected ray's
+// radiance and then T·tint times its refracted ray's — the reflected rays of all such lanes one
+// branch (packet_branch), then their refracted rays another, as trace() takes them depth first
+// — with trace()'s tests and arithmetic (total internal reflection, Fresnel, min_weight, the
+// budget); any other lane goes on alone in trace() from its first step.
+template <int N>
+STRAHL_HOST_DEVICE void packet_tree(const SceneView& s, const PacketRays<N>& r, const PacketStep<N>& step,
+                                    std::uint32_t lanes, int depth, TreeLanes<N>& at, Vec3* color,
+                                    RayCounters& counters) {
+  const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
+  const Real min_weight = s.settings.min_weight;
+  Real kr[N], kt[N];
+  Vec3 refracted_dir[N];
+  bool front[N];
+  std::uint32_t reflecting = 0, transmitting = 0;  // lanes with a reflected ray; with k_t > 0
+  PacketRays<N> child;
+  child.unit = false;  // (reflect() and refract() keep unit length only up to rounding)
+  TreeLanes<N> below;  // the children's weights, budgets and media
+  below.rng = at.rng;
+  for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     const FirstHit& f = step.slots[i].first;
-    const Vec3 n(step.nx[i], step.ny[i], step.nz[i]);
-    const Vec3 direction(r.dx[i], r.dy[i], r.dz[i]);
-    kr[i] = s.materials[f.sp.material].reflectivity;
-    ++counters.reflection;
-    const Ray ray = spawn_ray(f.sp, reflect(direction, n), r.time[i]);
-    reflected.ox[i] = ray.origin.x, reflected.oy[i] = ray.origin.y, reflected.oz[i] = ray.origin.z;
-    reflected.dx[i] = ray.direction.x, reflected.dy[i] = ray.direction.y, reflected.dz[i] = ray.direction.z;
-    reflected.time[i] = ray.time;
-  }
-  const int first = wide_bvh_detail::lowest_bit(mirror);
-  for (std::uint32_t m = ~mirror & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {  // lanes nobody reads
-    const int i = wide_bvh_detail::lowest_bit(m);
-    reflected.ox[i] = reflected.ox[first], reflected.oy[i] = reflected.oy[first], reflected.oz[i] = reflected.oz[first];
-    reflected.dx[i] = reflected.dx[first], reflected.dy[i] = reflected.dy[first], reflected.dz[i] = reflected.dz[first];
-    reflected.time[i] = reflected.time[first];
-  }
-  PacketStep<N> next;
-  packet_step<N>(s, mirror, reflected, next, counters);
-  for (std::uint32_t m = mirror; m != 0; m &= m - 1) {
-    const int i = wide_bvh_detail::lowest_bit(m);
-    Vec3 radiance;
-    if ((next.local >> i) & 1u) {
-      radiance = Vec3(next.rr[i], next.rg[i], next.rb[i]);
-    } else if (!((next.lit >> i) & 1u)) {
-      radiance = s.settings.background;  // (no area lights: nothing else to meet)
-    } else {
-      SampleStream rng{key[i], index[i]};
-      radiance = trace(s, reflected.ray(i), counters, rng, &next.slots[i].first, TraceStart{2, kr[i], 1});
+    if ((step.local >> i) & 1u) {
+      color[i] = Vec3(step.rr[i], step.rg[i], step.rb[i]);
+      continue;
     }
-    L[i] = guard_sample(Vec3(step.rr[i], step.rg[i], step.rb[i]) + radiance * kr[i], counters);
+    if (!((step.lit >> i) & 1u)) {
+      color[i] = s.settings.background;  // (no area lights: nothing else to meet)
+      continue;
+    }
+    if (!((step.spawn >> i) & 1u)) {
+      const TraceStart start{depth, at.weight[i], s.settings.ray_budget - at.budget[i], &at.media.at[i], &at.budget[i]};
+      color[i] = trace(s, r.ray(i), counters, at.rng[i], &f, start);
+      continue;
+    }
+    // trace()'s step at a hit that spawns rays, lane by lane.
+    color[i] = Vec3(step.rr[i], step.rg[i], step.rb[i]);
+    if (!(depth < max_depth)) continue;
+    const SurfacePoint& sp = f.sp;
+    const Material& material = s.materials[sp.material];
+    const Vec3 direction(r.dx[i], r.dy[i], r.dz[i]);
+    front[i] = dot(direction, sp.geometric_normal) < 0;
+    const Vec3 n = front[i] ? sp.normal : -sp.normal;
+    kr[i] = material.reflectivity;
+    kt[i] = material.transparency;
+    if (kt[i] > 0) {
+      const MediumStack& media = at.media.at[i];
+      const Real n1 = front[i] ? media.current() : material.ior;
+      const Real n2 = front[i] ? material.ior : media.outer();
+      if (!refract(direction, n, n1 / n2, refracted_dir[i])) {
+        kr[i] += kt[i];  // total internal reflection
+        kt[i] = 0;
+      } else if (material.fresnel) {
+        const Real fr = schlick(dot(-direction, n), n1, n2);
+        kr[i] += kt[i] * fr;
+        kt[i] *= 1 - fr;
+      }
+      if (kt[i] > 0) transmitting |= 1u << i;
+    }
+    if (kr[i] > 0 && kr[i] * at.weight[i] >= min_weight && spend(at.budget[i], counters)) {
+      ++counters.reflection;
+      const Ray ray = spawn_ray(sp, reflect(direction, n), r.time[i]);
+      child.ox[i] = ray.origin.x, child.oy[i] = ray.origin.y, child.oz[i] = ray.origin.z;
+      child.dx[i] = ray.direction.x, child.dy[i] = ray.direction.y, child.dz[i] = ray.direction.z;
+      child.time[i] = ray.time;
+      below.weight[i] = at.weight[i] * kr[i];
+      below.budget[i] = at.budget[i];
+      below.media.at[i] = at.media.at[i];
+      reflecting |= 1u << i;
+    }
+  }
+  UninitializedLanes<Vec3, N> radiance_slots;  // (set in the lanes that take a branch)
+  Vec3* const radiance = radiance_slots.at;
+  if (reflecting != 0) {
+    packet_branch<N>(s, child, reflecting, depth + 1, below, radiance, counters);
+    for (std::uint32_t m = reflecting; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      at.budget[i] = below.budget[i];  // (what the reflected subtree left)
+      color[i] += radiance[i] * kr[i];
+    }
+  }
+  // The refracted rays (trace()'s start_refracted), after the reflected subtrees.
+  std::uint32_t refracting = 0;
+  for (std::uint32_t m = transmitting; m != 0; m &= m - 1) {
+    const int i = wide_bvh_detail::lowest_bit(m);
+    if (!(kt[i] * at.weight[i] >= min_weight && spend(at.budget[i], counters))) continue;
+    ++counters.refraction;
+    const SurfacePoint& sp = step.slots[i].first.sp;
+    const Ray ray = spawn_ray(sp, refracted_dir[i], r.time[i]);
+    child.ox[i] = ray.origin.x, child.oy[i] = ray.origin.y, child.oz[i] = ray.origin.z;
+    child.dx[i] = ray.direction.x, child.dy[i] = ray.direction.y, child.dz[i] = ray.direction.z;
+    child.time[i] = ray.time;
+    below.weight[i] = at.weight[i] * kt[i];
+    below.budget[i] = at.budget[i];
+    below.media.at[i] = at.media.at[i];
+    if (front[i])
+      below.media.at[i].enter(s.materials[sp.material].ior);
+    else
+      below.media.at[i].leave();
+    refracting |= 1u << i;
+  }
+  if (refracting != 0) {
+    packet_branch<N>(s, child, refracting, depth + 1, below, radiance, counters);
+    for (std::uint32_t m = refracting; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      at.budget[i] = below.budget[i];
+      const Material& material = s.materials[step.slots[i].first.sp.material];
+      const Vec3 tint = material.filter ? material.color : Vec3(1);
+      color[i] += radiance[i] * tint * kt[i];
+    }
   }
 }
 
@@ -425,9 +537,25 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   }
   for (std::uint32_t m = local & ~valid; m != 0; m &= m - 1) ++counters.invalid_samples;
   std::uint32_t rest = active & ~local;  // the lanes still to finish
-  if (wide_bvh_detail::popcount(step.mirror) >= kMirrorPacketLanes) {
-    packet_mirror_step<N>(s, r, step, key, index, L, counters);
-    rest &= ~step.mirror;
+  if (wide_bvh_detail::popcount(step.spawn) >= kPacketTreeLanes) {
+    // The lanes on mirrors and glass on down their ray trees together, from depth 1.
+    SampleStream rng[N];
+    TreeLanes<N> at;
+    at.rng = rng;
+    Vec3 radiance[N];
+    for (std::uint32_t m = step.spawn; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      rng[i] = SampleStream{key[i], index[i]};
+      at.weight[i] = 1;
+      at.budget[i] = s.settings.ray_budget;
+      at.media.at[i] = MediumStack(s.settings.medium_ior);
+    }
+    packet_tree<N>(s, r, step, step.spawn, 1, at, radiance, counters);
+    for (std::uint32_t m = step.spawn; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      L[i] = guard_sample(radiance[i], counters);
+    }
+    rest &= ~step.spawn;
   }
   for (std::uint32_t lanes = rest; lanes != 0; lanes &= lanes - 1) {
     const int i = wide_bvh_detail::lowest_bit(lanes);

@@ -229,12 +229,15 @@ STRAHL_HOST_DEVICE inline bool start_refracted(const SceneView& s, TraceFrame& f
 //
 // `first`, where given, is the first step of `ray` already taken by the packet front end (the
 // same hit, surface point and shadow rays): trace() goes on from there. `start`, where given,
-// places `ray` deeper in a camera sample's ray tree (the packet front end's mirror rays, at depth
-// 2 in the scene's medium): its depth, its weight, and the rays already taken from the budget.
+// places `ray` deeper in a camera sample's ray tree (the packet front end's reflected and
+// refracted rays, render/packet_radiance.h): its depth, its weight, the rays left in the budget,
+// the media it travels in; and where to tell how many rays are left when its subtree is done.
 struct TraceStart {
   int depth = 1;
   Real weight = 1;
-  std::uint32_t spent = 0;  // ≤ the scene's ray_budget
+  std::uint32_t spent = 0;              // rays of the scene's ray_budget already taken (≤ it)
+  const MediumStack* media = nullptr;   // null: the scene's medium
+  std::uint32_t* left = nullptr;        // where given: the budget left at the end
 };
 STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng,
                                      const FirstHit* first = nullptr, const TraceStart& start = {}) {
@@ -244,7 +247,8 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
   const Real min_weight = s.settings.min_weight;
   const Real time = ray.time;                // every ray of a camera sample sees the scene at one instant
   std::uint32_t budget = s.settings.ray_budget - start.spent;
-  MediumStack media(s.settings.medium_ior);  // the media of `ray`, restored on the way back up
+  // The media of `ray`, restored on the way back up.
+  MediumStack media = start.media != nullptr ? *start.media : MediumStack(s.settings.medium_ior);
   Real weight = start.weight;                // `ray`'s share of the pixel
 
   for (;;) {
@@ -315,7 +319,10 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
     }
     // Return `color` to the hits waiting for it, until one starts its refracted ray or none is left.
     for (;;) {
-      if (top == 0) return color;
+      if (top == 0) {
+        if (start.left != nullptr) *start.left = budget;
+        return color;
+      }
       TraceFrame& f = stack[top - 1].frame;
       if (!f.refracting) {
         f.color += color * f.kr;
