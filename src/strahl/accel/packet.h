@@ -41,6 +41,10 @@ struct PacketRays {
     }
   }
   STRAHL_HOST_DEVICE Ray ray(int i) const { return Ray{Vec3(ox[i], oy[i], oz[i]), Vec3(dx[i], dy[i], dz[i]), time[i]}; }
+  STRAHL_HOST_DEVICE void set(int i, const Ray& ray) {
+    ox[i] = ray.origin.x, oy[i] = ray.origin.y, oz[i] = ray.origin.z;
+    dx[i] = ray.direction.x, dy[i] = ray.direction.y, dz[i] = ray.direction.z, time[i] = ray.time;
+  }
 };
 
 // A bound on the active lanes' rays, for skipping a sphere that none of them can meet before

@@ -133,7 +133,7 @@ STRAHL_HOST_DEVICE inline bool packet_spawner(const Material& m) {
   return (m.reflectivity > 0 || m.transparency > 0) && !(m.roughness > 0);
 }
 
-// trace()'s first step for the active lanes of r (camera rays, or the packet's mirror rays), the
+// trace()'s first step for the active lanes of r (camera rays, or a branch of packet_tree), the
 // lanes side by side: the nearest hits, then, light by light, the shadow rays from those hits
 // (one packet per light); the lanes whose material spawns no ray are shaded too, when every
 // light is a point or a directional one (add_light_lanes). The same hits, shadow rays and
@@ -423,28 +423,11 @@ STRAHL_HOST_DEVICE void packet_tree(const SceneView& s, const PacketRays<N>& r, 
     const Vec3 direction(r.dx[i], r.dy[i], r.dz[i]);
     front[i] = dot(direction, sp.geometric_normal) < 0;
     const Vec3 n = front[i] ? sp.normal : -sp.normal;
-    kr[i] = material.reflectivity;
-    kt[i] = material.transparency;
-    if (kt[i] > 0) {
-      const MediumStack& media = at.media.at[i];
-      const Real n1 = front[i] ? media.current() : material.ior;
-      const Real n2 = front[i] ? material.ior : media.outer();
-      if (!refract(direction, n, n1 / n2, refracted_dir[i])) {
-        kr[i] += kt[i];  // total internal reflection
-        kt[i] = 0;
-      } else if (material.fresnel) {
-        const Real fr = schlick(dot(-direction, n), n1, n2);
-        kr[i] += kt[i] * fr;
-        kt[i] *= 1 - fr;
-      }
-      if (kt[i] > 0) transmitting |= 1u << i;
-    }
+    split_at(material, direction, n, front[i], at.media.at[i], kr[i], kt[i], refracted_dir[i]);
+    if (kt[i] > 0) transmitting |= 1u << i;
     if (kr[i] > 0 && kr[i] * at.weight[i] >= min_weight && spend(at.budget[i], counters)) {
       ++counters.reflection;
-      const Ray ray = spawn_ray(sp, reflect(direction, n), r.time[i]);
-      child.ox[i] = ray.origin.x, child.oy[i] = ray.origin.y, child.oz[i] = ray.origin.z;
-      child.dx[i] = ray.direction.x, child.dy[i] = ray.direction.y, child.dz[i] = ray.direction.z;
-      child.time[i] = ray.time;
+      child.set(i, spawn_ray(sp, reflect(direction, n), r.time[i]));
       below.weight[i] = at.weight[i] * kr[i];
       below.budget[i] = at.budget[i];
       below.media.at[i] = at.media.at[i];
@@ -468,10 +451,7 @@ STRAHL_HOST_DEVICE void packet_tree(const SceneView& s, const PacketRays<N>& r, 
     if (!(kt[i] * at.weight[i] >= min_weight && spend(at.budget[i], counters))) continue;
     ++counters.refraction;
     const SurfacePoint& sp = step.slots[i].first.sp;
-    const Ray ray = spawn_ray(sp, refracted_dir[i], r.time[i]);
-    child.ox[i] = ray.origin.x, child.oy[i] = ray.origin.y, child.oz[i] = ray.origin.z;
-    child.dx[i] = ray.direction.x, child.dy[i] = ray.direction.y, child.dz[i] = ray.direction.z;
-    child.time[i] = ray.time;
+    child.set(i, spawn_ray(sp, refracted_dir[i], r.time[i]));
     below.weight[i] = at.weight[i] * kt[i];
     below.budget[i] = at.budget[i];
     below.media.at[i] = at.media.at[i];

@@ -154,6 +154,28 @@ STRAHL_HOST_DEVICE inline int nearest_emitter(const SceneView& s, const Ray& ray
   return nearest;
 }
 
+// How a hit on material m (unit normal n towards the arriving ray, `front` where the ray arrives
+// at the outside; the ray in `media`) divides the light it passes on: k_r (kr) for the reflected
+// ray and T (kt) for the refracted one, which leaves in `refracted_dir` where kt > 0. Total
+// internal reflection moves T into k_r; with Fresnel a Schlick fraction of T moves to k_r.
+STRAHL_HOST_DEVICE inline void split_at(const Material& m, const Vec3& direction, const Vec3& n, bool front,
+                                        const MediumStack& media, Real& kr, Real& kt, Vec3& refracted_dir) {
+  kr = m.reflectivity;
+  kt = m.transparency;
+  if (!(kt > 0)) return;
+  // Entering: from the current medium into the object; leaving: from the object to the outer one.
+  const Real n1 = front ? media.current() : m.ior;
+  const Real n2 = front ? m.ior : media.outer();
+  if (!refract(direction, n, n1 / n2, refracted_dir)) {
+    kr += kt;  // total internal reflection: all transmitted light is reflected
+    kt = 0;
+  } else if (m.fresnel) {
+    const Real f = schlick(dot(-direction, n), n1, n2);
+    kr += kt * f;
+    kt *= 1 - f;
+  }
+}
+
 // The deepest ray tree trace() follows: scenes allow max_depth up to this (camera rays are depth 1).
 inline constexpr int kMaxTraceDepth = 64;
 
@@ -271,22 +293,9 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
       const Vec3 view = -ray.direction;
       color = local_illumination(s, sp, n, view, counters, rng, known != nullptr ? known->lights : nullptr);
       if (top + start.depth < max_depth) {
-        Real kr = m.reflectivity;
-        Real kt = m.transparency;
+        Real kr, kt;
         Vec3 refracted_dir;
-        if (kt > 0) {
-          // Entering: from the current medium into the object; leaving: from the object to the outer one.
-          const Real n1 = front ? media.current() : m.ior;
-          const Real n2 = front ? m.ior : media.outer();
-          if (!refract(ray.direction, n, n1 / n2, refracted_dir)) {
-            kr += kt;  // total internal reflection: all transmitted light is reflected
-            kt = 0;
-          } else if (m.fresnel) {
-            const Real f = schlick(dot(view, n), n1, n2);
-            kr += kt * f;
-            kt *= 1 - f;
-          }
-        }
+        split_at(m, ray.direction, n, front, media, kr, kt, refracted_dir);
         const bool reflects = kr > 0 && kr * weight >= min_weight && spend(budget, counters);
         if (reflects || kt > 0) {
           TraceFrame& f = stack[top].frame;
