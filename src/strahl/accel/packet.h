@@ -72,8 +72,14 @@ STRAHL_HOST_DEVICE inline PacketCone packet_cone(const PacketRays<N>& r, std::ui
   const int first = wide_bvh_detail::lowest_bit(active);
   const Real ax = r.ox[first], ay = r.oy[first], az = r.oz[first];
   const Real fx = r.dx[first], fy = r.dy[first], fz = r.dz[first];
-  const Real inv = Real(1) / std::sqrt(fx * fx + fy * fy + fz * fz);
-  const Real ux = fx * inv, uy = fy * inv, uz = fz * inv;
+  // The axis: lane `first`'s direction, normalised — in a unit packet as it is (unit up to
+  // rounding, as every lane's is taken to be below; the margins cover some 1e-16 of it), which
+  // spares a square root and a division on the path to every sphere test.
+  Real ux = fx, uy = fy, uz = fz;
+  if (!r.unit) {
+    const Real inv = Real(1) / std::sqrt(fx * fx + fy * fy + fz * fz);
+    ux = fx * inv, uy = fy * inv, uz = fz * inv;
+  }
   // Per lane: the cosine of its angle to the axis and its origin's squared distance from the
   // apex; an inactive lane (garbage) gets 1 and 0, a NaN or infinite one marks the cone unusable.
   Real cos_lane[N], spread2[N];
