@@ -345,6 +345,12 @@ struct TreeLanes {
   std::uint32_t budget[N];
   UninitializedLanes<MediumStack, N> media;
   SampleStream* rng;  // the lanes' streams (the camera samples')
+
+  // Where lane i's ray, at depth `depth`, goes on alone in trace(): its weight, budget and media,
+  // and the budget it leaves written back here.
+  STRAHL_HOST_DEVICE TraceStart start(const SceneView& s, int i, int depth) {
+    return TraceStart{depth, weight[i], s.settings.ray_budget - budget[i], &media.at[i], &budget[i]};
+  }
 };
 
 template <int N>
@@ -361,8 +367,7 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void packet_branch(const SceneView& s, Packet
   if (wide_bvh_detail::popcount(lanes) < kPacketTreeLanes || depth > kPacketTreeDepth) {
     for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
-      const TraceStart start{depth, at.weight[i], s.settings.ray_budget - at.budget[i], &at.media.at[i], &at.budget[i]};
-      color[i] = trace(s, r.ray(i), counters, at.rng[i], nullptr, start);
+      color[i] = trace(s, r.ray(i), counters, at.rng[i], nullptr, at.start(s, i, depth));
     }
     return;
   }
@@ -411,8 +416,7 @@ STRAHL_HOST_DEVICE void packet_tree(const SceneView& s, const PacketRays<N>& r, 
       continue;
     }
     if (!((step.spawn >> i) & 1u)) {
-      const TraceStart start{depth, at.weight[i], s.settings.ray_budget - at.budget[i], &at.media.at[i], &at.budget[i]};
-      color[i] = trace(s, r.ray(i), counters, at.rng[i], &f, start);
+      color[i] = trace(s, r.ray(i), counters, at.rng[i], &f, at.start(s, i, depth));
       continue;
     }
     // trace()'s step at a hit that spawns rays, lane by lane.
@@ -466,9 +470,7 @@ STRAHL_HOST_DEVICE void packet_tree(const SceneView& s, const PacketRays<N>& r, 
     for (std::uint32_t m = refracting; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       at.budget[i] = below.budget[i];
-      const Material& material = s.materials[step.slots[i].first.sp.material];
-      const Vec3 tint = material.filter ? material.color : Vec3(1);
-      color[i] += radiance[i] * tint * kt[i];
+      color[i] += radiance[i] * transmission_tint(s.materials[step.slots[i].first.sp.material]) * kt[i];
     }
   }
 }

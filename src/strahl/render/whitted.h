@@ -176,6 +176,10 @@ STRAHL_HOST_DEVICE inline void split_at(const Material& m, const Vec3& direction
   }
 }
 
+// The tint of the light a refracted ray brings back through material m: its colour where it
+// filters, else none.
+STRAHL_HOST_DEVICE inline Vec3 transmission_tint(const Material& m) { return m.filter ? m.color : Vec3(1); }
+
 // The deepest ray tree trace() follows: scenes allow max_depth up to this (camera rays are depth 1).
 inline constexpr int kMaxTraceDepth = 64;
 
@@ -337,9 +341,7 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
         f.color += color * f.kr;
         if (start_refracted(s, f, time, ray, weight, media, budget, counters, rng)) break;
       } else {
-        const Material& m = s.materials[f.material];
-        const Vec3 tint = m.filter ? m.color : Vec3(1);
-        f.color += color * tint * f.kt;
+        f.color += color * transmission_tint(s.materials[f.material]) * f.kt;
         media.undo(f.media);
       }
       color = f.color;
