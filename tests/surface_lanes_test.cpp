@@ -1,8 +1,9 @@
 // surface_lanes() (render/surface_lanes.h) against surface_at(), lane for lane: every field of the
 // surface point bit for bit (point, normals, texture coordinate, material, time, offset) on random
 // rays through scenes of spheres and planes at scales 1e-3 … 1e4 and 1e5 from the origin, with
-// lanes that miss, inactive lanes and packets whose lanes all hit one shape (fetched once); a lane
-// that hit another kind of shape makes it decline.
+// lanes that miss, inactive lanes and packets whose lanes all hit one shape (fetched once); the
+// hits in lane form (HitLanes) give each lane's Hit back, and a lane that hit another kind of
+// shape makes the lane form decline.
 
 #include <gtest/gtest.h>
 
@@ -55,9 +56,18 @@ void check(Real scale, const Vec3& shift, std::uint64_t seed, std::size_t& spher
     uniform += same && hits[0].found();
     const std::uint32_t active = packet % 3 == 0 ? std::uint32_t(rng.uniform(1, double(1u << N))) : (1u << N) - 1;
     const PacketRays<N> r(rays);
+    HitLanes<N> hit_lanes;
+    ASSERT_TRUE(hit_lanes.set(active, hits));
+    for (int i = 0; i < N; ++i) {  // the lane form gives each active lane's Hit back
+      const Hit h = hit_lanes.hit(i);
+      if (!((active >> i) & 1u)) continue;
+      EXPECT_EQ(h.kind, hits[i].kind) << "lane " << i;
+      EXPECT_EQ(h.index, hits[i].index) << "lane " << i;
+      EXPECT_TRUE(same_bits(h.t, hits[i].t)) << "lane " << i;
+    }
     SurfaceLanes<N> lanes;
     std::uint32_t lit = ~0u;
-    ASSERT_TRUE(surface_lanes<N>(view, active, r, hits, lanes, lit));
+    surface_lanes<N>(view, active, r, hit_lanes, lanes, lit);
     for (int i = 0; i < N; ++i) {
       const bool on = (active >> i) & 1u;
       ASSERT_EQ(((lit >> i) & 1u) != 0, on && hits[i].found()) << "lane " << i;
@@ -75,12 +85,10 @@ void check(Real scale, const Vec3& shift, std::uint64_t seed, std::size_t& spher
       EXPECT_TRUE(same_bits(got.time, want.time)) << "lane " << i;
       ASSERT_TRUE(same_bits(got.offset, want.offset)) << "lane " << i << ": " << got.offset << " vs " << want.offset;
     }
-    // Another kind of shape in an active lane: surface_lanes declines.
+    // Another kind of shape in an active lane: the lane form declines (an inactive lane's is ignored).
     const int j = packet % N;
-    if ((active >> j) & 1u) {
-      hits[j].kind = ShapeKind::Triangle;
-      EXPECT_FALSE(surface_lanes<N>(view, active, r, hits, lanes, lit));
-    }
+    hits[j].kind = ShapeKind::Triangle;
+    EXPECT_EQ(hit_lanes.set(active, hits), ((active >> j) & 1u) == 0);
   }
 }
 

@@ -8,6 +8,7 @@
 // an edge shared by two triangles at exactly the same t may report the other triangle.
 
 #include "strahl/accel/packet.h"
+#include "strahl/render/hit_lanes.h"
 #include "strahl/render/intersect_scene.h"
 
 namespace strahl {
@@ -26,10 +27,22 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void intersect_plane_lanes(const kernel::
   }
 }
 
-// closest_hit(s, r.ray(i), 0, kInfinity) for each active lane, into hits[i].
+// A packet's nearest hits (closest_hit_packet): in lane form where the packet loops over planes
+// and one leaf of spheres found them, else a Hit per lane.
+template <int N>
+struct PacketHits {
+  bool in_lanes = false;  // whether the hits are in `lanes` (every one a sphere, a plane or nothing)
+  HitLanes<N> lanes;
+  UninitializedLanes<Hit, N> hit;  // the lanes' hits when not in `lanes`
+
+  STRAHL_HOST_DEVICE Hit at(int i) const { return in_lanes ? lanes.hit(i) : hit.at[i]; }
+};
+
+// closest_hit(s, r.ray(i), 0, kInfinity) for each active lane, into out (every lane is set; the
+// inactive lanes' hits are those of their rays).
 template <int N>
 STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
-                                                  Hit* hits) {
+                                                  PacketHits<N>& out) {
   // The planes, the lanes side by side (the plane's index kept as a Real beside t, so that the
   // lanes' update is one width; −1: none).
   Real t_min[N], t_max[N], t[N], plane[N];
@@ -44,19 +57,19 @@ STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint3
   }
   if (is_sphere_leaf(s.accel) && s.solid_count == s.bounded_solid_count &&
       s.moving_sphere_count + s.moving_triangle_count == 0 && s.instance_count == 0) {
-    // Planes and one leaf of spheres (the lecture's scenes): the spheres side by side too, and
-    // each lane's Hit written once.
-    Real sphere[N];
-    sphere_leaf_nearest_lanes<N>(s.accel.prims, active, r, t_min, t_max, sphere);
+    // Planes and one leaf of spheres (the lecture's scenes): the spheres side by side too, the
+    // hits left in lane form (a plane behind the sphere hit is no hit of the plane).
+    HitLanes<N>& h = out.lanes;
+    sphere_leaf_nearest_lanes<N>(s.accel.prims, active, r, t_min, t_max, h.sphere);
     for (int i = 0; i < N; ++i) {
-      Hit hit;
-      hit.t = t_max[i];  // (kInfinity where nothing was hit)
-      hit.kind = sphere[i] >= 0 ? ShapeKind::Sphere : plane[i] >= 0 ? ShapeKind::Plane : ShapeKind::None;
-      hit.index = sphere[i] >= 0 ? std::uint32_t(sphere[i]) : plane[i] >= 0 ? std::uint32_t(plane[i]) : 0;
-      hits[i] = hit;
+      h.t[i] = t_max[i];  // (kInfinity where nothing was hit)
+      h.plane[i] = h.sphere[i] >= 0 ? Real(-1) : plane[i];
     }
+    out.in_lanes = true;
     return;
   }
+  out.in_lanes = false;
+  Hit* const hits = out.hit.at;
   UninitializedLanes<Ray, N> ray_slots;  // the rays one by one, for the queries below
   Ray* const rays = ray_slots.at;
   for (int i = 0; i < N; ++i) rays[i] = r.ray(i);

@@ -25,6 +25,39 @@ namespace strahl {
 // Whether the packet front end handles the scene's lights (FirstHit::lights has room for each).
 STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) { return s.light_count <= kMaxPacketLights; }
 
+// specular_power(x[i], e) for a whole exponent e < 65536, the lanes side by side, into power[]:
+// the same multiplications in the same order. The lanes are held in vectors of four, so that the
+// compiler keeps them in vector registers through the loop over e's bits (as arrays of Reals it
+// takes them apart into scalars there).
+template <int N>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void whole_power_lanes(const Real* __restrict x_in, unsigned e,
+                                                              Real* __restrict power) {
+#if defined(__GNUC__) && !defined(__CUDA_ARCH__)
+  static_assert(N % 4 == 0);
+  using Real4 = Real __attribute__((vector_size(4 * sizeof(Real))));
+  Real4 p[N / 4], x[N / 4];
+  for (int c = 0; c < N / 4; ++c) {
+    p[c] = Real4{1, 1, 1, 1};
+    x[c] = Real4{x_in[4 * c], x_in[4 * c + 1], x_in[4 * c + 2], x_in[4 * c + 3]};
+  }
+  for (unsigned n = e; n != 0; n >>= 1) {
+    if (n & 1)
+      for (int c = 0; c < N / 4; ++c) p[c] *= x[c];
+    for (int c = 0; c < N / 4; ++c) x[c] *= x[c];
+  }
+  for (int c = 0; c < N / 4; ++c)
+    for (int k = 0; k < 4; ++k) power[4 * c + k] = p[c][k];
+#else
+  Real x[N];
+  for (int i = 0; i < N; ++i) power[i] = 1, x[i] = x_in[i];
+  for (unsigned n = e; n != 0; n >>= 1) {
+    if (n & 1)
+      for (int i = 0; i < N; ++i) power[i] *= x[i];
+    for (int i = 0; i < N; ++i) x[i] *= x[i];
+  }
+#endif
+}
+
 // shade_from()'s term of one point or directional light of intensity `radiance`, added to r in
 // the lanes of `lanes` — the same operations on the same values, lane by lane: Lambert,
 // Blinn-Phong where dot(n, h) > 0 and k_s is not black, times the intensity and the shadow ray's
@@ -49,13 +82,7 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
   int differ = 0;
   for (int i = 0; i < N; ++i) differ |= int(exponent[i] != e);
   if (differ == 0 && e >= 0 && e < 65536 && e == Real(static_cast<unsigned>(e))) {
-    Real x[N];
-    for (int i = 0; i < N; ++i) power[i] = 1, x[i] = n_dot_h[i];
-    for (unsigned n = static_cast<unsigned>(e); n != 0; n >>= 1) {
-      if (n & 1)
-        for (int i = 0; i < N; ++i) power[i] *= x[i];
-      for (int i = 0; i < N; ++i) x[i] *= x[i];
-    }
+    whole_power_lanes<N>(n_dot_h, static_cast<unsigned>(e), power);
   } else {
     for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
@@ -141,8 +168,7 @@ STRAHL_HOST_DEVICE inline bool packet_spawner(const Material& m) {
 template <int N>
 STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
                                            PacketStep<N>& out, RayCounters& counters) {
-  UninitializedLanes<Hit, N> hit_slots;  // (closest_hit_packet sets every lane)
-  Hit* const hits = hit_slots.at;
+  PacketHits<N> hits;
   closest_hit_packet<N>(s, active, r, hits);
 
   // trace()'s first step up to the shadow rays: emitter, surface point, normal — side by side
@@ -160,8 +186,9 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   for (int i = 0; i < N; ++i) vx[i] = -r.dx[i], vy[i] = -r.dy[i], vz[i] = -r.dz[i];  // (the rays' directions)
   std::uint32_t& lit = out.lit;  // lanes that hit a surface (and no emitter): they shade
   lit = 0;
-  const bool side_by_side = s.area_light_count == 0 && surface_lanes<N>(s, active, r, hits, surface, lit);
+  const bool side_by_side = s.area_light_count == 0 && (hits.in_lanes || hits.lanes.set(active, hits.hit.at));
   if (side_by_side) {
+    surface_lanes<N>(s, active, r, hits.lanes, surface, lit);
     for (int i = 0; i < N; ++i) {
       const Real x = gx[i], y = gy[i], z = gz[i];
       const bool front = r.dx[i] * x + r.dy[i] * y + r.dz[i] * z < 0;  // dot(direction, geometric normal)
@@ -173,7 +200,7 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
       const int i = wide_bvh_detail::lowest_bit(m);
       FirstHit& f = slots[i].first;
       const Ray ray = r.ray(i);
-      f.hit = hits[i];
+      f.hit = hits.at(i);
       f.emitter = s.area_light_count > 0 ? nearest_emitter(s, ray, f.hit.t) : -1;
       if (f.emitter >= 0 || !f.hit.found()) continue;
       surface_at(s, ray, f.hit, f.sp);
@@ -264,7 +291,7 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     for (std::uint32_t m = active & ~local; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       FirstHit& f = slots[i].first;
-      f.hit = hits[i];
+      f.hit = hits.at(i);
       f.emitter = -1;
       if ((lit >> i) & 1u) surface.get(i, r.time[i], f.sp);
     }

@@ -5,6 +5,7 @@
 // Only the shape's parameters are fetched lane by lane; the arithmetic runs across the lanes.
 
 #include "strahl/accel/packet.h"
+#include "strahl/render/hit_lanes.h"
 #include "strahl/render/surface_point.h"
 
 namespace strahl {
@@ -36,14 +37,14 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Real max_abs_of(Real x, Real y, Real z) {
 
 // What surface_at() reads of the shape hit: a sphere's centre c and 1/radius, or a plane's normal
 // and frame (sphere = 1 or 0 selects between them); the magnitude passed to ray_offset; the
-// material. False for other kinds of shape; all zero for no hit.
+// material. All zero for no hit.
 struct ShapeParams {
   Real sphere = 0, cx = 0, cy = 0, cz = 0, inv_r = 0, nx = 0, ny = 0, nz = 0, tx = 0, ty = 0, tz = 0, bx = 0, by = 0,
        bz = 0, magnitude = 0;
   std::uint32_t material = 0;
 };
-STRAHL_HOST_DEVICE inline bool shape_params(const SceneView& s, const Hit& hit, ShapeParams& q) {
-  q = ShapeParams{};
+STRAHL_HOST_DEVICE inline ShapeParams shape_params(const SceneView& s, const Hit& hit) {
+  ShapeParams q;
   if (hit.kind == ShapeKind::Sphere) {
     const kernel::Sphere& k = s.spheres[hit.index];
     q.sphere = 1;
@@ -51,60 +52,43 @@ STRAHL_HOST_DEVICE inline bool shape_params(const SceneView& s, const Hit& hit, 
     q.inv_r = Real(1) / k.radius;  // (normal_at: (p − c) / R, vec3.h's division)
     q.magnitude = max_abs_component(k.center) + k.radius;
     q.material = k.material;
-    return true;
-  }
-  if (hit.kind == ShapeKind::Plane) {
+  } else if (hit.kind == ShapeKind::Plane) {
     const kernel::Plane& k = s.planes[hit.index];
     q.nx = k.normal.x, q.ny = k.normal.y, q.nz = k.normal.z;
     q.tx = k.tangent.x, q.ty = k.tangent.y, q.tz = k.tangent.z;
     q.bx = k.bitangent.x, q.by = k.bitangent.y, q.bz = k.bitangent.z;
     q.magnitude = std::fabs(k.distance);
     q.material = k.material;
-    return true;
   }
-  return hit.kind == ShapeKind::None;
+  return q;
 }
 
-// The surface points of the active lanes' hits into `out`, when every active lane hit a sphere,
-// a plane or nothing: true, and `lit` the lanes that hit (inactive and missing lanes' values are
-// zeros). False, with `out` and `lit` unspecified, when some lane hit another kind of shape.
+// The surface points of the active lanes' hits into `out`, and `lit` the lanes that hit (inactive
+// and missing lanes' values are zeros).
 template <int N>
-STRAHL_HOST_DEVICE inline bool surface_lanes(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
-                                             const Hit* hits, SurfaceLanes<N>& out, std::uint32_t& lit) {
+STRAHL_HOST_DEVICE inline void surface_lanes(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
+                                             const HitLanes<N>& hits, SurfaceLanes<N>& out, std::uint32_t& lit) {
   // The shapes' parameters per lane (ShapeParams, side by side) and the hits' t (0 where none).
   Real t[N], sphere[N], cx[N], cy[N], cz[N], inv_r[N], nx[N], ny[N], nz[N], tx[N], ty[N], tz[N], bx[N], by[N],
       bz[N], magnitude[N];
-  lit = 0;
-  for (int i = 0; i < N; ++i) t[i] = 0;
+  lit = hits.found() & active;
   const int first = active != 0 ? wide_bvh_detail::lowest_bit(active) : 0;
-  int same = 1;  // do all active lanes hit the same shape (as a pixel's samples mostly do)?
-  for (std::uint32_t m = active; m != 0; m &= m - 1) {
-    const int i = wide_bvh_detail::lowest_bit(m);
-    same &= int(hits[i].kind == hits[first].kind) & int(hits[i].index == hits[first].index);
-  }
+  // Do all active lanes hit the same shape (as a pixel's samples mostly do)?
+  std::uint32_t differ = 0;
+  for (int i = 0; i < N; ++i)
+    differ |= std::uint32_t((hits.sphere[i] != hits.sphere[first]) | (hits.plane[i] != hits.plane[first])) << i;
   const auto put = [&](int i, const ShapeParams& q) {
     sphere[i] = q.sphere, cx[i] = q.cx, cy[i] = q.cy, cz[i] = q.cz, inv_r[i] = q.inv_r;
     nx[i] = q.nx, ny[i] = q.ny, nz[i] = q.nz, tx[i] = q.tx, ty[i] = q.ty, tz[i] = q.tz;
     bx[i] = q.bx, by[i] = q.by, bz[i] = q.bz, magnitude[i] = q.magnitude, out.material[i] = q.material;
   };
-  ShapeParams q;
-  if (same != 0) {  // its parameters fetched once, in every lane
-    if (!shape_params(s, hits[first], q)) return false;
+  if ((differ & active) == 0) {  // its parameters fetched once, in every lane
+    const ShapeParams q = shape_params(s, hits.hit(first));
     for (int i = 0; i < N; ++i) put(i, q);
-    if (hits[first].kind != ShapeKind::None) lit = active;
   } else {
-    for (int i = 0; i < N; ++i) {
-      const bool on = (active >> i) & 1u;
-      if (on && !shape_params(s, hits[i], q)) return false;
-      if (!on) q = ShapeParams{};
-      put(i, q);
-      if (on && hits[i].kind != ShapeKind::None) lit |= 1u << i;
-    }
+    for (int i = 0; i < N; ++i) put(i, ((active >> i) & 1u) ? shape_params(s, hits.hit(i)) : ShapeParams{});
   }
-  for (std::uint32_t m = lit; m != 0; m &= m - 1) {
-    const int i = wide_bvh_detail::lowest_bit(m);
-    t[i] = hits[i].t;
-  }
+  for (int i = 0; i < N; ++i) t[i] = ((lit >> i) & 1u) ? hits.t[i] : Real(0);
   for (int i = 0; i < N; ++i) {
     // ray.at(t), normal_at or the plane's normal, the texture coordinate, ray_offset.
     const Real px = r.ox[i] + r.dx[i] * t[i], py = r.oy[i] + r.dy[i] * t[i], pz = r.oz[i] + r.dz[i] * t[i];
@@ -126,7 +110,6 @@ STRAHL_HOST_DEVICE inline bool surface_lanes(const SceneView& s, std::uint32_t a
     out.ux[i] = out.uy[i] = out.uz[i] = 0;
     out.material[i] = 0;
   }
-  return true;
 }
 
 }  // namespace strahl
