@@ -124,7 +124,8 @@ STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint3
 // other lanes get 0 or 1 (every lane is written).
 template <int N>
 STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
-                                                    const Real* distance, Real* tx, Real* ty, Real* tz) {
+                                                    const Real* distance, Real* __restrict tx, Real* __restrict ty,
+                                                    Real* __restrict tz) {
   const bool moving = s.moving_sphere_count + s.moving_triangle_count > 0;
   Real t_min[N], t[N];
   for (int i = 0; i < N; ++i) t_min[i] = 0;

@@ -167,7 +167,7 @@ STRAHL_HOST_DEVICE inline bool packet_spawner(const Material& m) {
 // arithmetic as trace()'s, lane by lane; no random numbers are drawn.
 template <int N>
 STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
-                                           PacketStep<N>& out, RayCounters& counters) {
+                                           PacketStep<N>& __restrict out, RayCounters& counters) {
   PacketHits<N> hits;
   closest_hit_packet<N>(s, active, r, hits);
 
@@ -219,6 +219,7 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   for (std::uint32_t m = ~lit & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     px[i] = py[i] = pz[i] = nx[i] = ny[i] = nz[i] = gx[i] = gy[i] = gz[i] = offset[i] = 0;
+    surface.material[i] = 0;
   }
 
   // Lanes whose material spawns no ray get their colour here, the local illumination alone
@@ -235,9 +236,9 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   // computed once and set in every lit lane side by side. Else lane by lane, the terms of the last
   // material without a checker kept for the next lane of the same material.
   const int first_lit = lit != 0 ? wide_bvh_detail::lowest_bit(lit) : 0;
-  int one_material = int(lit != 0 && s.area_light_count == 0);
-  for (std::uint32_t m = lit; m != 0; m &= m - 1)
-    one_material &= int(surface.material[wide_bvh_detail::lowest_bit(m)] == surface.material[first_lit]);
+  std::uint32_t other_material = 0;  // lanes on another material than the first lit lane's
+  for (int i = 0; i < N; ++i) other_material |= std::uint32_t(surface.material[i] != surface.material[first_lit]) << i;
+  int one_material = int(lit != 0 && s.area_light_count == 0 && (other_material & lit) == 0);
   bool one_spawner = false;
   if (one_material != 0) {
     const Material& material = s.materials[surface.material[first_lit]];
@@ -325,10 +326,8 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
       ox[i] = px[i] + gx[i] * o, oy[i] = py[i] + gy[i] * o, oz[i] = pz[i] + gz[i] * o;
     }
     std::uint32_t cast = 0;  // shade_from() casts no ray where dot(n, to_light) <= 0
-    for (std::uint32_t m = lit; m != 0; m &= m - 1) {
-      const int i = wide_bvh_detail::lowest_bit(m);
-      if (!(n_dot_l[i] <= 0)) cast |= 1u << i;
-    }
+    for (int i = 0; i < N; ++i) cast |= std::uint32_t(!(n_dot_l[i] <= 0)) << i;
+    cast &= lit;
     Real tx[N], ty[N], tz[N];
     for (std::uint32_t m = lit & ~local; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);

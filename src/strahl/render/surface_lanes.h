@@ -67,7 +67,8 @@ STRAHL_HOST_DEVICE inline ShapeParams shape_params(const SceneView& s, const Hit
 // and missing lanes' values are zeros).
 template <int N>
 STRAHL_HOST_DEVICE inline void surface_lanes(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
-                                             const HitLanes<N>& hits, SurfaceLanes<N>& out, std::uint32_t& lit) {
+                                             const HitLanes<N>& hits, SurfaceLanes<N>& __restrict out,
+                                             std::uint32_t& lit) {
   // The shapes' parameters per lane (ShapeParams, side by side) and the hits' t (0 where none).
   Real t[N], sphere[N], cx[N], cy[N], cz[N], inv_r[N], nx[N], ny[N], nz[N], tx[N], ty[N], tz[N], bx[N], by[N],
       bz[N], magnitude[N];
@@ -88,7 +89,7 @@ STRAHL_HOST_DEVICE inline void surface_lanes(const SceneView& s, std::uint32_t a
   } else {
     for (int i = 0; i < N; ++i) put(i, ((active >> i) & 1u) ? shape_params(s, hits.hit(i)) : ShapeParams{});
   }
-  for (int i = 0; i < N; ++i) t[i] = ((lit >> i) & 1u) ? hits.t[i] : Real(0);
+  for (int i = 0; i < N; ++i) t[i] = hits.t[i] < kInfinity ? hits.t[i] : Real(0);  // (lanes not lit: zeros below)
   for (int i = 0; i < N; ++i) {
     // ray.at(t), normal_at or the plane's normal, the texture coordinate, ray_offset.
     const Real px = r.ox[i] + r.dx[i] * t[i], py = r.oy[i] + r.dy[i] * t[i], pz = r.oz[i] + r.dz[i] * t[i];
