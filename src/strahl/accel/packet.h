@@ -97,22 +97,29 @@ STRAHL_HOST_DEVICE inline PacketCone packet_cone(const PacketRays<N>& r, std::ui
     unusable |= std::uint32_t(!(cos_lane[i] >= -2) | !(e2 < kInfinity) | !(t_min[i] >= 0)) << i;
   }
   if ((unusable & active) != 0) return k;
+  // The least cosine and the largest spread over the active lanes: four columns of lanes side by
+  // side (an inactive lane counts as 1 and 0), then the four columns.
+  static_assert(N % 4 == 0);
   for (std::uint32_t m = ~active & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
     const int i = wide_bvh_detail::lowest_bit(m);
     cos_lane[i] = 1, spread2[i] = 0;
   }
-  for (int w = N / 2; w > 0; w /= 2)
-    for (int i = 0; i < w; ++i) {
-      cos_lane[i] = cos_lane[i + w] < cos_lane[i] ? cos_lane[i + w] : cos_lane[i];
-      spread2[i] = spread2[i + w] > spread2[i] ? spread2[i + w] : spread2[i];
+  Real least[4], most[4];
+  for (int j = 0; j < 4; ++j) least[j] = cos_lane[j], most[j] = spread2[j];
+  for (int c = 4; c < N; c += 4)
+    for (int j = 0; j < 4; ++j) {
+      least[j] = cos_lane[c + j] < least[j] ? cos_lane[c + j] : least[j];
+      most[j] = spread2[c + j] > most[j] ? spread2[c + j] : most[j];
     }
+  const Real least01 = least[1] < least[0] ? least[1] : least[0], least23 = least[3] < least[2] ? least[3] : least[2];
+  const Real most01 = most[1] > most[0] ? most[1] : most[0], most23 = most[3] > most[2] ? most[3] : most[2];
   // Widened by far more than the rounding of the products and quotients above (a few 1e-16).
-  k.cos_theta = cos_lane[0] - Real(1e-12);
+  k.cos_theta = (least23 < least01 ? least23 : least01) - Real(1e-12);
   if (!(k.cos_theta > Real(1e-3))) return k;
   k.sin_theta = std::sqrt(1 - k.cos_theta * k.cos_theta);
   k.apex = Vec3(ax, ay, az);
   k.axis = Vec3(ux, uy, uz);
-  k.spread = std::sqrt(spread2[0]);
+  k.spread = std::sqrt(most23 > most01 ? most23 : most01);
   k.valid = true;
   return k;
 }
