@@ -131,7 +131,7 @@ STRAHL_HOST_DEVICE inline PacketCone packet_cone(const PacketRays<N>& r, std::ui
 // exceeds θ + β, β the angle the grown sphere of radius R subtends from the apex:
 // cos α < cos(θ + β), with cos α = a·v/|v|, sin β = R/|v| and cos β = √(|v|² − R²)/|v| — here
 // multiplied by |v|, and |v| in the margins bounded by its 1-norm: one square root, no division.
-STRAHL_HOST_DEVICE inline bool cone_may_meet(const PacketCone& k, const kernel::Sphere& sphere) {
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool cone_may_meet(const PacketCone& k, const kernel::Sphere& sphere) {
   if (!k.valid) return true;
   const Vec3 v = sphere.center - k.apex;
   const Real reach = std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z);  // ≥ |v|
@@ -191,15 +191,22 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool intersect_sphere_lanes(const kernel:
   return true;
 }
 
-// kernel::crossings(sphere, ray, t_min, t_max) for every lane, into n[]: 0, 1 or 2. False, with
-// n[] unset, when no lane's ray meets the sphere (all 0).
+// kernel::crossings(sphere, ray, t_min, t_max) for every lane, as two masks: the lanes whose
+// first root lies in (t_min, t_max) in `first`, those whose second root does in `second` (a lane
+// crosses the sphere as many times as it is in them). False, with the masks unset, when no lane's
+// ray meets the sphere (no crossings).
 template <int N>
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE bool sphere_crossings_lanes(const kernel::Sphere& sphere, const PacketRays<N>& r,
-                                                                   const Real* t_min, const Real* t_max, int* n) {
+                                                                   const Real* t_min, const Real* t_max,
+                                                                   std::uint32_t& first, std::uint32_t& second) {
   Real t0[N], t1[N];
   if (!sphere_roots_lanes<N>(sphere, r, t0, t1)) return false;
-  for (int i = 0; i < N; ++i)
-    n[i] = int((t0[i] > t_min[i]) & (t0[i] < t_max[i])) + int((t1[i] > t_min[i]) & (t1[i] < t_max[i]));
+  std::uint32_t in0 = 0, in1 = 0;
+  for (int i = 0; i < N; ++i) {
+    in0 |= std::uint32_t((t0[i] > t_min[i]) & (t0[i] < t_max[i])) << i;
+    in1 |= std::uint32_t((t1[i] > t_min[i]) & (t1[i] < t_max[i])) << i;
+  }
+  first = in0, second = in1;
   return true;
 }
 

@@ -147,27 +147,25 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
     };
     for (std::uint32_t k = 0; k < s.plane_count; ++k) {
       intersect_plane_lanes<N>(s.planes[k], r, t_min, distance, t);
-      for (std::uint32_t m = open; m != 0; m &= m - 1) {
-        const int i = wide_bvh_detail::lowest_bit(m);
-        if (t[i] < kInfinity) cross(i, s.materials[s.planes[k].material], 1);
-      }
+      std::uint32_t crossing = 0;
+      for (int i = 0; i < N; ++i) crossing |= std::uint32_t(t[i] < kInfinity) << i;
+      for (std::uint32_t m = crossing & open; m != 0; m &= m - 1)
+        cross(wide_bvh_detail::lowest_bit(m), s.materials[s.planes[k].material], 1);
     }
     for (std::uint32_t k = s.bounded_solid_count; k < s.solid_count; ++k)
       for (std::uint32_t m = open; m != 0; m &= m - 1) {
         const int i = wide_bvh_detail::lowest_bit(m);
         cross(i, s.materials[s.solids[k].material], kernel::crossings(s.accel.prims.shapes, s.solids[k], r.ray(i), 0, distance[i]));
       }
-    int n[N];
     const PacketCone cone = s.accel.prims.sphere_count > 1 ? packet_cone<N>(r, open, t_min) : PacketCone{};
     for (std::uint32_t k = 0; k < s.accel.prims.sphere_count && open != 0; ++k) {
       if (!cone_may_meet(cone, s.accel.prims.spheres[k])) continue;
-      if (!sphere_crossings_lanes<N>(s.accel.prims.spheres[k], r, t_min, distance, n)) continue;
-      std::uint32_t crossing = 0;
-      for (int i = 0; i < N; ++i) crossing |= std::uint32_t(n[i] > 0) << i;
+      std::uint32_t first = 0, second = 0;  // lanes whose first, second root is a crossing
+      if (!sphere_crossings_lanes<N>(s.accel.prims.spheres[k], r, t_min, distance, first, second)) continue;
       const Material& material = s.materials[s.accel.prims.spheres[k].material];
-      for (std::uint32_t m = crossing & open; m != 0; m &= m - 1) {
+      for (std::uint32_t m = (first | second) & open; m != 0; m &= m - 1) {
         const int i = wide_bvh_detail::lowest_bit(m);
-        cross(i, material, n[i]);
+        cross(i, material, int((first >> i) & 1u) + int((second >> i) & 1u));
       }
     }
     for (std::uint32_t m = active & ~open; m != 0; m &= m - 1) {

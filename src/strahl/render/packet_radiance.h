@@ -250,12 +250,14 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     const Vec3 texcoord(surface.ux[first_lit], surface.uy[first_lit], surface.uz[first_lit]);  // (no checker: unused)
     const LocalTerms t = local_terms(s.materials[surface.material[first_lit]], texcoord, s.settings.ambient_light);
     (one_spawner ? spawn : local) = lit;
+    // (In every lane: add_light_lanes adds nothing outside `lit`; the colour is 0 there.)
     for (int i = 0; i < N; ++i) {
-      const bool on = (lit >> i) & 1u;
-      cr[i] = on ? t.c.x : 0, cg[i] = on ? t.c.y : 0, cb[i] = on ? t.c.z : 0;
-      rr[i] = on ? t.ambient.x : 0, rg[i] = on ? t.ambient.y : 0, rb[i] = on ? t.ambient.z : 0;
-      kd[i] = on ? t.kd : 0, sr[i] = on ? t.ks.x : 0, sg[i] = on ? t.ks.y : 0, sb[i] = on ? t.ks.z : 0;
-      shiny[i] = on ? t.shiny : 0, shininess[i] = on ? t.shininess : 0;
+      cr[i] = t.c.x, cg[i] = t.c.y, cb[i] = t.c.z, rr[i] = t.ambient.x, rg[i] = t.ambient.y, rb[i] = t.ambient.z;
+      kd[i] = t.kd, sr[i] = t.ks.x, sg[i] = t.ks.y, sb[i] = t.ks.z, shiny[i] = t.shiny, shininess[i] = t.shininess;
+    }
+    for (std::uint32_t m = ~lit & ((1u << (N - 1) << 1) - 1); m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      rr[i] = rg[i] = rb[i] = 0;
     }
   } else {
     std::uint32_t plain = ~0u;  // its index (~0u: none yet)
