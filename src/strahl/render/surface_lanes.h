@@ -32,7 +32,8 @@ struct SurfaceLanes {
 // max_abs_component(Vec3(x, y, z)), written out for lanes.
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Real max_abs_of(Real x, Real y, Real z) {
   const Real a = std::fabs(x), b = std::fabs(y), c = std::fabs(z);
-  return a > b ? (a > c ? a : c) : (b > c ? b : c);
+  const Real ab = a > b ? a : b;  // (a > b ? (a > c ? a : c) : (b > c ? b : c), as two selects)
+  return ab > c ? ab : c;
 }
 
 // What surface_at() reads of the shape hit: a sphere's centre c and 1/radius, or a plane's normal

@@ -13,8 +13,10 @@ template <int N>
 bool render_samples_packed(const SceneView& view, const PixelSequence& sequence, const FilmLayout& film,
                            const StopToken& stop, TileWork& work, int x, int row, std::size_t i, std::uint32_t begin,
                            std::uint32_t end) {
-  CameraSample cs[N];
-  Vec3 L[N];
+  UninitializedLanes<CameraSample, N> samples;  // (each packet's lanes are written before they are read)
+  UninitializedLanes<Vec3, N> radiance;
+  CameraSample* const cs = samples.at;
+  Vec3* const L = radiance.at;
   for (std::uint32_t k = begin; k < end; k += N) {
     if (stop.requested()) return false;
     const int count = end - k < N ? int(end - k) : N;
