@@ -332,7 +332,9 @@ void expect_neighbours_match(const SceneView& view, const PixelSampler& sampler,
         key[j] = p.stream;
       }
       RayCounters packed, single;
-      packet_radiance_of<N>(view, cs, key, index, count, L, packed);
+      FilmLanes<N> film;
+      film.set(cs, count);
+      packet_radiance_of<N>(view, cs, film, key, index, count, L, packed);
       for (int j = 0; j < count; ++j) {
         CameraSample c;
         const Vec3 l = pixel_sample(view, pixel_sequence(view, sampler, x0 + j, row), index[j], c, single);

@@ -49,17 +49,24 @@ TEST(PixelSampler, PowerOfTwoSidesMatchTheDivisions) {
 
 // The lanes' grid path (PixelSequence::samples, render/packet_radiance.h) against sample() one by
 // one: every side that is a power of two, packets of 8 and 16 starting anywhere in the first rounds
-// (straddling two rounds too: that falls back), lens and time unused as the path requires; and the
+// (straddling two rounds too: that falls back), lens and time unused as the path requires, the film
+// lanes (FilmLanes) the same positions and times, padded with lane 0's; and the
 // walk-free permutation equals the walking one for every power of two n and element.
 template <int N>
 void expect_lanes_match(const PixelSequence& p, std::uint32_t side) {
   for (std::uint32_t first = 0; first < 2 * side * side + 3; ++first) {
     for (int count = 1; count <= N; ++count) {
       CameraSample lanes[N];
-      p.samples<N>(first, count, lanes);
-      for (int i = 0; i < count; ++i) {
-        const CameraSample one = p.sample(first + std::uint32_t(i));
-        ASSERT_EQ(std::memcmp(&lanes[i], &one, sizeof one), 0) << "side " << side << " first " << first << " lane " << i;
+      FilmLanes<N> film;
+      p.samples<N>(first, count, lanes, film);
+      for (int i = 0; i < N; ++i) {
+        const CameraSample one = p.sample(first + std::uint32_t(i < count ? i : 0));  // (padded with lane 0's)
+        if (i < count) {
+          ASSERT_EQ(std::memcmp(&lanes[i], &one, sizeof one), 0) << "side " << side << " first " << first << " lane " << i;
+        }
+        ASSERT_EQ(std::memcmp(&film.x[i], &one.film_x, sizeof(Real)), 0) << "side " << side << " first " << first << " lane " << i;
+        ASSERT_EQ(std::memcmp(&film.y[i], &one.film_y, sizeof(Real)), 0) << "side " << side << " first " << first << " lane " << i;
+        ASSERT_EQ(std::memcmp(&film.time[i], &one.time, sizeof(Real)), 0) << "side " << side << " first " << first << " lane " << i;
       }
     }
   }

@@ -13,4 +13,23 @@ struct CameraSample {
   Real time = 0;
 };
 
+// The film positions and shutter times of a packet of N camera samples, one array per
+// coordinate, for the camera's rays with the lanes side by side (Camera::directions). The
+// samplers' lane loops fill them as they fill the CameraSamples, so that no lane's value is
+// stored alone and read back four at a time (a store-forwarding stall per load).
+template <int N>
+struct FilmLanes {
+  Real x[N], y[N], time[N];
+
+  // The lanes of cs[0 … count − 1] (1 ≤ count ≤ N), padded.
+  STRAHL_HOST_DEVICE void set(const CameraSample* cs, int count) {
+    for (int i = 0; i < count; ++i) x[i] = cs[i].film_x, y[i] = cs[i].film_y, time[i] = cs[i].time;
+    pad(count);
+  }
+  // The lanes from `count` on get lane 0's values (nobody reads them).
+  STRAHL_HOST_DEVICE void pad(int count) {
+    for (int i = count; i < N; ++i) x[i] = x[0], y[i] = y[0], time[i] = time[0];
+  }
+};
+
 }  // namespace strahl

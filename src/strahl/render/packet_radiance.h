@@ -503,22 +503,21 @@ STRAHL_HOST_DEVICE void packet_tree(const SceneView& s, const PacketRays<N>& r, 
   }
 }
 
-// The camera samples cs[0 … count − 1] (count ≤ N), lane i sample number index[i] of the pixel
+// The camera samples cs[0 … count − 1] (count ≤ N), their film positions and times also in
+// `film` (its first N lanes, padded: FilmLanes::pad), lane i sample number index[i] of the pixel
 // whose random numbers are keyed by key[i] (PixelSequence::stream): their radiance (guarded as
 // sample_radiance's) into L[]. The lanes may be samples of one pixel or of several.
-template <int N>
-STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const CameraSample* cs, const std::uint64_t* key,
-                                                  const std::uint32_t* index, int count, Vec3* L,
-                                                  RayCounters& counters) {
+template <int N, int M>
+STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const CameraSample* cs, const FilmLanes<M>& film,
+                                                  const std::uint64_t* key, const std::uint32_t* index, int count,
+                                                  Vec3* L, RayCounters& counters) {
+  static_assert(N <= M);
   const std::uint32_t active = count >= 32 ? ~0u : (1u << count) - 1;
   // The camera rays: directions side by side (Camera::directions, generate_ray's arithmetic).
-  Real film_x[N], film_y[N], time[N], dx[N], dy[N], dz[N];
-  for (int i = 0; i < count; ++i) film_x[i] = cs[i].film_x, film_y[i] = cs[i].film_y, time[i] = cs[i].time;
-  for (int i = count; i < N; ++i)  // inactive lanes: nobody reads them
-    film_x[i] = film_x[0], film_y[i] = film_y[0], time[i] = time[0];
-  s.camera.directions<N>(film_x, film_y, dx, dy, dz);
+  Real time[N], dx[N], dy[N], dz[N];
+  s.camera.directions<N>(film.x, film.y, dx, dy, dz);
   const Camera& camera = s.camera;
-  for (int i = 0; i < N; ++i) time[i] = camera.shutter_open + time[i] * (camera.shutter_close - camera.shutter_open);
+  for (int i = 0; i < N; ++i) time[i] = camera.shutter_open + film.time[i] * (camera.shutter_close - camera.shutter_open);
   PacketRays<N> r;  // the camera rays, side by side
   r.unit = true;     // (Camera::directions and through_lens normalise them)
   for (int i = 0; i < N; ++i) {
@@ -594,11 +593,12 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
 template <int N>
 STRAHL_HOST_DEVICE inline void packet_radiance(const SceneView& s, const PixelSequence& p, std::uint32_t first,
                                                int count, CameraSample* cs, Vec3* L, RayCounters& counters) {
-  p.samples<N>(first, count, cs);
+  FilmLanes<N> film;
+  p.samples<N>(first, count, cs, film);
   std::uint64_t key[N];
   std::uint32_t index[N];
   for (int i = 0; i < N; ++i) key[i] = p.stream, index[i] = first + std::uint32_t(i);
-  packet_radiance_of<N>(s, cs, key, index, count, L, counters);
+  packet_radiance_of<N>(s, cs, film, key, index, count, L, counters);
 }
 
 }  // namespace strahl

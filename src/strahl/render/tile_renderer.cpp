@@ -68,12 +68,15 @@ class SamplePackets {
     if (sobol_) {
       for (int j = count_; j < kLanes; ++j)  // lanes nobody reads
         index_[j] = 0, s0_[j] = s1_[j] = s2_[j] = 0, px_[j] = py_[j] = 0;
-      sobol_film_lanes<kLanes>(index_, s0_, s1_, s2_, px_, py_, cs_);
+      sobol_film_lanes<kLanes>(index_, s0_, s1_, s2_, px_, py_, cs_, film_lanes_);
+      film_lanes_.pad(count_);
+    } else {
+      film_lanes_.set(cs_, count_);
     }
     if (count_ > 8)
-      packet_radiance_of<16>(view_, cs_, key_, index_, count_, L_, work_.counters);
+      packet_radiance_of<16>(view_, cs_, film_lanes_, key_, index_, count_, L_, work_.counters);
     else
-      packet_radiance_of<8>(view_, cs_, key_, index_, count_, L_, work_.counters);
+      packet_radiance_of<8>(view_, cs_, film_lanes_, key_, index_, count_, L_, work_.counters);
     // Each pixel's run of lanes together (its sums in registers between them).
     for (int j = 0; j < count_;) {
       int run = 1;
@@ -93,6 +96,7 @@ class SamplePackets {
   TileWork& work_;
   int count_ = 0;
   CameraSample cs_[kLanes];
+  FilmLanes<kLanes> film_lanes_;  // cs_'s film positions and times, lane by lane
   std::uint64_t key_[kLanes];
   std::uint32_t index_[kLanes];
   bool sobol_ = false;  // Sobol film positions without lens and time: computed in flush()

@@ -95,17 +95,18 @@ inline constexpr const char* kFilterNames = "box, tent, gaussian, mitchell";
 template <int N>
 STRAHL_HOST_DEVICE inline void sobol_film_lanes(const std::uint32_t* __restrict index, const std::uint32_t* __restrict s0,
                                                 const std::uint32_t* __restrict s1, const std::uint32_t* __restrict s2,
-                                                const Real* __restrict px, const Real* __restrict py, CameraSample* cs) {
-  Real fx[N], fy[N];
+                                                const Real* __restrict px, const Real* __restrict py, CameraSample* cs,
+                                                FilmLanes<N>& __restrict film) {
   for (int i = 0; i < N; ++i) {
     std::uint32_t a, b;
     sobol_pair(index[i], s0[i], s1[i], s2[i], a, b);
-    fx[i] = px[i] + fixed_to_unit(a);
-    fy[i] = py[i] + fixed_to_unit(b);
+    film.x[i] = px[i] + fixed_to_unit(a);
+    film.y[i] = py[i] + fixed_to_unit(b);
+    film.time[i] = 0;
   }
   for (int i = 0; i < N; ++i) {
-    cs[i].film_x = fx[i];
-    cs[i].film_y = fy[i];
+    cs[i].film_x = film.x[i];
+    cs[i].film_y = film.y[i];
     cs[i].lens = Vec2{Real(0.5), Real(0.5)};
     cs[i].time = 0;
   }
@@ -203,11 +204,12 @@ struct PixelSequence {
     return cs;
   }
 
-  // sample(first + i) for i < count (≤ N) into cs[0 … N): for the grid with a power-of-two side,
-  // no lens and no shutter, and samples of one round, the film positions with the lanes side by
-  // side (sample()'s arithmetic; cs[count …] get positions nobody reads); sample by sample otherwise.
+  // sample(first + i) for i < count (≤ N) into cs[0 … N), their film positions and times into
+  // `film` too (padded: FilmLanes::pad): for the grid with a power-of-two side, no lens and no
+  // shutter, and samples of one round, the film positions with the lanes side by side (sample()'s
+  // arithmetic; cs[count …] get positions nobody reads); sample by sample otherwise.
   template <int N>
-  STRAHL_HOST_DEVICE void samples(std::uint32_t first, int count, CameraSample* cs) const {
+  STRAHL_HOST_DEVICE void samples(std::uint32_t first, int count, CameraSample* cs, FilmLanes<N>& film) const {
     if (kind == SamplerKind::Grid && side_shift > 0 && !uses_lens && !uses_time && count > 0) {
       const std::uint32_t n = side * side;
       const std::uint32_t round = first >> (2 * side_shift);
@@ -216,11 +218,17 @@ struct PixelSequence {
         const Real inv = Real(1) / Real(side);  // exact: a power of two
         for (int i = 0; i < N; ++i) {
           const std::uint32_t s = permutation_element_pow2((first + std::uint32_t(i)) & (n - 1), n, order);
-          cs[i].film_x = Real(x) + (Real(s & (side - 1)) + Real(0.5)) * inv;
-          cs[i].film_y = Real(y) + (Real(s >> side_shift) + Real(0.5)) * inv;
+          film.x[i] = Real(x) + (Real(s & (side - 1)) + Real(0.5)) * inv;
+          film.y[i] = Real(y) + (Real(s >> side_shift) + Real(0.5)) * inv;
+          film.time[i] = 0;
+        }
+        for (int i = 0; i < N; ++i) {
+          cs[i].film_x = film.x[i];
+          cs[i].film_y = film.y[i];
           cs[i].lens = Vec2{Real(0.5), Real(0.5)};
           cs[i].time = 0;
         }
+        film.pad(count);
         return;
       }
     }
@@ -231,10 +239,12 @@ struct PixelSequence {
         index[i] = first + std::uint32_t(i), s0[i] = h[0], s1[i] = h[1], s2[i] = h[2];
         px[i] = Real(x), py[i] = Real(y);
       }
-      sobol_film_lanes<N>(index, s0, s1, s2, px, py, cs);
+      sobol_film_lanes<N>(index, s0, s1, s2, px, py, cs, film);
+      film.pad(count);
       return;
     }
     for (int i = 0; i < count; ++i) cs[i] = sample(first + std::uint32_t(i));
+    film.set(cs, count);
   }
 };
 
