@@ -302,6 +302,7 @@ void check_frustum(std::uint64_t seed) {
   }
   EXPECT_GT(met, 1000u);     // the boxes are met
   EXPECT_GT(culled, 1000u);  // and the frustum culls some
+  EXPECT_GE(passed, met);    // (every child a lane meets passes)
 }
 
 TEST(Packet, FrustumKeepsEveryChildALaneMeets) {
