@@ -63,8 +63,9 @@ struct PacketCone {
 // The cone of the active lanes' rays of r, for hits at t > t_min[i] ≥ 0 (no cone when some
 // t_min is negative: a root behind the origin would not be in it). Its axis is lane `first`'s
 // direction; the lanes' directions need not be unit (a lane test's hit means the same line
-// whatever |d|). Written as loops over all lanes and a tree of minima and maxima, so that the
-// lanes run side by side (a running sum or minimum over the lanes would be one long chain).
+// whatever |d|). Written as loops over all lanes and minima and maxima over four columns of
+// lanes, so that the lanes run side by side (a running minimum over the lanes would be one long
+// chain).
 template <int N>
 STRAHL_HOST_DEVICE inline PacketCone packet_cone(const PacketRays<N>& r, std::uint32_t active, const Real* t_min) {
   PacketCone k;
