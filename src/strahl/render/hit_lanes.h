@@ -40,10 +40,10 @@ struct HitLanes {
     return true;
   }
 
-  // The lanes that hit a sphere or a plane.
+  // The lanes that hit a sphere or a plane (t is finite only there).
   STRAHL_HOST_DEVICE std::uint32_t found() const {
     std::uint32_t m = 0;
-    for (int i = 0; i < N; ++i) m |= std::uint32_t((sphere[i] >= 0) | (plane[i] >= 0)) << i;
+    for (int i = 0; i < N; ++i) m |= std::uint32_t(t[i] < kInfinity) << i;
     return m;
   }
 };
