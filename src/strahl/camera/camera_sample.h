@@ -26,6 +26,15 @@ struct FilmLanes {
     for (int i = 0; i < count; ++i) x[i] = cs[i].film_x, y[i] = cs[i].film_y, time[i] = cs[i].time;
     pad(count);
   }
+  // cs[0 … N) from the lanes, as a sampler without lens and shutter makes them (lens (0.5, 0.5)).
+  STRAHL_HOST_DEVICE void get(CameraSample* cs) const {
+    for (int i = 0; i < N; ++i) {
+      cs[i].film_x = x[i];
+      cs[i].film_y = y[i];
+      cs[i].lens = Vec2{Real(0.5), Real(0.5)};
+      cs[i].time = time[i];
+    }
+  }
   // The lanes from `count` on get lane 0's values (nobody reads them).
   STRAHL_HOST_DEVICE void pad(int count) {
     for (int i = count; i < N; ++i) x[i] = x[0], y[i] = y[0], time[i] = time[0];

@@ -104,12 +104,7 @@ STRAHL_HOST_DEVICE inline void sobol_film_lanes(const std::uint32_t* __restrict 
     film.y[i] = py[i] + fixed_to_unit(b);
     film.time[i] = 0;
   }
-  for (int i = 0; i < N; ++i) {
-    cs[i].film_x = film.x[i];
-    cs[i].film_y = film.y[i];
-    cs[i].lens = Vec2{Real(0.5), Real(0.5)};
-    cs[i].time = 0;
-  }
+  film.get(cs);
 }
 
 // The samples of one pixel, with the pixel's hashes (permutation and scrambling seeds) computed
@@ -222,12 +217,7 @@ struct PixelSequence {
           film.y[i] = Real(y) + (Real(s >> side_shift) + Real(0.5)) * inv;
           film.time[i] = 0;
         }
-        for (int i = 0; i < N; ++i) {
-          cs[i].film_x = film.x[i];
-          cs[i].film_y = film.y[i];
-          cs[i].lens = Vec2{Real(0.5), Real(0.5)};
-          cs[i].time = 0;
-        }
+        film.get(cs);
         film.pad(count);
         return;
       }
