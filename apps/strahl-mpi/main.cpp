@@ -170,7 +170,9 @@ int master(mpi::Comm& comm, const cli::Options& o, const MpiOptions& m, const st
   if (whole) journal->remove();
   if (stats.cancelled) {
     console::err("strahl-mpi: interrupted; wrote the image rendered so far to {} (--resume continues it)\n", output);
-    return 130;
+    // mpirun is ending the job and does not answer MPI_Finalize any more: the workers wait in it
+    // until mpirun kills them, which it does as soon as one rank has ended — this one, now.
+    comm.exit_without_finalize(130);
   }
   if (!o.quiet) {
     console::out("{}", cli::summary(output, image.width(), image.height(), mo.threads, timings, stats, *rs));
