@@ -24,13 +24,18 @@ void for_each_band(std::size_t h, F&& f) {
 std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, std::span<const std::uint32_t> counts,
                                                 std::uint32_t max_spp, double threshold, std::vector<std::uint32_t>& add,
                                                 std::uint64_t* headroom) {
-  const std::size_t w = std::size_t(film.width()), h = std::size_t(film.height());
+  // (Each band reads the sizes and the threshold into locals of its own: its byte stores could
+  // alias the captured ones, and GCC would then reload them per pixel and vectorise no row loop.)
+  const std::size_t width = std::size_t(film.width()), height = std::size_t(film.height());
   const ZeroedArray<PixelStats>& stats = film.pixel_stats();
   // Errors, and over_ along each row's neighbours (near_), band by band; each band divides out
   // the means of its rows and the rows next to it.
-  for_each_band(h, [&](std::size_t, std::size_t row0, std::size_t row1) {
+  for_each_band(height, [&](std::size_t, std::size_t row0, std::size_t row1) {
+    const std::size_t w = width, h = height;
+    const double limit = threshold;
     const std::size_t m0 = row0 > 0 ? row0 - 1 : 0, m1 = std::min(h, row1 + 1);
-    std::vector<double> means((m1 - m0) * w), contrasts(w);
+    std::vector<double> means((m1 - m0) * w), contrast_row(w);
+    double* const contrasts = contrast_row.data();
     for (std::size_t p = m0 * w; p < m1 * w; ++p)
       means[p - m0 * w] = stats[p].n > 0 ? stats[p].sum / stats[p].n : std::numeric_limits<double>::quiet_NaN();
     for (std::size_t p = row0 * w; p < row1 * w; ++p) seen_[p] = counts[p];
@@ -52,10 +57,14 @@ std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, std::span<cons
       for (std::size_t x = 1; x + 1 < w; ++x) contrasts[x] = contrast(x, x - 1, x + 1);
       if (w > 1) contrasts[w - 1] = contrast(w - 1, w - 2, w - 1);
       std::uint8_t* o = &over_[row * w];
+      // pixel_error(): the contrast for every pixel side by side, then the pixels with other
+      // than one sample (their relative error).
       for (std::size_t x = 0; x < w; ++x) {
-        const PixelStats& s = stats[row * w + x];
-        o[x] = (s.n == 1 ? contrasts[x] / std::max(here[x], 0.01) : relative_error(s)) > threshold;
+        const double mean = here[x] < 0.01 ? 0.01 : here[x];  // std::max(here[x], 0.01)
+        o[x] = std::uint8_t(contrasts[x] / mean > limit ? 1 : 0);
       }
+      for (std::size_t x = 0; x < w; ++x)
+        if (stats[row * w + x].n != 1) o[x] = relative_error(stats[row * w + x]) > limit;
       // more(): a pixel refines when its 3×3 neighbourhood has one over the threshold — the largest
       // over_ along each row's neighbours here, down the columns below.
       std::uint8_t* n = &near_[row * w];
@@ -64,8 +73,9 @@ std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, std::span<cons
       if (w > 1) n[w - 1] = o[w - 2] | o[w - 1];
     }
   });
-  bands_.resize((h + kBandRows - 1) / kBandRows);
-  for_each_band(h, [&](std::size_t band, std::size_t row0, std::size_t row1) {
+  bands_.resize((height + kBandRows - 1) / kBandRows);
+  for_each_band(height, [&](std::size_t band, std::size_t row0, std::size_t row1) {
+    const std::size_t w = width, h = height;
     Band& b = bands_[band];
     b.planned.clear();
     b.total = b.room = 0;
@@ -73,14 +83,20 @@ std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, std::span<cons
       const std::uint8_t* above = &near_[(row > 0 ? row - 1 : row) * w];
       const std::uint8_t* here = &near_[row * w];
       const std::uint8_t* below = &near_[(row + 1 < h ? row + 1 : row) * w];
+      // The row's counts side by side, then the pixels that take samples listed.
+      const std::uint32_t* const c = &counts[row * w];
+      std::uint32_t* const a = &add[row * w];
+      std::uint32_t any = 0;
       for (std::size_t x = 0; x < w; ++x) {
-        const std::size_t p = row * w + x;
-        const std::uint32_t c = counts[p];
-        add[p] = doubled((above[x] | here[x] | below[x]) != 0, c, max_spp);
-        if (add[p] == 0) continue;
-        b.planned.push_back(std::uint32_t(p));
-        b.total += add[p];
-        b.room += max_spp - c;
+        a[x] = doubled((above[x] | here[x] | below[x]) != 0, c[x], max_spp);
+        any |= a[x];
+      }
+      if (any == 0) continue;
+      for (std::size_t x = 0; x < w; ++x) {
+        if (a[x] == 0) continue;
+        b.planned.push_back(std::uint32_t(row * w + x));
+        b.total += a[x];
+        b.room += max_spp - c[x];
       }
     }
   });
