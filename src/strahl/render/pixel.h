@@ -8,14 +8,25 @@
 
 namespace strahl {
 
-// The samples of pixel (x, row).
-STRAHL_HOST_DEVICE inline PixelSequence pixel_sequence(const SceneView& s, const PixelSampler& sampler, int x, int row) {
-  const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
+// pixel_sequence() in two steps, for a loop over many pixels (render/tile_renderer.cpp): what
+// the sequences of all pixels share …
+STRAHL_HOST_DEVICE inline PixelSequence shared_sequence(const SceneView& s, const PixelSampler& sampler) {
   // Time matters only to moving shapes (ray.time is read nowhere else): a static scene's samples
   // leave it at 0 without computing it, whatever the shutter interval.
   const bool uses_time = s.camera.shutter_close != s.camera.shutter_open && s.moving_sphere_count + s.moving_triangle_count > 0;
-  return sampler.pixel(x, y, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x), s.camera.lens_radius > 0,
-                       uses_time);
+  return sampler.sequence(s.camera.lens_radius > 0, uses_time);
+}
+// … and what is pixel (x, row)'s own.
+STRAHL_HOST_DEVICE inline void place_sequence(const SceneView& s, PixelSequence& p, int x, int row) {
+  const int y = s.camera.ny - 1 - row;  // the lecture counts y from the bottom
+  PixelSampler::place(p, x, y, std::uint64_t(y) * std::uint64_t(s.camera.nx) + std::uint64_t(x));
+}
+
+// The samples of pixel (x, row).
+STRAHL_HOST_DEVICE inline PixelSequence pixel_sequence(const SceneView& s, const PixelSampler& sampler, int x, int row) {
+  PixelSequence p = shared_sequence(s, sampler);
+  place_sequence(s, p, x, row);
+  return p;
 }
 
 // Radiance of sample `index` of a pixel; `cs` receives the camera sample it used.

@@ -77,4 +77,12 @@ inline bool any_counted(const std::uint32_t* count, std::size_t n) {
   return any != 0;
 }
 
+// Bit k set where entry k of count[0 … n) (n ≤ 64) is above 0: a loop over a row's pixels with
+// samples to take visits them by these bits, past the others without a test each.
+inline std::uint64_t counted_bits(const std::uint32_t* count, std::size_t n) {
+  std::uint64_t bits = 0;
+  for (std::size_t k = 0; k < n; ++k) bits |= std::uint64_t(count[k] != 0) << k;
+  return bits;
+}
+
 }  // namespace strahl

@@ -1,5 +1,8 @@
 #include "strahl/render/tile_renderer.h"
 
+#include <algorithm>
+#include <bit>
+
 #include "strahl/render/packet_radiance.h"
 #include "strahl/render/pixel.h"
 
@@ -34,16 +37,18 @@ bool render_samples_packed(const SceneView& view, const PixelSequence& sequence,
 // every pixel's sums take the same additions in the same order as sample by sample.
 class SamplePackets {
  public:
-  SamplePackets(const SceneView& view, const FilmLayout& film, TileWork& work)
-      : view_(view), film_(film), work_(work) {}
+  // `shared`: what the sequences of the tile's pixels share (shared_sequence()).
+  SamplePackets(const SceneView& view, const FilmLayout& film, TileWork& work, const PixelSequence& shared)
+      : view_(view),
+        film_(film),
+        work_(work),
+        sobol_((shared.kind == SamplerKind::Sobol || shared.kind == SamplerKind::Adaptive) && !shared.uses_lens &&
+               !shared.uses_time) {}
 
   // Pixel (x, row), entry i of the tile, takes samples first … first + count − 1 of `sequence`;
   // false when stopped.
   bool add(const PixelSequence& sequence, std::uint32_t first, std::uint32_t count, int x, int row, std::size_t i,
            const StopToken& stop) {
-    // (The same for every pixel of a render: one sampler, one camera.)
-    sobol_ = (sequence.kind == SamplerKind::Sobol || sequence.kind == SamplerKind::Adaptive) && !sequence.uses_lens &&
-             !sequence.uses_time;
     for (std::uint32_t index = first; index < first + count; ++index) {
       if (sobol_) {  // the film positions come in flush(), the lanes side by side
         s0_[count_] = sequence.h[0], s1_[count_] = sequence.h[1], s2_[count_] = sequence.h[2];
@@ -99,7 +104,7 @@ class SamplePackets {
   FilmLanes<kLanes> film_lanes_;  // cs_'s film positions and times, lane by lane
   std::uint64_t key_[kLanes];
   std::uint32_t index_[kLanes];
-  bool sobol_ = false;  // Sobol film positions without lens and time: computed in flush()
+  const bool sobol_;  // Sobol film positions without lens and time: computed in flush()
   std::uint32_t s0_[kLanes], s1_[kLanes], s2_[kLanes];
   Real px_[kLanes], py_[kLanes];
   int x_[kLanes], row_[kLanes];
@@ -113,32 +118,40 @@ void render_tile(const SceneView& view, const PixelSampler& sampler, const FilmL
                  TileWork& work) {
   const TileRect& r = work.rect;
   const bool packets = packet_radiance_supported(view);
-  SamplePackets gathered(view, film, work);
+  PixelSequence sequence = shared_sequence(view, sampler);  // each pixel's own part set below
+  SamplePackets gathered(view, film, work, sequence);
   const std::size_t tw = std::size_t(r.width());
+  const std::uint32_t* const firsts = work.first.data();
+  const std::uint32_t* const counts = work.count.data();
   for (int row = r.row0; row < r.row1; ++row) {
-    // A row without samples to take (most rows of a sparse adaptive pass's tile) in one test.
-    if (!any_counted(&work.count[r.index(r.x0, row)], tw)) continue;
-    for (int x = r.x0; x < r.x1; ++x) {
-      const std::size_t i = r.index(x, row);
-      std::uint32_t begin = work.first[i];
-      const std::uint32_t end = begin + work.count[i];
-      if (begin == end) continue;
-      const PixelSequence sequence = pixel_sequence(view, sampler, x, row);
-      if (packets) {
-        // Whole packets of 16 of the pixel's own, the rest gathered with other pixels' samples.
-        const std::uint32_t whole = (end - begin) / 16 * 16;
-        if (whole > 0 && !render_samples_packed<16>(view, sequence, film, stop, work, x, row, i, begin, begin + whole))
-          return;
-        begin += whole;
-        if (begin < end && !gathered.add(sequence, begin, end - begin, x, row, i, stop)) return;
-        continue;
-      }
-      for (std::uint32_t k = begin; k < end; ++k) {
-        if (stop.requested()) return;
-        CameraSample cs;
-        const Vec3 L = pixel_sample(view, sequence, k, cs, work.counters);
-        film.add_sample(work, x, row, cs, L);
-        ++work.taken[i];
+    const std::size_t row_entry = r.index(r.x0, row);
+    // The row's pixels with samples to take (few of a sparse adaptive pass's), 64 at a time.
+    for (std::size_t k0 = 0; k0 < tw; k0 += 64) {
+      for (std::uint64_t bits = counted_bits(&counts[row_entry + k0], std::min<std::size_t>(64, tw - k0)); bits != 0;
+           bits &= bits - 1) {
+        const std::size_t k = k0 + std::size_t(std::countr_zero(bits));
+        const std::size_t i = row_entry + k;
+        const int x = r.x0 + int(k);
+        std::uint32_t begin = firsts[i];
+        const std::uint32_t end = begin + counts[i];
+        place_sequence(view, sequence, x, row);
+        if (packets) {
+          // Whole packets of 16 of the pixel's own, the rest gathered with other pixels' samples.
+          const std::uint32_t whole = (end - begin) / 16 * 16;
+          if (whole > 0 &&
+              !render_samples_packed<16>(view, sequence, film, stop, work, x, row, i, begin, begin + whole))
+            return;
+          begin += whole;
+          if (begin < end && !gathered.add(sequence, begin, end - begin, x, row, i, stop)) return;
+          continue;
+        }
+        for (std::uint32_t n = begin; n < end; ++n) {
+          if (stop.requested()) return;
+          CameraSample cs;
+          const Vec3 L = pixel_sample(view, sequence, n, cs, work.counters);
+          film.add_sample(work, x, row, cs, L);
+          ++work.taken[i];
+        }
       }
     }
   }

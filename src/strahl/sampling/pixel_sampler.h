@@ -118,6 +118,8 @@ struct PixelSequence {
   int side_shift = 0;
   std::uint64_t seed = 0, pixel = 0, key = 0;  // key: what hash() mixes (0 when no hash is needed)
   std::uint64_t stream = 0;  // pixel_key(seed, pixel): the per-sample random numbers are keyed_bits(stream, …)
+  std::uint64_t seed_mix = 0;  // mix_seed(seed): pixel_key()'s part that depends on the seed alone
+  std::uint32_t needed = 0;    // bit i: h[i] is used (PixelSampler::sequence)
   int x = 0, y = 0;
   // Grid/stratified: round 0's film, lens, time orders; sobol: 3 per pair; 0 where unused. Left
   // unset by `PixelSequence p;` (PixelSampler::pixel sets it: zeroing it per pixel cost a `rep
@@ -249,6 +251,14 @@ struct PixelSampler {
   // and their hashes are not computed (h[] holds 0 there).
   STRAHL_HOST_DEVICE PixelSequence pixel(int x, int y, std::uint64_t pixel_index, bool uses_lens = true,
                                          bool uses_time = true) const {
+    PixelSequence p = sequence(uses_lens, uses_time);
+    place(p, x, y, pixel_index);
+    return p;
+  }
+
+  // pixel() in two steps, for a loop over many pixels: what every pixel's sequence shares (the
+  // sampler's settings, which hashes it needs; h[] 0 where it needs none) …
+  STRAHL_HOST_DEVICE PixelSequence sequence(bool uses_lens = true, bool uses_time = true) const {
     PixelSequence p;  // (h[] is set below: no block of zeros first)
     p.kind = kind;
     p.side = side;
@@ -256,11 +266,7 @@ struct PixelSampler {
     for (int b = 0; b < 16 && p.side_shift < 0; ++b)
       if (side == (1u << b)) p.side_shift = b;
     p.seed = seed;
-    p.pixel = pixel_index;
-    p.x = x;
-    p.y = y;
-    // Sample index 0xffffffff, which no sample reaches: independent of the samples' numbers.
-    p.stream = pixel_key(seed, pixel_index);
+    p.seed_mix = mix_seed(seed);
     // Hashes: the sobol pairs' scrambles, or the strata orders (none for a single stratum).
     const int hashes = kind == SamplerKind::Random                                  ? 0
                        : (kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) ? 9
@@ -268,15 +274,27 @@ struct PixelSampler {
                                                                                       : 0;
     p.uses_lens = uses_lens;
     p.uses_time = uses_time;
-    p.key = hashes == 0 ? 0 : keyed_bits(p.stream, 0xffffffffu, 0);
     // Hash i serves the film (sobol: pair 0, hashes 0–2; strata: order 0), the lens (pair 1; order
     // 1) or the time (pair 2; order 2); 0 where not needed.
+    p.needed = 0;
     for (int i = 0; i < 9; ++i) {
       const int use = hashes == 9 ? i / 3 : i;
-      const bool needed = i < hashes && !(use == 1 && !uses_lens) && !(use == 2 && !uses_time);
-      p.h[i] = needed ? p.hash(std::uint32_t(i)) : 0;
+      if (i < hashes && !(use == 1 && !uses_lens) && !(use == 2 && !uses_time)) p.needed |= 1u << i;
+      p.h[i] = 0;
     }
     return p;
+  }
+  // … and what is the pixel's own: its place, its random-number key, its hashes.
+  STRAHL_HOST_DEVICE static void place(PixelSequence& p, int x, int y, std::uint64_t pixel_index) {
+    p.pixel = pixel_index;
+    p.x = x;
+    p.y = y;
+    // pixel_key(seed, pixel); sample index 0xffffffff, which no sample reaches, for the hashes'
+    // key: independent of the samples' numbers.
+    p.stream = mix64(p.seed_mix ^ pixel_index);
+    p.key = p.needed == 0 ? 0 : keyed_bits(p.stream, 0xffffffffu, 0);
+    for (int i = 0; i < 9; ++i)
+      if ((p.needed >> i) & 1u) p.h[i] = p.hash(std::uint32_t(i));
   }
 
   // Sample `index` of pixel (x, y) (tests; the render loop keeps the PixelSequence).
