@@ -1,5 +1,7 @@
 #include "strahl/render/adaptive.h"
 
+#include <memory>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -34,8 +36,9 @@ std::uint64_t AdaptivePlanner::plan_every_pixel(const Film& film, std::span<cons
     const std::size_t w = width, h = height;
     const double limit = threshold;
     const std::size_t m0 = row0 > 0 ? row0 - 1 : 0, m1 = std::min(h, row1 + 1);
-    std::vector<double> means((m1 - m0) * w), contrast_row(w);
-    double* const contrasts = contrast_row.data();
+    // (Every entry is written before it is read: no zeroing first.)
+    const std::unique_ptr<double[]> means(new double[(m1 - m0) * w]), contrast_row(new double[w]);
+    double* const contrasts = contrast_row.get();
     for (std::size_t p = m0 * w; p < m1 * w; ++p)
       means[p - m0 * w] = stats[p].n > 0 ? stats[p].sum / stats[p].n : std::numeric_limits<double>::quiet_NaN();
     for (std::size_t p = row0 * w; p < row1 * w; ++p) seen_[p] = counts[p];
