@@ -127,6 +127,33 @@ TEST(PixelSampler, UnusedDimensionsNeedNoHashes) {
   }
 }
 
+// A pixel's sequence, made in two steps for the tile loop (PixelSampler::sequence once, place per
+// pixel), keys the per-sample random numbers as rng.h defines them — random_bits(seed, pixel,
+// sample, dimension) — and is the same sequence wherever the shared part was made.
+TEST(PixelSampler, SequencePlacedPerPixelKeysTheRandomNumbersOfRngH) {
+  for (SamplerKind kind : {SamplerKind::Grid, SamplerKind::Stratified, SamplerKind::Random, SamplerKind::Sobol}) {
+    for (std::uint64_t seed : {0ull, 1ull, 0x9e3779b97f4a7c15ull, ~0ull}) {
+      PixelSampler sampler;
+      sampler.kind = kind;
+      sampler.side = 3;
+      sampler.seed = seed;
+      PixelSequence placed = sampler.sequence();
+      for (const auto& [x, y] : {std::pair{0, 0}, std::pair{639, 0}, std::pair{5, 3}, std::pair{17, 479}}) {
+        const std::uint64_t pixel = std::uint64_t(y) * 640 + std::uint64_t(x);
+        PixelSampler::place(placed, x, y, pixel);
+        const PixelSequence fresh = sampler.pixel(x, y, pixel);
+        ASSERT_EQ(placed.stream, pixel_key(seed, pixel));
+        SampleStream rng{placed.stream, 11};
+        ASSERT_EQ(rng.next(), random_real(seed, pixel, 11, kDimIntegrator));
+        for (std::uint32_t i = 0; i < 12; ++i) {
+          const CameraSample a = placed.sample(i), b = fresh.sample(i);
+          ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << sampler_name(kind) << " sample " << i;
+        }
+      }
+    }
+  }
+}
+
 constexpr int kSamples = 200000;
 constexpr int kThetaBins = 10, kPhiBins = 20;
 const double kAlpha = test::significance(0.01, 8);  // eight chi-square tests below

@@ -291,7 +291,7 @@ struct PixelSampler {
     p.y = y;
     // pixel_key(seed, pixel); sample index 0xffffffff, which no sample reaches, for the hashes'
     // key: independent of the samples' numbers.
-    p.stream = mix64(p.seed_mix ^ pixel_index);
+    p.stream = pixel_key_of(p.seed_mix, pixel_index);
     p.key = p.needed == 0 ? 0 : keyed_bits(p.stream, 0xffffffffu, 0);
     for (int i = 0; i < 9; ++i)
       if ((p.needed >> i) & 1u) p.h[i] = p.hash(std::uint32_t(i));

@@ -29,10 +29,14 @@ STRAHL_HOST_DEVICE constexpr std::uint64_t mix64(std::uint64_t x) {
 
 // 64 random bits for (seed, pixel, sample, dimension).
 // The part of random_bits that depends only on (seed, pixel): computed once per pixel, it leaves
-// one mix64 per random number.
+// one mix64 per random number. In two steps for a loop over pixels: the seed's part (mix_seed),
+// once, then each pixel's (pixel_key_of).
 STRAHL_HOST_DEVICE constexpr std::uint64_t mix_seed(std::uint64_t seed) { return mix64(seed + 0x9e3779b97f4a7c15ULL); }
+STRAHL_HOST_DEVICE constexpr std::uint64_t pixel_key_of(std::uint64_t seed_mix, std::uint64_t pixel) {
+  return mix64(seed_mix ^ pixel);
+}
 STRAHL_HOST_DEVICE constexpr std::uint64_t pixel_key(std::uint64_t seed, std::uint64_t pixel) {
-  return mix64(mix_seed(seed) ^ pixel);
+  return pixel_key_of(mix_seed(seed), pixel);
 }
 
 STRAHL_HOST_DEVICE constexpr std::uint64_t keyed_bits(std::uint64_t key, std::uint32_t sample, std::uint32_t dimension) {
