@@ -169,7 +169,7 @@ class AdaptivePlanner {
   // most up to max_spp); none when it does not.
   // (Without branches: plan_every_pixel's loop over a row is vectorised.)
   static std::uint32_t doubled(bool refine, std::uint32_t c, std::uint32_t max_spp) {
-    return refine & (c < max_spp) ? std::min(std::max(c, 1u), max_spp - c) : 0u;
+    return (refine & (c < max_spp)) ? std::min(std::max(c, 1u), max_spp - c) : 0u;
   }
 
   // The plan when much changed (the first pass): every error, then every decision — pixel_error()
