@@ -12,6 +12,8 @@
 #include <cstring>
 #include <vector>
 
+#include "strahl/util/zeroed_array.h"
+
 namespace strahl {
 
 namespace {
@@ -163,7 +165,7 @@ bool deflate_band(const unsigned char* filtered, std::size_t begin, std::size_t 
 bool encode_png(const unsigned char* pixels, int width, int height, int channels,
                 const std::function<void(const void* data, std::size_t size)>& sink, const PngEncoding& encoding) {
   const std::size_t n = std::size_t(width) * std::size_t(channels), stride = n + 1;
-  Bytes filtered(stride * std::size_t(height));
+  ZeroedArray<unsigned char> filtered(stride * std::size_t(height));  // fresh pages (util/zeroed_array.h)
   filter_all(pixels, n, height, channels, encoding.filter, filtered.data());
 
   const int rows_per_band = int(std::max<std::size_t>(1, encoding.band_bytes / stride));

@@ -1,10 +1,14 @@
 #pragma once
-// An array of n values that start as all-zero bytes, with its memory from calloc: a large block
-// is fresh pages that the kernel supplies already zeroed on first touch, so creating the array
-// writes nothing. The film's sums and statistics and the image (tens of MiB) are such arrays:
-// their page faults — a few µs per 4 KiB page in a virtual machine, some 10^4 for a 960×540
-// film — then happen where the tiles are first merged and the image resolved, in the threads
-// that do it, instead of all at once before the first tile.
+// An array of n values that start as all-zero bytes, in fresh pages that the kernel supplies
+// already zeroed on first touch, so creating the array writes nothing. The film's sums and
+// statistics, the image and the render job's per-pixel counts (tens of MiB at 1080p) are such
+// arrays: their page faults happen where the tiles are first merged and the image resolved, in
+// the threads that do it, instead of all at once before the first tile.
+//
+// A block of 2 MiB or more is mapped in whole 2 MiB pages where the kernel offers them
+// (util/large_pages.h): one page fault per 2 MiB instead of 512. A 4 KiB page fault costs
+// ~0.1 µs on bare metal but 10 µs in some virtual machines (every page-table update a trap):
+// there a 1080p film's 66 MiB of sums took 178 ms of faults in 4 KiB pages and 4 ms in 2 MiB ones.
 
 #include <cstddef>
 #include <cstdlib>
@@ -14,6 +18,8 @@
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
+
+#include "strahl/util/large_pages.h"
 
 namespace strahl {
 
@@ -61,14 +67,16 @@ class ZeroedArray {
   }
 
  private:
+  // Frees a block of `bytes` bytes from allocate().
   struct Free {
-    void operator()(T* p) const { std::free(p); }
+    std::size_t bytes = 0;
+    void operator()(T* p) const { free_zeroed_bytes(p, bytes); }
   };
-  static T* allocate(std::size_t n) {
-    if (n == 0) return nullptr;
-    T* p = static_cast<T*>(std::calloc(n, sizeof(T)));
-    if (p == nullptr) throw std::bad_alloc();
-    return p;
+  static std::unique_ptr<T, Free> allocate(std::size_t n) {
+    if (n == 0) return {nullptr, Free{}};
+    if (n > std::size_t(-1) / sizeof(T)) throw std::bad_alloc();
+    const std::size_t bytes = n * sizeof(T);
+    return {static_cast<T*>(allocate_zeroed_bytes(bytes)), Free{bytes}};
   }
   std::unique_ptr<T, Free> data_;
   std::size_t size_ = 0;

@@ -1,0 +1,72 @@
+#include "strahl/util/large_pages.h"
+
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define STRAHL_SANITIZED_ALLOCATOR 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define STRAHL_SANITIZED_ALLOCATOR 1
+#endif
+#endif
+
+namespace strahl {
+
+namespace {
+
+// The block's length rounded up to whole large pages.
+std::size_t mapped_length(std::size_t bytes) { return (bytes + kLargePage - 1) / kLargePage * kLargePage; }
+
+}  // namespace
+
+bool maps_large_pages(std::size_t bytes) {
+#if defined(__linux__) && !defined(STRAHL_SANITIZED_ALLOCATOR) && defined(MADV_HUGEPAGE)
+  return bytes >= kLargePage && bytes <= std::size_t(-1) - 2 * kLargePage;
+#else
+  (void)bytes;
+  return false;
+#endif
+}
+
+void* allocate_zeroed_bytes(std::size_t bytes) {
+#if defined(__linux__) && !defined(STRAHL_SANITIZED_ALLOCATOR) && defined(MADV_HUGEPAGE)
+  if (maps_large_pages(bytes)) {
+    // One large page more than needed, then the part before the first aligned address and the
+    // part after the block given back: an aligned block of whole large pages.
+    const std::size_t length = mapped_length(bytes);
+    void* raw = mmap(nullptr, length + kLargePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED) throw std::bad_alloc();
+    const auto start = reinterpret_cast<std::uintptr_t>(raw);
+    const std::uintptr_t aligned = (start + kLargePage - 1) & ~std::uintptr_t(kLargePage - 1);
+    if (aligned > start) munmap(raw, aligned - start);
+    const std::uintptr_t end = start + length + kLargePage;
+    if (end > aligned + length) munmap(reinterpret_cast<void*>(aligned + length), end - (aligned + length));
+    void* p = reinterpret_cast<void*>(aligned);
+    madvise(p, length, MADV_HUGEPAGE);  // advice: without it (THP off) the block is 4 KiB pages
+    return p;
+  }
+#endif
+  void* p = std::calloc(bytes, 1);
+  if (p == nullptr) throw std::bad_alloc();
+  return p;
+}
+
+void free_zeroed_bytes(void* p, std::size_t bytes) noexcept {
+  if (p == nullptr) return;
+#if defined(__linux__) && !defined(STRAHL_SANITIZED_ALLOCATOR) && defined(MADV_HUGEPAGE)
+  if (maps_large_pages(bytes)) {
+    munmap(p, mapped_length(bytes));
+    return;
+  }
+#endif
+  (void)bytes;
+  std::free(p);
+}
+
+}  // namespace strahl

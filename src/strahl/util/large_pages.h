@@ -1,0 +1,25 @@
+#pragma once
+// Fresh, zeroed memory for large arrays (util/zeroed_array.h), in 2 MiB pages where the kernel
+// offers them. A block of kLargePage bytes or more is mapped on its own, aligned to kLargePage,
+// and advised for transparent huge pages (Linux's MADV_HUGEPAGE: the default "madvise" setting
+// of /sys/kernel/mm/transparent_hugepage/enabled backs only such blocks with 2 MiB pages); its
+// first touch then costs one page fault per 2 MiB. Smaller blocks, other systems and the
+// sanitizer builds (whose checks need their allocator) take calloc's memory.
+
+#include <cstddef>
+
+namespace strahl {
+
+inline constexpr std::size_t kLargePage = std::size_t(2) << 20;
+
+// `bytes` (> 0) zeroed bytes, aligned to kLargePage when mapped on their own; throws
+// std::bad_alloc when there is no memory.
+void* allocate_zeroed_bytes(std::size_t bytes);
+
+// Frees a block from allocate_zeroed_bytes(bytes) (nullptr: nothing).
+void free_zeroed_bytes(void* p, std::size_t bytes) noexcept;
+
+// Whether allocate_zeroed_bytes(bytes) maps the block on its own in large pages.
+bool maps_large_pages(std::size_t bytes);
+
+}  // namespace strahl

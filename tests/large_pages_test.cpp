@@ -1,0 +1,81 @@
+// util/large_pages.h: large zeroed blocks mapped on their own, aligned to 2 MiB and advised for
+// transparent huge pages (Linux, not under sanitizers); small ones from calloc. Every block reads
+// as zeros and holds what is written to it.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "strahl/util/large_pages.h"
+#include "strahl/util/zeroed_array.h"
+
+namespace strahl::large_pages_test {
+namespace {
+
+// /proc/self/smaps' "THPeligible" of the mapping that holds address p: 1 when the kernel may back
+// it with huge pages (the advice was taken), 0 when not, −1 when there is no such line.
+int thp_eligible(const void* p) {
+  std::ifstream smaps("/proc/self/smaps");
+  const auto a = reinterpret_cast<std::uintptr_t>(p);
+  std::string line;
+  bool inside = false;
+  while (std::getline(smaps, line)) {
+    unsigned long lo = 0, hi = 0;
+    if (std::sscanf(line.c_str(), "%lx-%lx ", &lo, &hi) == 2 && line.find('-') < line.find(' ')) {
+      inside = a >= lo && a < hi;
+      continue;
+    }
+    if (inside && line.rfind("THPeligible:", 0) == 0) return std::stoi(line.substr(12));
+  }
+  return -1;
+}
+
+// The system's transparent-huge-page mode: "always", "madvise" or "never" ("" when unknown).
+std::string thp_mode() {
+  std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string all;
+  std::getline(in, all);
+  const auto open = all.find('['), close = all.find(']');
+  return open == std::string::npos || close == std::string::npos ? "" : all.substr(open + 1, close - open - 1);
+}
+
+TEST(LargePages, BlocksReadAsZerosAndHoldWhatIsWritten) {
+  for (const std::size_t bytes : {std::size_t(1), std::size_t(4096), kLargePage - 1, kLargePage, kLargePage + 1,
+                                  5 * kLargePage + 12345}) {
+    auto* p = static_cast<unsigned char*>(allocate_zeroed_bytes(bytes));
+    ASSERT_NE(p, nullptr);
+    std::size_t nonzero = 0;
+    for (std::size_t i = 0; i < bytes; ++i) nonzero += p[i] != 0;
+    EXPECT_EQ(nonzero, 0u) << bytes << " bytes";
+    p[0] = 1, p[bytes - 1] = 2;  // the first and the last byte are the block's
+    EXPECT_EQ(p[0], bytes == 1 ? 2 : 1);
+    EXPECT_EQ(p[bytes - 1], 2);
+    free_zeroed_bytes(p, bytes);
+  }
+  free_zeroed_bytes(nullptr, 0);
+}
+
+TEST(LargePages, LargeBlocksAreAlignedAndAdvisedForHugePages) {
+  EXPECT_FALSE(maps_large_pages(kLargePage - 1));
+  if (!maps_large_pages(kLargePage)) GTEST_SKIP() << "calloc's memory on this build (not Linux, or a sanitizer)";
+  ZeroedArray<double> sums(3 * kLargePage / sizeof(double) + 7);  // a film's sums: 3 large pages and a bit
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(sums.data()) % kLargePage, 0u);
+  sums[sums.size() - 1] = 1;
+  const std::string mode = thp_mode();
+  if (mode != "always" && mode != "madvise") GTEST_SKIP() << "transparent huge pages are " << mode;
+  const int eligible = thp_eligible(sums.data());
+  if (eligible < 0) GTEST_SKIP() << "no THPeligible in /proc/self/smaps";
+  EXPECT_EQ(eligible, 1);
+  // A small array from calloc: in "madvise" mode the heap is not advised.
+  if (mode == "madvise") {
+    ZeroedArray<double> small(1000);
+    EXPECT_EQ(thp_eligible(small.data()), 0);
+  }
+}
+
+}  // namespace
+}  // namespace strahl::large_pages_test
