@@ -363,7 +363,7 @@ TEST(PacketFrontEnd, LanesOfNeighbouringPixelsEqualTheSingleSamplePath) {
 
 // The tile renderer (fewer than 16 samples per pixel: packets gathered across pixels, a pixel's
 // samples running on from one packet into the next; 16 or more: whole packets of a pixel's own,
-// the rest gathered; the Sobol film positions computed lane by lane in both) against
+// the rest gathered; the Sobol and strata film positions computed lane by lane in both) against
 // pixel_sample() one sample at a time into the same film layout: the same sums, statistics and
 // counts, bit for bit. per_pixel 0: every pixel its own number of samples, 0 … 20.
 TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
@@ -374,10 +374,11 @@ TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
     const RenderScene rs = compile(scene);
     const SceneView view = rs.view();
     for (const SamplerKind kind : {SamplerKind::Adaptive, SamplerKind::Sobol, SamplerKind::Stratified, SamplerKind::Grid})
+      for (const int spp : {1, 4, 16})  // (grid and stratified: strata sides 1, 2, 4)
       for (const std::uint32_t per_pixel : {1u, 3u, 16u, 0u}) {
         SamplingSettings sampling;
         sampling.sampler = kind;
-        sampling.spp = 16;
+        sampling.spp = spp;
         sampling.seed = 5;
         const PixelSampler sampler = make_pixel_sampler(sampling);
         const FilmLayout layout(view.camera.nx, view.camera.ny, Filter{}, kind == SamplerKind::Adaptive);
@@ -409,7 +410,8 @@ TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
               ++alone.taken[i];
             }
           }
-        const std::string what = std::string(file) + " " + sampler_name(kind) + " " + std::to_string(per_pixel);
+        const std::string what =
+            std::string(file) + " " + sampler_name(kind) + " spp " + std::to_string(spp) + " " + std::to_string(per_pixel);
         EXPECT_EQ(tiled.taken, alone.taken) << what;
         ASSERT_EQ(tiled.local.size(), alone.local.size()) << what;
         EXPECT_EQ(std::memcmp(tiled.local.data(), alone.local.data(), tiled.local.size() * sizeof(double)), 0) << what;

@@ -47,9 +47,10 @@ TEST(PixelSampler, PowerOfTwoSidesMatchTheDivisions) {
   }
 }
 
-// The lanes' grid path (PixelSequence::samples, render/packet_radiance.h) against sample() one by
-// one: every side that is a power of two, packets of 8 and 16 starting anywhere in the first rounds
-// (straddling two rounds too: that falls back), lens and time unused as the path requires, the film
+// The lanes' paths (PixelSequence::samples, render/packet_radiance.h: strata_film_lanes,
+// sobol_film_lanes) against sample() one by one: every side, packets of 8 and 16 starting
+// anywhere in the first rounds (straddling two rounds too: each lane its round's order; a side that
+// is no power of two falls back), lens and time unused as the paths require, the film
 // lanes (FilmLanes) the same positions and times, padded with lane 0's; and the
 // walk-free permutation equals the walking one for every power of two n and element.
 template <int N>

@@ -43,7 +43,11 @@ class SamplePackets {
         film_(film),
         work_(work),
         sobol_((shared.kind == SamplerKind::Sobol || shared.kind == SamplerKind::Adaptive) && !shared.uses_lens &&
-               !shared.uses_time) {}
+               !shared.uses_time),
+        strata_(shared.strata_lanes()),
+        stratified_(shared.kind == SamplerKind::Stratified),
+        side_(shared.side),
+        side_shift_(shared.side_shift) {}
 
   // Pixel (x, row), entry i of the tile, takes samples first … first + count − 1 of `sequence`;
   // false when stopped.
@@ -52,6 +56,9 @@ class SamplePackets {
     for (std::uint32_t index = first; index < first + count; ++index) {
       if (sobol_) {  // the film positions come in flush(), the lanes side by side
         s0_[count_] = sequence.h[0], s1_[count_] = sequence.h[1], s2_[count_] = sequence.h[2];
+        px_[count_] = Real(sequence.x), py_[count_] = Real(sequence.y);
+      } else if (strata_) {  // so do these, the strata's order in s0_
+        s0_[count_] = sequence.strata_order(index);
         px_[count_] = Real(sequence.x), py_[count_] = Real(sequence.y);
       } else {
         cs_[count_] = sequence.sample(index);
@@ -74,6 +81,11 @@ class SamplePackets {
       for (int j = count_; j < kLanes; ++j)  // lanes nobody reads
         index_[j] = 0, s0_[j] = s1_[j] = s2_[j] = 0, px_[j] = py_[j] = 0;
       sobol_film_lanes<kLanes>(index_, s0_, s1_, s2_, px_, py_, cs_, film_lanes_);
+      film_lanes_.pad(count_);
+    } else if (strata_) {
+      for (int j = count_; j < kLanes; ++j)  // lanes nobody reads
+        index_[j] = 0, s0_[j] = 0, key_[j] = 0, px_[j] = py_[j] = 0;
+      strata_film_lanes<kLanes>(stratified_, side_, side_shift_, index_, s0_, key_, px_, py_, cs_, film_lanes_);
       film_lanes_.pad(count_);
     } else {
       film_lanes_.set(cs_, count_);
@@ -105,6 +117,10 @@ class SamplePackets {
   std::uint64_t key_[kLanes];
   std::uint32_t index_[kLanes];
   const bool sobol_;  // Sobol film positions without lens and time: computed in flush()
+  const bool strata_;  // grid or stratified ones of a power-of-two side without lens and time: so are these
+  const bool stratified_;
+  const std::uint32_t side_;
+  const int side_shift_;
   std::uint32_t s0_[kLanes], s1_[kLanes], s2_[kLanes];
   Real px_[kLanes], py_[kLanes];
   int x_[kLanes], row_[kLanes];

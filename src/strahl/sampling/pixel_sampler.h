@@ -107,6 +107,39 @@ STRAHL_HOST_DEVICE inline void sobol_film_lanes(const std::uint32_t* __restrict 
   film.get(cs);
 }
 
+// The film positions of N grid or stratified samples whose strata side is a power of two
+// (side = 2^side_shift), for a camera without lens and shutter: lane i is sample index[i] of the
+// pixel at (px[i], py[i]), whose round visits the strata in order order[i]
+// (PixelSequence::strata_order) and whose random numbers are keyed by stream[i] — sample()'s
+// arithmetic, the lanes side by side. `jitter`: stratified (else the strata's centres, the grid).
+template <int N>
+STRAHL_HOST_DEVICE inline void strata_film_lanes(bool jitter, std::uint32_t side, int side_shift,
+                                                 const std::uint32_t* __restrict index,
+                                                 const std::uint32_t* __restrict order,
+                                                 const std::uint64_t* __restrict stream, const Real* __restrict px,
+                                                 const Real* __restrict py, CameraSample* cs,
+                                                 FilmLanes<N>& __restrict film) {
+  const std::uint32_t n = side * side;
+  const Real inv = Real(1) / Real(side);  // exact: a power of two (1 for one stratum: (0 + j) · 1 = j)
+  std::uint32_t s[N];  // the lanes' strata (permutation_element_pow2 of [0, 1) is 0)
+  for (int i = 0; i < N; ++i) s[i] = permutation_element_pow2(index[i] & (n - 1), n, order[i]);
+  Real jx[N], jy[N];
+  if (jitter) {
+    for (int i = 0; i < N; ++i) {
+      jx[i] = to_unit(keyed_bits(stream[i], index[i], kDimPixel));
+      jy[i] = to_unit(keyed_bits(stream[i], index[i], kDimPixel + 1));
+    }
+  } else {
+    for (int i = 0; i < N; ++i) jx[i] = jy[i] = Real(0.5);
+  }
+  for (int i = 0; i < N; ++i) {
+    film.x[i] = px[i] + (Real(s[i] & (side - 1)) + jx[i]) * inv;
+    film.y[i] = py[i] + (Real(s[i] >> side_shift) + jy[i]) * inv;
+    film.time[i] = 0;
+  }
+  film.get(cs);
+}
+
 // The samples of one pixel, with the pixel's hashes (permutation and scrambling seeds) computed
 // once rather than per sample.
 struct PixelSequence {
@@ -133,6 +166,19 @@ struct PixelSequence {
   // A 32-bit hash per (pixel, purpose), independent of the per-sample random numbers.
   STRAHL_HOST_DEVICE std::uint32_t hash(std::uint32_t purpose) const {
     return std::uint32_t(mix64(key + (std::uint64_t(purpose) + 1) * 0x9e3779b97f4a7c15ULL) >> 32);
+  }
+
+  // Grid and stratified with a power-of-two side: the order in which the round of sample `index`
+  // visits the film's strata (sample()'s order(0); 0 for one stratum, which needs no order).
+  STRAHL_HOST_DEVICE std::uint32_t strata_order(std::uint32_t index) const {
+    const std::uint32_t round = index >> (2 * side_shift);
+    return side_shift == 0 ? 0u : round == 0 ? h[0] : hash(3 * round);
+  }
+  // Whether the film positions of this sequence's samples come from strata_film_lanes() (else
+  // sobol_film_lanes() or sample() by sample).
+  STRAHL_HOST_DEVICE bool strata_lanes() const {
+    return (kind == SamplerKind::Grid || kind == SamplerKind::Stratified) && side_shift >= 0 && !uses_lens &&
+           !uses_time;
   }
 
   STRAHL_HOST_DEVICE Vec2 stratum_2d(std::uint32_t k, std::uint32_t order, Vec2 jitter) const {
@@ -202,27 +248,26 @@ struct PixelSequence {
   }
 
   // sample(first + i) for i < count (≤ N) into cs[0 … N), their film positions and times into
-  // `film` too (padded: FilmLanes::pad): for the grid with a power-of-two side, no lens and no
-  // shutter, and samples of one round, the film positions with the lanes side by side (sample()'s
-  // arithmetic; cs[count …] get positions nobody reads); sample by sample otherwise.
+  // `film` too (padded: FilmLanes::pad): for grid and stratified with a power-of-two side and for
+  // sobol, without lens and shutter, with the lanes side by side (sample()'s arithmetic;
+  // cs[count …] get positions nobody reads); sample by sample otherwise.
   template <int N>
   STRAHL_HOST_DEVICE void samples(std::uint32_t first, int count, CameraSample* cs, FilmLanes<N>& film) const {
-    if (kind == SamplerKind::Grid && side_shift > 0 && !uses_lens && !uses_time && count > 0) {
-      const std::uint32_t n = side * side;
-      const std::uint32_t round = first >> (2 * side_shift);
-      if (((first + std::uint32_t(count) - 1) >> (2 * side_shift)) == round) {
-        const std::uint32_t order = round == 0 ? h[0] : hash(3 * round);
-        const Real inv = Real(1) / Real(side);  // exact: a power of two
-        for (int i = 0; i < N; ++i) {
-          const std::uint32_t s = permutation_element_pow2((first + std::uint32_t(i)) & (n - 1), n, order);
-          film.x[i] = Real(x) + (Real(s & (side - 1)) + Real(0.5)) * inv;
-          film.y[i] = Real(y) + (Real(s >> side_shift) + Real(0.5)) * inv;
-          film.time[i] = 0;
-        }
-        film.get(cs);
-        film.pad(count);
-        return;
+    if (strata_lanes() && count > 0) {
+      std::uint32_t index[N], order[N];
+      std::uint64_t streams[N];
+      Real px[N], py[N];
+      const std::uint32_t order0 = strata_order(first);
+      for (int i = 0; i < N; ++i) {
+        index[i] = first + std::uint32_t(i), order[i] = order0, streams[i] = stream;
+        px[i] = Real(x), py[i] = Real(y);
       }
+      const std::uint32_t last = first + std::uint32_t(count) - 1;
+      if (side_shift > 0 && last >> (2 * side_shift) != first >> (2 * side_shift))  // the samples start a new round
+        for (int i = 1; i < count; ++i) order[i] = strata_order(index[i]);
+      strata_film_lanes<N>(kind == SamplerKind::Stratified, side, side_shift, index, order, streams, px, py, cs, film);
+      film.pad(count);
+      return;
     }
     if ((kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) && !uses_lens && !uses_time) {
       std::uint32_t index[N], s0[N], s1[N], s2[N];
