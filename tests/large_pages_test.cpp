@@ -44,8 +44,8 @@ std::string thp_mode() {
 }
 
 TEST(LargePages, BlocksReadAsZerosAndHoldWhatIsWritten) {
-  for (const std::size_t bytes : {std::size_t(1), std::size_t(4096), kLargePage - 1, kLargePage, kLargePage + 1,
-                                  5 * kLargePage + 12345}) {
+  for (const std::size_t bytes : {std::size_t(1), std::size_t(4096), kLargeBlock - 1, kLargeBlock, kLargePage - 1,
+                                  kLargePage, kLargePage + 1, 5 * kLargePage + 12345}) {
     auto* p = static_cast<unsigned char*>(allocate_zeroed_bytes(bytes));
     ASSERT_NE(p, nullptr);
     std::size_t nonzero = 0;
@@ -60,11 +60,13 @@ TEST(LargePages, BlocksReadAsZerosAndHoldWhatIsWritten) {
 }
 
 TEST(LargePages, LargeBlocksAreAlignedAndAdvisedForHugePages) {
-  EXPECT_FALSE(maps_large_pages(kLargePage - 1));
-  if (!maps_large_pages(kLargePage)) GTEST_SKIP() << "calloc's memory on this build (not Linux, or a sanitizer)";
+  EXPECT_FALSE(maps_large_pages(kLargeBlock - 1));
+  if (!maps_large_pages(kLargeBlock)) GTEST_SKIP() << "calloc's memory on this build (not Linux, or a sanitizer)";
   ZeroedArray<double> sums(3 * kLargePage / sizeof(double) + 7);  // a film's sums: 3 large pages and a bit
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(sums.data()) % kLargePage, 0u);
   sums[sums.size() - 1] = 1;
+  ZeroedArray<std::uint32_t> counts(kLargeBlock / sizeof(std::uint32_t));  // half a large page
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(counts.data()) % kLargePage, 0u);
   const std::string mode = thp_mode();
   if (mode != "always" && mode != "madvise") GTEST_SKIP() << "transparent huge pages are " << mode;
   const int eligible = thp_eligible(sums.data());

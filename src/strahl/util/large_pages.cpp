@@ -27,7 +27,7 @@ std::size_t mapped_length(std::size_t bytes) { return (bytes + kLargePage - 1) /
 
 bool maps_large_pages(std::size_t bytes) {
 #if defined(__linux__) && !defined(STRAHL_SANITIZED_ALLOCATOR) && defined(MADV_HUGEPAGE)
-  return bytes >= kLargePage && bytes <= std::size_t(-1) - 2 * kLargePage;
+  return bytes >= kLargeBlock && bytes <= std::size_t(-1) - 2 * kLargePage;
 #else
   (void)bytes;
   return false;
