@@ -61,7 +61,7 @@ TEST(LargePages, BlocksReadAsZerosAndHoldWhatIsWritten) {
 
 TEST(LargePages, LargeBlocksAreAlignedAndAdvisedForHugePages) {
   EXPECT_FALSE(maps_large_pages(kLargeBlock - 1));
-  if (!maps_large_pages(kLargeBlock)) GTEST_SKIP() << "calloc's memory on this build (not Linux, or a sanitizer)";
+  if (!maps_large_pages(kLargeBlock)) GTEST_SKIP() << "calloc's memory here (not Linux, a sanitizer, or STRAHL_LARGE_PAGES=0)";
   ZeroedArray<double> sums(3 * kLargePage / sizeof(double) + 7);  // a film's sums: 3 large pages and a bit
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(sums.data()) % kLargePage, 0u);
   sums[sums.size() - 1] = 1;

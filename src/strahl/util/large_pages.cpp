@@ -2,12 +2,15 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
 
+// Whether this build maps large blocks itself: Linux with transparent huge pages, not under a
+// sanitizer (whose checks need its own allocator's blocks).
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define STRAHL_SANITIZED_ALLOCATOR 1
 #elif defined(__has_feature)
@@ -15,19 +18,32 @@
 #define STRAHL_SANITIZED_ALLOCATOR 1
 #endif
 #endif
+#if defined(__linux__) && defined(MADV_HUGEPAGE) && !defined(STRAHL_SANITIZED_ALLOCATOR)
+#define STRAHL_MAPS_LARGE_PAGES 1
+#endif
 
 namespace strahl {
 
 namespace {
 
+#if defined(STRAHL_MAPS_LARGE_PAGES)
 // The block's length rounded up to whole large pages.
 std::size_t mapped_length(std::size_t bytes) { return (bytes + kLargePage - 1) / kLargePage * kLargePage; }
+#endif
 
 }  // namespace
 
+bool large_pages_enabled() {
+  static const bool enabled = [] {
+    const char* v = std::getenv("STRAHL_LARGE_PAGES");
+    return v == nullptr || !(std::strcmp(v, "0") == 0 || std::strcmp(v, "off") == 0);
+  }();
+  return enabled;
+}
+
 bool maps_large_pages(std::size_t bytes) {
-#if defined(__linux__) && !defined(STRAHL_SANITIZED_ALLOCATOR) && defined(MADV_HUGEPAGE)
-  return bytes >= kLargeBlock && bytes <= std::size_t(-1) - 2 * kLargePage;
+#if defined(STRAHL_MAPS_LARGE_PAGES)
+  return bytes >= kLargeBlock && bytes <= std::size_t(-1) - 2 * kLargePage && large_pages_enabled();
 #else
   (void)bytes;
   return false;
@@ -35,7 +51,7 @@ bool maps_large_pages(std::size_t bytes) {
 }
 
 void* allocate_zeroed_bytes(std::size_t bytes) {
-#if defined(__linux__) && !defined(STRAHL_SANITIZED_ALLOCATOR) && defined(MADV_HUGEPAGE)
+#if defined(STRAHL_MAPS_LARGE_PAGES)
   if (maps_large_pages(bytes)) {
     // One large page more than needed, then the part before the first aligned address and the
     // part after the block given back: an aligned block of whole large pages.
@@ -59,7 +75,7 @@ void* allocate_zeroed_bytes(std::size_t bytes) {
 
 void free_zeroed_bytes(void* p, std::size_t bytes) noexcept {
   if (p == nullptr) return;
-#if defined(__linux__) && !defined(STRAHL_SANITIZED_ALLOCATOR) && defined(MADV_HUGEPAGE)
+#if defined(STRAHL_MAPS_LARGE_PAGES)
   if (maps_large_pages(bytes)) {
     munmap(p, mapped_length(bytes));
     return;

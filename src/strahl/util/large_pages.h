@@ -4,7 +4,9 @@
 // and advised for transparent huge pages (Linux's MADV_HUGEPAGE: the default "madvise" setting
 // of /sys/kernel/mm/transparent_hugepage/enabled backs only such blocks with 2 MiB pages); its
 // first touch then costs one page fault per 2 MiB. Smaller blocks, other systems and the
-// sanitizer builds (whose checks need their allocator) take calloc's memory.
+// sanitizer builds (whose checks need their allocator) take calloc's memory, and so does every
+// block when the environment variable STRAHL_LARGE_PAGES is 0 or off (docs/cli.md, "Environment":
+// a fresh large page can cost more than its 512 small ones on a host that has to back it anew).
 
 #include <cstddef>
 
@@ -25,5 +27,8 @@ void free_zeroed_bytes(void* p, std::size_t bytes) noexcept;
 
 // Whether allocate_zeroed_bytes(bytes) maps the block on its own in large pages.
 bool maps_large_pages(std::size_t bytes);
+
+// Whether large blocks are mapped in large pages at all (STRAHL_LARGE_PAGES, read once).
+bool large_pages_enabled();
 
 }  // namespace strahl
