@@ -5,10 +5,10 @@
 // arrays: their page faults happen where the tiles are first merged and the image resolved, in
 // the threads that do it, instead of all at once before the first tile.
 //
-// A block of 2 MiB or more is mapped in whole 2 MiB pages where the kernel offers them
-// (util/large_pages.h): one page fault per 2 MiB instead of 512. A 4 KiB page fault costs
-// ~0.1 µs on bare metal but 10 µs in some virtual machines (every page-table update a trap):
-// there a 1080p film's 66 MiB of sums took 178 ms of faults in 4 KiB pages and 4 ms in 2 MiB ones.
+// A block of 1 MiB or more is mapped in whole 2 MiB pages where the kernel offers them
+// (util/large_pages.h): one page fault per 2 MiB instead of 512. In some virtual machines a 4 KiB
+// page fault costs 10 µs: there a 1080p film's 66 MiB of sums took 178 ms of faults in 4 KiB
+// pages and 3–6 ms in 2 MiB ones (docs/benchmark.md, "Seventeenth session").
 
 #include <cstddef>
 #include <cstdlib>
