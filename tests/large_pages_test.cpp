@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -77,6 +78,23 @@ TEST(LargePages, LargeBlocksAreAlignedAndAdvisedForHugePages) {
     ZeroedArray<double> small(1000);
     EXPECT_EQ(thp_eligible(small.data()), 0);
   }
+}
+
+// STRAHL_LARGE_PAGES=0 or off: no block in large pages; any other value: as without it. The
+// variable is read once per process, so each case runs in a child of its own (a death test's
+// "threadsafe" style starts the test binary afresh).
+TEST(LargePagesDeathTest, TheEnvironmentTurnsThemOff) {
+  // (Not maps_large_pages here: it would read the variable before the child sets it.)
+  if (!large_pages_supported()) GTEST_SKIP() << "calloc's memory on this build (not Linux, or a sanitizer)";
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const auto exit_code_with = [](const char* value) {  // 1: large pages, 0: none
+    ::setenv("STRAHL_LARGE_PAGES", value, 1);
+    std::exit(maps_large_pages(kLargeBlock) ? 1 : 0);
+  };
+  EXPECT_EXIT(exit_code_with("0"), ::testing::ExitedWithCode(0), "");
+  EXPECT_EXIT(exit_code_with("off"), ::testing::ExitedWithCode(0), "");
+  EXPECT_EXIT(exit_code_with("1"), ::testing::ExitedWithCode(1), "");
+  EXPECT_EXIT(exit_code_with(""), ::testing::ExitedWithCode(1), "");
 }
 
 }  // namespace

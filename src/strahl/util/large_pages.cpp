@@ -33,6 +33,14 @@ std::size_t mapped_length(std::size_t bytes) { return (bytes + kLargePage - 1) /
 
 }  // namespace
 
+bool large_pages_supported() {
+#if defined(STRAHL_MAPS_LARGE_PAGES)
+  return true;
+#else
+  return false;
+#endif
+}
+
 bool large_pages_enabled() {
   static const bool enabled = [] {
     const char* v = std::getenv("STRAHL_LARGE_PAGES");

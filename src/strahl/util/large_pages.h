@@ -28,7 +28,9 @@ void free_zeroed_bytes(void* p, std::size_t bytes) noexcept;
 // Whether allocate_zeroed_bytes(bytes) maps the block on its own in large pages.
 bool maps_large_pages(std::size_t bytes);
 
-// Whether large blocks are mapped in large pages at all (STRAHL_LARGE_PAGES, read once).
+// Whether this build maps large blocks in large pages (Linux with transparent huge pages, no
+// sanitizer), and whether the environment lets it (STRAHL_LARGE_PAGES, read once, at the first call).
+bool large_pages_supported();
 bool large_pages_enabled();
 
 }  // namespace strahl
