@@ -1,24 +1,19 @@
-// The CUDA back end's host side: takes every tile of a pass from the job, flattens them into the
-// per-pixel arrays the kernel reads (device.h), runs the pass on the GPU, and delivers each tile
-// with its sums back to the job.
+// The CUDA back end's host side: opens the device, uploads the scene, and renders each pass of the
+// job as one flat launch (cuda/flat_pass_job.h) on the GPU.
 
 #include "strahl/cuda/cuda_backend.h"
 
 #include <dlfcn.h>
 
 #include <cstdio>
-#include <optional>
-#include <vector>
 
 #include "strahl/cuda/device.h"
+#include "strahl/cuda/flat_pass_job.h"
 #include "strahl/render/render_scene.h"
 
 namespace strahl {
 
 using cuda_detail::Device;
-using cuda_detail::PassData;
-using cuda_detail::PassPixel;
-using cuda_detail::PassTile;
 
 struct CudaBackend::Impl {
   std::unique_ptr<Device> device;
@@ -59,65 +54,11 @@ std::unique_ptr<CudaBackend> CudaBackend::create(const RenderScene& scene, std::
 }
 
 void CudaBackend::render_pass(RenderJob& job) {
-  std::vector<TileWork> works;
-  while (std::optional<TileWork> w = job.next_tile()) works.push_back(std::move(*w));
-  if (works.empty()) return;
-  const FilmParams film = job.film_layout().params();
-
-  PassData pass;
-  std::size_t pixels = 0, fixed = 0;
-  for (const TileWork& w : works) {
-    pixels += w.rect.pixels();
-    fixed += w.fixed.size();
-  }
-  pass.pixels.reserve(pixels);
-  if (film.local) pass.local.reserve(pixels * 4);
-  if (film.stats) pass.stats.reserve(pixels);
-  pass.fixed.assign(fixed, 0);
-  pass.tiles.reserve(works.size());
-  std::uint64_t offset = 0;
-  for (std::size_t t = 0; t < works.size(); ++t) {
-    const TileWork& w = works[t];
-    const TileRect& r = w.rect;
-    for (int row = r.row0; row < r.row1; ++row)
-      for (int x = r.x0; x < r.x1; ++x) {
-        const std::size_t i = r.index(x, row);
-        pass.pixels.push_back({x, row, w.first[i], w.count[i], std::uint32_t(t)});
-      }
-    if (film.local) pass.local.insert(pass.local.end(), w.local.begin(), w.local.end());
-    if (film.stats) pass.stats.insert(pass.stats.end(), w.stats.begin(), w.stats.end());
-    pass.tiles.push_back({w.bx0, w.brow0, w.bw, w.bh, offset});
-    offset += w.fixed.size();
-  }
-
-  RayCounters counters;
-  const StopToken& stop = job.stop();
-  const bool ok = impl_->error.empty() &&
-                  impl_->device->run(job.view(), job.sampler(), film, pass, [&] { return stop.requested(); }, counters,
-                                     impl_->error);
-  if (!ok) {  // every tile back unchanged (no samples taken), and the job stops
-    job.cancel();
-    for (TileWork& w : works) job.deliver(std::move(w));
-    return;
-  }
-
-  std::size_t p = 0;
-  for (std::size_t t = 0; t < works.size(); ++t) {
-    TileWork& w = works[t];
-    const std::size_t n = w.rect.pixels();
-    for (std::size_t i = 0; i < n; ++i) w.taken[i] = pass.taken[p + i];
-    if (film.local)
-      std::copy(pass.local.begin() + std::ptrdiff_t(p * 4), pass.local.begin() + std::ptrdiff_t((p + n) * 4),
-                w.local.begin());
-    if (film.stats)
-      std::copy(pass.stats.begin() + std::ptrdiff_t(p), pass.stats.begin() + std::ptrdiff_t(p + n), w.stats.begin());
-    const std::size_t off = pass.tiles[t].fixed_offset;
-    std::copy(pass.fixed.begin() + std::ptrdiff_t(off), pass.fixed.begin() + std::ptrdiff_t(off + w.fixed.size()),
-              w.fixed.begin());
-    p += n;
-  }
-  works[0].counters = counters;  // the job sums the tiles' counters
-  for (TileWork& w : works) job.deliver(std::move(w));
+  render_flat_pass(job, [&](const FilmParams& film, PassData& pass, RayCounters& counters) {
+    const StopToken& stop = job.stop();
+    return impl_->error.empty() && impl_->device->run(job.view(), job.sampler(), film, pass,
+                                                      [&] { return stop.requested(); }, counters, impl_->error);
+  });
 }
 
 CudaStats CudaBackend::stats() const {

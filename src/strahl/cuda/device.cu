@@ -13,7 +13,6 @@
 
 #include "strahl/cuda/device.h"
 #include "strahl/render/intersect_scene.h"
-#include "strahl/render/pixel.h"
 #include "strahl/render/render_scene.h"
 
 namespace strahl::cuda_detail {
@@ -38,18 +37,8 @@ namespace {
 constexpr int kBlock = 128;
 
 struct KernelArgs {
-  SceneView view;  // device pointers
-  PixelSampler sampler;
-  FilmParams film;
-  const PassPixel* pixels;
-  double* local;
-  PixelStats* stats;
-  std::uint32_t* taken;
-  const PassTile* tiles;
-  std::int64_t* fixed;
-  std::uint32_t n;
-  const volatile int* stop;
-  unsigned long long* counters;  // camera, shadow, reflection, refraction, invalid
+  PassArgs pass;                 // device pointers (cuda/flat_pass.h)
+  unsigned long long* counters;  // kPassCounters (counter_array)
 };
 
 __device__ inline unsigned long long warp_sum(unsigned long long v) {
@@ -60,40 +49,14 @@ __device__ inline unsigned long long warp_sum(unsigned long long v) {
 __global__ void __launch_bounds__(kBlock) render_kernel(const KernelArgs a) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   RayCounters c;
-  if (i < a.n) {
-    const PassPixel p = a.pixels[i];
-    std::uint32_t taken = 0;
-    if (p.count > 0) {
-      const PixelSequence sequence = pixel_sequence(a.view, a.sampler, p.x, p.row);
-      double sums[4] = {0, 0, 0, 0};
-      if (a.film.local)
-        for (int k = 0; k < 4; ++k) sums[k] = a.local[std::size_t(i) * 4 + std::size_t(k)];
-      PixelStats st;
-      if (a.film.stats) st = a.stats[i];
-      const PassTile tile = a.tiles[p.tile];
-      for (std::uint32_t k = p.first; k < p.first + p.count; ++k) {
-        if (*a.stop) break;  // stop between two samples
-        CameraSample cs;
-        const Vec3 L = pixel_sample(a.view, sequence, k, cs, c);
-        if (a.film.stats) film_add_stats(st, L);
-        if (a.film.local)
-          film_add_local(sums, L);
-        else
-          film_add_wide(a.film, p.x, p.row, cs, L, a.fixed + tile.fixed_offset, tile.bx0, tile.brow0, tile.bw,
-                        [](std::int64_t* q, std::int64_t v) {
-                          atomicAdd(reinterpret_cast<unsigned long long*>(q), static_cast<unsigned long long>(v));
-                        });
-        ++taken;
-      }
-      if (a.film.local)
-        for (int k = 0; k < 4; ++k) a.local[std::size_t(i) * 4 + std::size_t(k)] = sums[k];
-      if (a.film.stats) a.stats[i] = st;
-    }
-    a.taken[i] = taken;
-  }
+  if (i < a.pass.n)
+    render_flat_pixel(a.pass, i, c, [](std::int64_t* q, std::int64_t v) {
+      atomicAdd(reinterpret_cast<unsigned long long*>(q), static_cast<unsigned long long>(v));
+    });
   // Every thread of the block reaches this point (no early return above).
-  const unsigned long long v[5] = {c.camera, c.shadow, c.reflection, c.refraction, c.invalid_samples};
-  for (int k = 0; k < 5; ++k) {
+  unsigned long long v[kPassCounters];
+  counter_array(c, v);
+  for (int k = 0; k < kPassCounters; ++k) {
     const unsigned long long s = warp_sum(v[k]);
     if ((threadIdx.x & 31) == 0 && s != 0) atomicAdd(&a.counters[k], s);
   }
@@ -256,7 +219,7 @@ std::unique_ptr<Device> Device::open(std::string& error) {
   if ((e = cudaStreamCreateWithFlags(&m.stream, cudaStreamNonBlocking)) != cudaSuccess ||
       (e = cudaStreamCreateWithFlags(&m.control, cudaStreamNonBlocking)) != cudaSuccess ||
       (e = cudaEventCreate(&m.begin)) != cudaSuccess || (e = cudaEventCreate(&m.end)) != cudaSuccess ||
-      (e = m.flag.reserve(sizeof(int))) != cudaSuccess || (e = m.counters.reserve(5 * 8)) != cudaSuccess) {
+      (e = m.flag.reserve(sizeof(int))) != cudaSuccess || (e = m.counters.reserve(kPassCounters * sizeof(unsigned long long))) != cudaSuccess) {
     error = "CUDA set-up failed on " + std::string(prop.name) + " (" + cuda_message(e) + ")";
     return nullptr;
   }
@@ -296,10 +259,10 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
     error = "internal: the scene has an array the CUDA back end does not upload";
     return false;
   }
-  // The integrator recurses once per reflected or refracted ray (render/whitted.h): give each
-  // thread a stack for max_depth levels. ptxas (sm_90, nvcc 13.0) reported frames of 13168 bytes
-  // for the kernel, 848 for trace() and 11832 + 6520 for the lighting it calls, each holding
-  // traversal stacks (docs/gpu.md); the base covers the non-recursive part with room to spare.
+  // Each thread's stack. The integrator no longer recurses (render/whitted.h: a fixed array of
+  // pending hits), and ptxas (sm_90, nvcc 13.0) reports a 30224-byte frame for the render kernel
+  // (docs/gpu.md); these figures, from the recursive integrator's time, cover it with room to
+  // spare. Fitting them to the kernel is for a session with a GPU to measure.
   constexpr std::size_t kStackBase = 40960, kStackPerLevel = 1024;
   const std::size_t stack = kStackBase + kStackPerLevel * std::size_t(host.settings.max_depth + 1);
   if (!ok(cudaDeviceSetLimit(cudaLimitStackSize, stack))) {
@@ -326,7 +289,7 @@ bool Device::run(const SceneView& view, const PixelSampler& sampler, const FilmP
   SceneView probe = view;
   probe.accel.kdtree = {};
   probe.accel.octree = {};
-  if (!m.device_view(probe, a.view)) {
+  if (!m.device_view(probe, a.pass.view)) {
     error = "internal: the job's scene is not the one uploaded to the GPU";
     return false;
   }
@@ -345,7 +308,7 @@ bool Device::run(const SceneView& view, const PixelSampler& sampler, const FilmP
     return v.empty() || ok(cudaMemcpyAsync(v.data(), b.ptr, v.size() * sizeof(T), cudaMemcpyDeviceToHost, m.stream));
   };
   const int zero = 0, one = 1;
-  unsigned long long sums[5] = {0, 0, 0, 0, 0};
+  unsigned long long sums[kPassCounters] = {};
   if (!(up(m.pixels, pass.pixels) && up(m.local, pass.local) && up(m.stats, pass.stats) && up(m.tiles, pass.tiles) &&
         up(m.fixed, pass.fixed) && ok(m.taken.reserve(n * sizeof(std::uint32_t))) &&
         ok(cudaMemcpyAsync(m.flag.ptr, &zero, sizeof zero, cudaMemcpyHostToDevice, m.stream)) &&
@@ -354,16 +317,16 @@ bool Device::run(const SceneView& view, const PixelSampler& sampler, const FilmP
             cuda_message(e) + ")";
     return false;
   }
-  a.sampler = sampler;
-  a.film = film;
-  a.pixels = static_cast<const PassPixel*>(m.pixels.ptr);
-  a.local = static_cast<double*>(m.local.ptr);
-  a.stats = static_cast<PixelStats*>(m.stats.ptr);
-  a.taken = static_cast<std::uint32_t*>(m.taken.ptr);
-  a.tiles = static_cast<const PassTile*>(m.tiles.ptr);
-  a.fixed = static_cast<std::int64_t*>(m.fixed.ptr);
-  a.n = std::uint32_t(n);
-  a.stop = static_cast<const volatile int*>(m.flag.ptr);
+  a.pass.sampler = sampler;
+  a.pass.film = film;
+  a.pass.pixels = static_cast<const PassPixel*>(m.pixels.ptr);
+  a.pass.local = static_cast<double*>(m.local.ptr);
+  a.pass.stats = static_cast<PixelStats*>(m.stats.ptr);
+  a.pass.taken = static_cast<std::uint32_t*>(m.taken.ptr);
+  a.pass.tiles = static_cast<const PassTile*>(m.tiles.ptr);
+  a.pass.fixed = static_cast<std::int64_t*>(m.fixed.ptr);
+  a.pass.n = std::uint32_t(n);
+  a.pass.stop = static_cast<const volatile int*>(m.flag.ptr);
   a.counters = static_cast<unsigned long long*>(m.counters.ptr);
   const unsigned blocks = unsigned((n + kBlock - 1) / kBlock);
   cudaEventRecord(m.begin, m.stream);
@@ -400,11 +363,7 @@ bool Device::run(const SceneView& view, const PixelSampler& sampler, const FilmP
     error = "copying the pass back from the GPU failed (" + cuda_message(e) + ")";
     return false;
   }
-  counters.camera += sums[0];
-  counters.shadow += sums[1];
-  counters.reflection += sums[2];
-  counters.refraction += sums[3];
-  counters.invalid_samples += sums[4];
+  add_counter_array(counters, sums);
   return true;
 }
 

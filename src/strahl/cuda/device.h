@@ -2,10 +2,7 @@
 // Between the CUDA back end's host logic (cuda_backend.cpp, plain C++) and the one CUDA
 // translation unit (device.cu): what a pass hands the GPU and gets back. No CUDA header here.
 //
-// A pass is flattened into per-pixel arrays over every tile the job handed out: pixel i belongs
-// to tile pixels[i].tile, takes samples first … first + count − 1 and carries its film sums in
-// and out (local: four doubles; stats: PixelStats). Wide filters' contributions go to each
-// tile's own fixed-point buffer (the TileWork layout), the tiles' buffers one after the other.
+// A pass is flattened into per-pixel arrays over every tile the job handed out (cuda/flat_pass.h).
 
 #include <cstddef>
 #include <cstdint>
@@ -14,36 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "strahl/render/film_sample.h"
-#include "strahl/render/ray_counters.h"
-#include "strahl/render/scene_view.h"
-#include "strahl/render/tile.h"
-#include "strahl/sampling/pixel_sampler.h"
+#include "strahl/cuda/flat_pass.h"
 
 namespace strahl {
 struct RenderScene;
 }
 
 namespace strahl::cuda_detail {
-
-struct PassPixel {
-  std::int32_t x = 0, row = 0;
-  std::uint32_t first = 0, count = 0, tile = 0;
-};
-
-struct PassTile {
-  std::int32_t bx0 = 0, brow0 = 0, bw = 0, bh = 0;
-  std::uint64_t fixed_offset = 0;  // into PassData::fixed, in int64 units
-};
-
-struct PassData {
-  std::vector<PassPixel> pixels;
-  std::vector<double> local;        // 4 per pixel (pixel-local filters), else empty
-  std::vector<PixelStats> stats;    // 1 per pixel when kept, else empty
-  std::vector<std::uint32_t> taken; // out: samples taken per pixel
-  std::vector<PassTile> tiles;
-  std::vector<std::int64_t> fixed;  // wide filters: every tile's buffer, zero in, sums out
-};
 
 struct DeviceInfo {
   std::string name;
@@ -64,7 +38,7 @@ class Device {
   const DeviceInfo& info() const { return info_; }
 
   // Copies every array of `view` to device memory (once; the scene stays resident) and sizes the
-  // stack the recursive integrator needs. False and a reason (out of memory, …) on failure.
+  // threads' stacks. False and a reason (out of memory, …) on failure.
   bool upload(const RenderScene& scene, std::string& error);
 
   // The job's view of the uploaded scene (its camera and settings may differ from the scene's)

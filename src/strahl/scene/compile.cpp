@@ -426,9 +426,11 @@ RenderScene compile(const Scene& scene) {
   check_cancelled("build");
   out.accel = build_accel(s.accel, out.primitives());
   check_cancelled("build");
+#if defined(STRAHL_HAVE_EMBREE)
   if (s.accel == AccelKind::Embree && out.accel.kind != AccelKind::Embree && !embree_misfit(out.primitives()).empty())
     out.warnings.push_back(s.loc.str() + (s.loc.file.empty() ? "" : ": ") + "accel embree cannot hold this scene, " +
                            embree_misfit(out.primitives()) + "; rendering with bvh instead");
+#endif
   if (!out.moving_spheres.empty() || !out.moving_triangles.empty()) {
     std::vector<Bounds> boxes;
     boxes.reserve(out.moving_spheres.size() + out.moving_triangles.size());
