@@ -9,6 +9,7 @@
 
 #include "camera_control.h"
 #include "camera_yaml.h"
+#include "device_backend.h"
 #include "display.h"
 #include "save.h"
 #include "scene_source.h"
@@ -413,6 +414,29 @@ TEST(ViewRenderer, StillFrameIsTheRenderersImage) {
   EXPECT_EQ(small.height(), 6);
   EXPECT_EQ(f.rays.camera, 60u);
   EXPECT_EQ(f.spp, 1);
+}
+
+// --device in the viewer (device_backend.h) where no GPU is usable: the CPU renders every frame,
+// the same image; `cuda` says why the GPU does not render a new scene; `cpu` never asks.
+TEST(ViewDeviceBackend, WithoutAGpuTheCpuRendersTheSameImage) {
+  Scene scene = lecture_scene();
+  scene.settings.width = 32;
+  scene.settings.height = 20;
+  auto rs = std::make_shared<const RenderScene>(compile(scene));
+  view::DeviceBackend cpu("cpu", 2), cuda("cuda", 2);
+  EXPECT_EQ(cpu.use_scene(rs), "");
+  EXPECT_EQ(cpu.device_name(), "cpu");
+  const std::string why = cuda.use_scene(rs);
+  if (cuda.device_name() != "cpu") GTEST_SKIP() << "a GPU is usable here: " << cuda.device_name();
+  EXPECT_NE(why.find("the GPU does not render this scene ("), std::string::npos) << why;
+  EXPECT_NE(why.find("; rendering on the CPU"), std::string::npos) << why;
+  const Image expected = render(*rs, RenderOptions{});
+  for (view::DeviceBackend* b : {&cpu, &cuda}) {
+    RenderJob job(rs->view(), rs->sampling);
+    job.run(*b);
+    EXPECT_EQ(job.image(), expected) << b->device_name();
+    EXPECT_EQ(b->take_failure(), "");
+  }
 }
 
 }  // namespace

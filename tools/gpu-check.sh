@@ -111,7 +111,7 @@ bench() {
   local log l
   log=$(tool strahl-gpu-bench "$@" 2>&1) || { echo "$log"; note "FAIL  strahl-gpu-bench $*"; failures=$((failures + 1)); return; }
   echo "$log"
-  while read -r l; do note "$l"; done < <(grep -h '^frame\|^primary' <<< "$log")
+  while read -r l; do note "$l"; done < <(grep -h '^frame\|^primary\|^strahl-view benchmark' <<< "$log")
 }
 
 run() {
@@ -162,7 +162,7 @@ run() {
   done
 
   # Speed, scene resident: kernel time per frame (CUDA events), median of the frames.
-  bench "$out/lecture-whitted.yaml" --width 1920 --height 1080 --spp 1 --frames 50
+  bench "$out/lecture-whitted.yaml" --width 1920 --height 1080 --spp 1 --frames 50 --viewer 50
   bench "$out/lecture-distributed.yaml" --width 1920 --height 1080 --spp 16 --frames 10
   for s in bunny dragon; do
     [[ " ${scenes[*]} " == *" $s "* ]] && bench "$out/$s.yaml" --width 1920 --height 1080 --spp 1 --frames 20 --primary

@@ -2,7 +2,10 @@
 // Takes strahl's scene options (scene file, --width, --height, --spp, --sampler, …) and
 //   --frames N   renders the image N times (after one warm-up frame), each a whole render job
 //                on the GPU, and reports the median kernel time per frame as frames/s;
-//   --primary    also times one camera ray per pixel (nearest hit only) and reports Grays/s.
+//   --primary    also times one camera ray per pixel (nearest hit only) and reports Grays/s;
+//   --viewer N   also renders N of the viewer's interactive frames on the GPU (strahl-view
+//                --benchmark N --device cuda, without a window): frames/s with every frame's job
+//                set-up, copies and film merge, as the viewer shows them.
 // Kernel times are CUDA events around the launches: uploads, the film's copies and the host's
 // packing of tiles are not in them (they are reported apart, as wall time per frame).
 // Exit codes: 0 ok, 1 usage, 2 no usable GPU or a scene error.
@@ -15,8 +18,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "benchmark.h"
 #include "console.h"
+#include "device_backend.h"
 #include "options.h"
+#include "scene_source.h"
 #include "setup.h"
 #include "strahl/cuda/cuda_backend.h"
 #include "strahl/render/render_scene.h"
@@ -26,6 +32,7 @@ namespace {
 
 int frames = 20;
 bool primary = false;
+int viewer_frames = 0;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -82,6 +89,18 @@ int run(const strahl::cli::Options& o) {
     console::out("primary  {} {}x{} ({} triangles): {:.3f} ms/launch = {:.3f} Grays/s (median of {})\n", name, nx, ny,
                  scene.triangles.size(), p * 1e3, p > 0 ? double(nx) * double(ny) / p * 1e-9 : 0.0, frames);
   }
+  if (viewer_frames > 0) {
+    gpu.reset();
+    view::LoadedScene loaded = view::load_scene_now(o);
+    std::unique_ptr<CudaBackend> viewer_gpu = CudaBackend::create(*loaded.render, why);
+    if (!viewer_gpu) {
+      console::err("strahl-gpu-bench: error: --device cuda: {}\n", why);
+      return 2;
+    }
+    view::DeviceBackend backend("cuda", o.threads);
+    backend.adopt_gpu(loaded.render, std::move(viewer_gpu));
+    return view::run_benchmark(loaded, name, viewer_frames, backend, o.threads, o.tile_size, nullptr);
+  }
   return 0;
 }
 
@@ -92,6 +111,8 @@ int main(int argc, char** argv) {
       strahl::cli::parse_options(argc, argv, "strahl-gpu-bench", [](CLI::App& app) {
         app.add_option("--frames", frames, "Timed frames after one warm-up (default 20)")->check(CLI::Range(1, 100000));
         app.add_flag("--primary", primary, "Also time primary rays (nearest hit, one per pixel): Grays/s");
+        app.add_option("--viewer", viewer_frames, "Also render N of the viewer's interactive frames on the GPU (frames/s)")
+            ->check(CLI::Range(1, 100000));
       });
   if (!parsed.options) return parsed.exit_code;
   try {

@@ -3,11 +3,12 @@
 #include <sys/resource.h>
 #include <tbb/info.h>
 
+#include <fmt/format.h>
+
 #include <chrono>
 
 #include "camera_control.h"
 #include "console.h"
-#include "strahl/render/cpu_backend.h"
 #include "view_renderer.h"
 
 namespace strahl::view {
@@ -21,11 +22,10 @@ double cpu_seconds() {
 }
 }  // namespace
 
-int run_benchmark(const LoadedScene& scene, const std::string& name, int frames, int threads, int tile_size,
-                  const std::atomic<bool>* interrupted) {
+int run_benchmark(const LoadedScene& scene, const std::string& name, int frames, DeviceBackend& backend, int threads,
+                  int tile_size, const std::atomic<bool>* interrupted) {
   using Clock = std::chrono::steady_clock;
-  CpuBackend cpu(threads);
-  ViewRenderer renderer(cpu, threads, tile_size);
+  ViewRenderer renderer(backend, threads, tile_size);
   const RenderScene& rs = *scene.render;
   FrameRequest request;
   request.scene = scene.render;
@@ -55,6 +55,10 @@ int run_benchmark(const LoadedScene& scene, const std::string& name, int frames,
       console::err("strahl-view: error: {}\n", s.error);
       return 2;
     }
+    if (const std::string failure = backend.take_failure(); !failure.empty()) {
+      console::err("strahl-view: error: {}\n", failure);
+      return 2;
+    }
     if (i >= 0) {
       rays += s.rays;
       render_seconds += s.seconds;
@@ -63,8 +67,10 @@ int run_benchmark(const LoadedScene& scene, const std::string& name, int frames,
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const double cpu_used = cpu_seconds() - cpu_start;
   const int used = threads > 0 ? threads : tbb::info::default_concurrency();
-  console::out("strahl-view benchmark: {} at {}x{}, 1 spp per frame, max depth {}, accel {}, {} threads\n", name,
-               request.width, request.height, request.max_depth, accel_name(scene.accel), used);
+  const std::string device = backend.device_name();
+  console::out("strahl-view benchmark: {} at {}x{}, 1 spp per frame, max depth {}, accel {}, {}\n", name,
+               request.width, request.height, request.max_depth, accel_name(scene.accel),
+               device == "cpu" ? fmt::format("{} threads", used) : device);
   console::out("frames {} in {:.3f} s: {:.1f} frames/s, {:.1f} Mrays/s ({:.2f} Mrays per frame: camera {:.2f}, shadow {:.2f}, "
                "reflection {:.2f}, refraction {:.2f})\n",
                frames, seconds, frames / seconds, double(rays.total()) / seconds * 1e-6,

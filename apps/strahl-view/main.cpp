@@ -8,6 +8,7 @@
 
 #include "benchmark.h"
 #include "console.h"
+#include "device.h"
 #include "interrupt.h"
 #include "options.h"
 #include "scene_source.h"
@@ -30,18 +31,32 @@ int main(int argc, char** argv) {
     app.add_flag("--no-hud", [&](std::int64_t) { v.hud = false; }, "Start with the HUD hidden (Tab shows it)");
     app.add_option("--scale", v.scale, "Render moving frames at 1/N of the resolution (default: adapt to 30 frames/s)")
         ->check(CLI::Range(1, 16));
+    cli::add_device_option(app, v.device);
   });
   if (!parsed.options) return parsed.exit_code;
   const cli::Options& o = *parsed.options;
+  if (const std::string conflict = cli::device_accel_conflict(v.device, o); !conflict.empty()) {
+    console::err("strahl-view: error: {}\n", conflict);
+    return 1;
+  }
   // Before loading: a signal while the scene loads ends the viewer with 130 (the loaders poll the flag).
   const std::atomic<bool>* interrupted = cli::install_interrupt_handlers();
   try {
     if (o.checkpoint > 0) console::err("strahl-view: --checkpoint has no effect in the viewer (Ctrl+S saves)\n");
     view::LoadedScene scene = view::load_scene_now(o);
+    // The GPU for the first scene, as strahl opens it: --device cuda without one ends here.
+    cli::OpenedDevice opened = cli::open_device(v.device, *scene.render);
+    if (!opened.error.empty()) {
+      console::err("strahl-view: error: {}\n", opened.error);
+      return 2;
+    }
+    if (!opened.note.empty()) console::err("strahl-view: {}\n", opened.note);
+    view::DeviceBackend backend(opened.gpu ? v.device : "cpu", o.threads);  // auto without a GPU: the CPU throughout
+    backend.adopt_gpu(scene.render, std::move(opened.gpu));
     if (v.benchmark > 0)
-      return view::run_benchmark(scene, o.scene.empty() ? "the lecture scene" : o.scene, v.benchmark, o.threads,
-                                 o.tile_size, interrupted);
-    return view::run_viewer(o, v, std::move(scene), interrupted);
+      return view::run_benchmark(scene, o.scene.empty() ? "the lecture scene" : o.scene, v.benchmark, backend,
+                                 o.threads, o.tile_size, interrupted);
+    return view::run_viewer(o, v, std::move(scene), backend, interrupted);
   } catch (const Cancelled&) {
     console::err("strahl-view: interrupted while loading the scene\n");
     return 130;

@@ -20,7 +20,6 @@
 #include "save.h"
 #include "script.h"
 #include "setup.h"
-#include "strahl/render/cpu_backend.h"
 #include "strahl/render/intersect_scene.h"
 #include "strahl/scene/camera_build.h"
 #include "text.h"
@@ -83,11 +82,11 @@ std::vector<std::string> wrap(const std::string& text, std::size_t width) {
 
 class Viewer {
  public:
-  Viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first)
+  Viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first, DeviceBackend& backend)
       : options_(options),
         view_(view),
-        cpu_(options.threads),
-        renderer_(cpu_, options.threads, options.tile_size, true),
+        backend_(backend),
+        renderer_(backend, options.threads, options.tile_size, true),
         loader_(options) {
     settings_.exposure = view.exposure;
     settings_.hud = view.hud;
@@ -138,7 +137,7 @@ class Viewer {
 
   cli::Options options_;
   ViewOptions view_;
-  CpuBackend cpu_;
+  DeviceBackend& backend_;
   ViewRenderer renderer_;
   SceneLoader loader_;
   FileWatch watch_;
@@ -208,6 +207,9 @@ void Viewer::adopt(LoadedScene s, bool first) {
   file_width_ = rs.camera.nx;
   file_height_ = rs.camera.ny;
   settings_.accel = s.accel;
+  // A later scene to the GPU (the first is there already); the window waits for the upload.
+  if (!first)
+    if (const std::string why = backend_.use_scene(s.render); !why.empty()) message(why);
   scene_ = std::move(s.render);
   if (!s.files.empty()) watch_.watch(s.files);
   error_.clear();
@@ -447,6 +449,10 @@ void Viewer::poll_files() {
       loader_.request(settings_.accel);
     }
   }
+  if (const std::string failure = backend_.take_failure(); !failure.empty()) {
+    message(failure, true);
+    dirty_ = true;  // the stopped frame again, on the CPU
+  }
   if (std::optional<SceneLoader::Result> r = loader_.take()) {
     ++reloads_;
     if (r->scene) {
@@ -604,6 +610,7 @@ std::vector<std::string> Viewer::hud_lines(const FrameStatus& s) {
   l.push_back(fmt::format("depth {}  sampler {}  spp {}  accel {}", settings_.max_depth,
                           sampler_name(settings_.sampling.sampler), settings_.sampling.spp, accel_name(settings_.accel)));
   l.push_back(fmt::format("show {}  exposure {:+.1f}  (H: help)", display_name(settings_.display), settings_.exposure));
+  l.push_back("device " + backend_.device_name());
   for (const std::string& c : lines_of(camera_yaml(settings_.camera))) l.push_back(c);
   return l;
 }
@@ -695,7 +702,7 @@ int Viewer::run(const std::atomic<bool>* interrupted) {
 
 }  // namespace
 
-int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first,
+int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first, DeviceBackend& backend,
                const std::atomic<bool>* interrupted) {
   // SDL would turn SIGINT into a quit event; the CLI's handler keeps Ctrl-C's meaning (130).
   SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
@@ -707,7 +714,7 @@ int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene
   } quit;
   int code = 0;
   {
-    Viewer viewer(options, view, std::move(first));
+    Viewer viewer(options, view, std::move(first), backend);
     code = viewer.run(interrupted);
   }
   return code;

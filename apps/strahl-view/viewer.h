@@ -6,6 +6,7 @@
 #include <atomic>
 #include <string>
 
+#include "device_backend.h"
 #include "options.h"
 #include "scene_source.h"
 
@@ -17,12 +18,13 @@ struct ViewOptions {
   double exposure = 0;    // --exposure STOPS
   bool hud = true;        // --no-hud
   int scale = 0;          // --scale N: interactive frames at 1/N resolution (0: adapt)
+  std::string device = "cpu";  // --device cpu|cuda|auto
   double reload_poll = 0.2;  // seconds between looks at the scene's files
 };
 
 // Opens the window and runs until it is closed (0), `interrupted` is set (Ctrl-C: 130), or a
-// script fails (2).
-int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first,
+// script fails (2). `backend` renders the frames (it holds the first scene already when it is the GPU's).
+int run_viewer(const cli::Options& options, const ViewOptions& view, LoadedScene first, DeviceBackend& backend,
                const std::atomic<bool>* interrupted);
 
 }  // namespace strahl::view

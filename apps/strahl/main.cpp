@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "console.h"
+#include "device.h"
 #include "interrupt.h"
 #include "options.h"
 #include "outputs.h"
@@ -58,16 +59,13 @@ int run(const strahl::cli::Options& o) {
 
   if (cancel->load()) throw Cancelled();  // interrupted while building: nothing rendered, nothing written
   // The GPU when asked for and usable; `auto` falls back to the CPU and says so.
-  std::unique_ptr<CudaBackend> gpu;
-  if (device != "cpu") {
-    std::string why;
-    gpu = CudaBackend::create(render_scene, why);
-    if (!gpu && device == "cuda") {
-      strahl::console::err("strahl: error: --device cuda: {}\n", why);
-      return 2;
-    }
-    if (!gpu) strahl::console::err("strahl: --device auto: {}; rendering on the CPU\n", why);
+  cli::OpenedDevice opened = cli::open_device(device, render_scene);
+  if (!opened.error.empty()) {
+    strahl::console::err("strahl: error: {}\n", opened.error);
+    return 2;
   }
+  if (!opened.note.empty()) strahl::console::err("strahl: {}\n", opened.note);
+  const std::unique_ptr<CudaBackend> gpu = std::move(opened.gpu);
   cli::Progress progress(!o.quiet);
   // render() (render/renderer.h) on the back end chosen.
   JobOptions job_options;
@@ -115,17 +113,7 @@ int run(const strahl::cli::Options& o) {
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
     strahl::console::out("{}", cli::summary(output, image.width(), image.height(), threads, timings,
                                   stats, render_scene));
-    if (gpu) {
-      const CudaStats g = gpu->stats();
-      strahl::console::out(
-          "device      cuda: {}, {:.1f} MiB used ({:.1f} MiB in use on the device), upload {:.3f} s, kernel {:.3f} s "
-          "in {} launches, {:.2f} Mrays/s (kernel time)\n",
-          g.device, double(g.memory_used) / (1 << 20), double(g.memory_in_use) / (1 << 20), g.upload_seconds,
-          g.kernel_seconds, g.launches,
-          g.kernel_seconds > 0 ? double(stats.rays.total()) / g.kernel_seconds * 1e-6 : 0.0);
-    } else {
-      strahl::console::out("device      cpu ({} threads)\n", threads);
-    }
+    strahl::console::out("{}", cli::device_line(gpu.get(), stats, threads));
   }
   return 0;
 }
@@ -135,16 +123,12 @@ int run(const strahl::cli::Options& o) {
 int main(int argc, char** argv) {
   strahl::console::protect_streams();  // docs/cli.md, "Streams and signals"
   const strahl::cli::ParseResult parsed = strahl::cli::parse_options(argc, argv, "strahl", [](CLI::App& app) {
-    app.add_option("--device", device,
-                   "Where to render: cpu, cuda (an NVIDIA GPU; exit 2 when none is usable) or auto (the GPU when "
-                   "one is usable, else the CPU; default cpu)")
-        ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
+    strahl::cli::add_device_option(app, device);
   });
   if (!parsed.options) return parsed.exit_code;
   // The GPU traverses the BVH (or the naive loop) only.
-  if (device == "cuda" && parsed.options->accel && *parsed.options->accel != "bvh" && *parsed.options->accel != "naive") {
-    strahl::console::err("strahl: error: --device cuda renders with --accel bvh or naive, not {}\n",
-                         *parsed.options->accel);
+  if (const std::string conflict = strahl::cli::device_accel_conflict(device, *parsed.options); !conflict.empty()) {
+    strahl::console::err("strahl: error: {}\n", conflict);
     return 1;
   }
   try {

@@ -1,10 +1,11 @@
 #!/bin/bash
 # cuda_device_without_gpu: --device on a machine without a usable GPU (docs/gpu.md).
-#   device_without_gpu.sh <strahl> cuda|none     (cuda: built with the CUDA back end)
+#   device_without_gpu.sh <strahl> cuda|none [<strahl-view>]    (cuda: built with the CUDA back end)
 # --device cuda: one line "strahl: error: --device cuda: <why>", exit 2, nothing written;
 # --device auto: renders on the CPU, says so on stderr, the summary names the CPU, and the image
 # equals --device cpu's; --device cuda with --accel kdtree: exit 1; an unknown device: exit 1.
-strahl=$1 built=$2
+# strahl-view (where built) the same way, through its headless --benchmark.
+strahl=$1 built=$2 viewer=${3:-}
 fail() { echo "FAIL: $*"; exit 1; }
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 
@@ -36,4 +37,25 @@ cat "$work/err"
 grep -q "renders with --accel bvh or naive" "$work/err" || fail "--accel kdtree: unexpected message"
 "$strahl" --device gpu -o "$work/x.png" 2> /dev/null; rc=$?
 [ $rc = 1 ] || fail "--device gpu exited $rc, not 1"
+
+if [ -n "$viewer" ]; then
+  small=(--width 40 --height 30 --benchmark 2)
+  "$viewer" --device cuda "${small[@]}" > "$work/out" 2> "$work/err"; rc=$?
+  cat "$work/err"
+  [ $rc = 2 ] || fail "strahl-view --device cuda exited $rc, not 2"
+  [ "$(wc -l < "$work/err")" = 1 ] || fail "strahl-view --device cuda: not one line on stderr"
+  grep -q "^strahl-view: error: --device cuda: " "$work/err" || fail "strahl-view --device cuda: unexpected message"
+  [ ! -s "$work/out" ] || fail "strahl-view --device cuda rendered"
+  "$viewer" --device auto "${small[@]}" > "$work/out" 2> "$work/err"; rc=$?
+  cat "$work/err" "$work/out"
+  [ $rc = 0 ] || fail "strahl-view --device auto exited $rc"
+  grep -q "^strahl-view: --device auto: .*; rendering on the CPU$" "$work/err" \
+    || fail "strahl-view --device auto did not say it used the CPU"
+  grep -Eq "^strahl-view benchmark: .*, [0-9]+ threads$" "$work/out" || fail "strahl-view --device auto: not on the CPU's threads"
+  "$viewer" --device cuda --accel kdtree "${small[@]}" 2> "$work/err"; rc=$?
+  [ $rc = 1 ] || fail "strahl-view --device cuda --accel kdtree exited $rc, not 1"
+  grep -q "renders with --accel bvh or naive" "$work/err" || fail "strahl-view --accel kdtree: unexpected message"
+  "$viewer" --device gpu "${small[@]}" 2> /dev/null; rc=$?
+  [ $rc = 1 ] || fail "strahl-view --device gpu exited $rc, not 1"
+fi
 echo "all checks passed"

@@ -61,6 +61,8 @@ void CudaBackend::render_pass(RenderJob& job) {
   });
 }
 
+bool CudaBackend::holds(const SceneView& view) const { return impl_->device->holds(view); }
+
 CudaStats CudaBackend::stats() const {
   const Device& d = *impl_->device;
   CudaStats s;

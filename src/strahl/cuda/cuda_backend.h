@@ -41,6 +41,9 @@ class CudaBackend final : public TileBackend {
   ~CudaBackend() override;
 
   void render_pass(RenderJob& job) override;
+  // Whether a job over `view` can render here: a view of the uploaded scene (its camera and
+  // settings may differ) through the BVH or the naive loop.
+  bool holds(const SceneView& view) const;
 
   CudaStats stats() const;
   // Set when a pass failed on the GPU: the job was cancelled, every tile taken delivered

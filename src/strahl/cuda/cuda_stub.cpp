@@ -20,6 +20,7 @@ std::unique_ptr<CudaBackend> CudaBackend::create(const RenderScene&, std::string
 }
 
 void CudaBackend::render_pass(RenderJob&) {}
+bool CudaBackend::holds(const SceneView&) const { return false; }
 CudaStats CudaBackend::stats() const { return {}; }
 const std::string& CudaBackend::error() const { return impl_->error; }
 double CudaBackend::last_kernel_seconds() const { return 0; }
