@@ -1,5 +1,5 @@
 // strahl.render: compile the scene with the keyword arguments over its settings, then run one
-// RenderJob (render/render_job.h) on the CPU back end in a thread of its own, while the calling
+// RenderJob (render/render_job.h) on the CPU back end (or the GPU's: device) in a thread of its own, while the calling
 // thread, without the GIL, waits for it: every 50 ms it takes the GIL, runs Python's signal
 // handlers (Ctrl-C raises KeyboardInterrupt there, and the job is cancelled) and reports progress.
 // Also write, read and the version.
@@ -18,6 +18,7 @@
 
 #include "bindings.h"
 #include "convert.h"
+#include "strahl/cuda/cuda_backend.h"
 #include "strahl/image/image_io.h"
 #include "strahl/render/aov.h"
 #include "strahl/render/cpu_backend.h"
@@ -87,7 +88,7 @@ RenderScene compile_with(Scene& scene, const Overrides& o) {
 // Runs the job in a thread of its own; this thread waits without the GIL and, every 50 ms, with
 // it: Python's signal handlers (an exception from one — KeyboardInterrupt — cancels the job and
 // is raised once the job has stopped) and the progress callback.
-void run_job(RenderJob& job, int threads, const py::object& progress) {
+void run_job(RenderJob& job, TileBackend& backend, const py::object& progress) {
   std::mutex mutex;
   std::condition_variable finished_cv;
   bool finished = false;
@@ -95,10 +96,9 @@ void run_job(RenderJob& job, int threads, const py::object& progress) {
   std::optional<py::error_already_set> raised;
   {
     py::gil_scoped_release release;
-    CpuBackend cpu(threads);
     std::thread worker([&] {
       try {
-        job.run(cpu);
+        job.run(backend);
       } catch (...) {
         failure = std::current_exception();
       }
@@ -147,9 +147,27 @@ void run_job(RenderJob& job, int threads, const py::object& progress) {
   if (failure) std::rethrow_exception(failure);
 }
 
+// The GPU's back end as `device` asks for it: none for "cpu"; for "cuda" the back end or an error;
+// for "auto" the back end, or none and a RuntimeWarning saying why the CPU renders.
+std::unique_ptr<CudaBackend> open_gpu(const std::string& device, const RenderScene& rs) {
+  if (device == "cpu") return nullptr;
+  const AccelKind kind = rs.accel.kind;
+  if (device == "cuda" && kind != AccelKind::Bvh && kind != AccelKind::Naive)
+    throw Error("device='cuda' renders with accel='bvh' or 'naive', not '" + std::string(accel_name(kind)) + "'");
+  std::string why;
+  std::unique_ptr<CudaBackend> gpu = CudaBackend::create(rs, why);
+  if (gpu) return gpu;
+  if (device == "cuda") throw Error("device='cuda': " + why);
+  const std::string note = "device='auto': " + why + "; rendering on the CPU";
+  if (PyErr_WarnEx(PyExc_RuntimeWarning, note.c_str(), 2) != 0) throw py::error_already_set();  // warnings as errors
+  return nullptr;
+}
+
 py::object render(Scene& scene, const Overrides& o, int threads, int tile_size, const py::object& progress,
-                  const std::vector<std::string>& aovs) {
+                  const std::vector<std::string>& aovs, const std::string& device) {
   validate::int_range(threads, 0, 4096, {}, "threads");
+  if (device != "cpu" && device != "cuda" && device != "auto")
+    throw Error("unknown device '" + device + "' (cpu, cuda, auto)");
   validate::int_range(tile_size, 1, 4096, {}, "tile_size");
   validate::non_negative(o.time_limit, {}, "time_limit");
   for (const std::string& a : aovs)
@@ -162,7 +180,10 @@ py::object render(Scene& scene, const Overrides& o, int threads, int tile_size, 
   options.tile_size = tile_size;
   options.time_limit = o.time_limit;
   RenderJob job(rs.view(), rs.sampling, std::move(options));
-  run_job(job, threads, progress);
+  const std::unique_ptr<CudaBackend> gpu = open_gpu(device, rs);
+  CpuBackend cpu(threads);
+  run_job(job, gpu ? static_cast<TileBackend&>(*gpu) : cpu, progress);
+  if (gpu && !gpu->error().empty()) throw Error("device='cuda': " + gpu->error());
   py::array_t<float> image = to_numpy(job.image());
   if (aovs.empty()) return image;
 
@@ -190,10 +211,11 @@ void bind_render(py::module_& m) {
          std::optional<std::string> sampler, std::optional<std::uint64_t> seed, std::optional<std::string> filter,
          std::optional<double> filter_radius, std::optional<int> adaptive_min, std::optional<double> adaptive_threshold,
          std::optional<int> max_depth, std::optional<int> supersample, std::optional<std::string> accel, int threads,
-         int tile_size, double time_limit, const py::object& progress, const std::vector<std::string>& aovs) {
+         int tile_size, double time_limit, const py::object& progress, const std::vector<std::string>& aovs,
+         const std::string& device) {
         Overrides o{width, height, spp, max_depth, supersample, adaptive_min, sampler, filter, accel, seed,
                     filter_radius, adaptive_threshold, time_limit};
-        return render(scene, o, threads, tile_size, progress, aovs);
+        return render(scene, o, threads, tile_size, progress, aovs, device);
       },
       py::arg("scene"), py::kw_only(), py::arg("width") = py::none(), py::arg("height") = py::none(),
       py::arg("spp") = py::none(), py::arg("sampler") = py::none(), py::arg("seed") = py::none(),
@@ -201,7 +223,7 @@ void bind_render(py::module_& m) {
       py::arg("adaptive_threshold") = py::none(), py::arg("max_depth") = py::none(),
       py::arg("supersample") = py::none(), py::arg("accel") = py::none(), py::arg("threads") = 0,
       py::arg("tile_size") = 32, py::arg("time_limit") = 0.0, py::arg("progress") = py::none(),
-      py::arg("aovs") = std::vector<std::string>{},
+      py::arg("aovs") = std::vector<std::string>{}, py::arg("device") = "cpu",
       "The compiled part of strahl.render (see its docstring).");
 
   m.def(

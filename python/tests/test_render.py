@@ -85,3 +85,28 @@ def test_progress_reaches_the_total():
 def test_time_limit_stops_with_an_image():
     image = strahl.render(strahl.lecture_scene(), width=64, height=36, spp=1 << 20, time_limit=0.3)
     assert image.shape == (36, 64, 3) and np.isfinite(image).all() and image.max() > 0
+
+
+def gpu_usable():
+    try:
+        strahl.render(strahl.lecture_scene(), width=8, height=6, device="cuda")
+        return True
+    except strahl.Error:
+        return False
+
+
+def test_device_without_a_gpu():
+    """device= where no GPU is usable: 'cuda' raises with the reason, 'auto' warns and renders on
+    the CPU the same image as 'cpu'; a misspelt device or the kd-tree with 'cuda' are errors."""
+    if gpu_usable():
+        pytest.skip("a GPU is usable here")
+    scene = strahl.lecture_scene()
+    with pytest.raises(strahl.Error, match=r"^device='cuda': "):
+        strahl.render(scene, width=16, height=9, device="cuda")
+    with pytest.warns(RuntimeWarning, match=r"^device='auto': .*; rendering on the CPU$"):
+        auto = strahl.render(scene, width=16, height=9, device="auto")
+    assert_bits_equal(auto, strahl.render(scene, width=16, height=9, device="cpu"))
+    with pytest.raises(strahl.Error, match="unknown device 'gpu'"):
+        strahl.render(scene, width=16, height=9, device="gpu")
+    with pytest.raises(strahl.Error, match="device='cuda' renders with accel='bvh' or 'naive', not 'kdtree'"):
+        strahl.render(scene, width=16, height=9, device="cuda", accel="kdtree")
