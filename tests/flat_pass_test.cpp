@@ -16,6 +16,7 @@
 #include "strahl/render/cpu_backend.h"
 #include "strahl/render/render_job.h"
 #include "strahl/scene/scene_file.h"
+#include "job_result.h"
 #include "test_helpers.h"
 
 namespace strahl::flat_pass_test {
@@ -76,24 +77,12 @@ RenderScene scene(const char* file, SamplerKind kind, int spp, FilterKind filter
   return compile(sc);
 }
 
-struct Result {
-  std::vector<std::array<double, 4>> sums;
-  RenderStats stats;
-  std::vector<std::uint32_t> pixel_samples;
-};
-
+using Result = test::JobResult;
 Result run(const RenderScene& rs, TileBackend& backend, int tile_size, bool progressive = false) {
   JobOptions o;
   o.tile_size = tile_size;
   o.progressive = progressive;
-  RenderJob job(rs.view(), rs.sampling, o);
-  job.run(backend);
-  Result r;
-  for (int row = 0; row < rs.camera.ny; ++row)
-    for (int x = 0; x < rs.camera.nx; ++x) r.sums.push_back(job.film().sums(x, row));
-  r.stats = job.stats();
-  r.pixel_samples.assign(job.pixel_samples().begin(), job.pixel_samples().end());
-  return r;
+  return test::run_job(rs, backend, o);
 }
 
 void expect_equal(const Result& flat, const Result& cpu, const std::string& what) {

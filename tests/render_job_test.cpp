@@ -15,6 +15,7 @@
 #include "strahl/render/render_job.h"
 #include "strahl/render/tile_renderer.h"
 #include "strahl/scene/scene_file.h"
+#include "job_result.h"
 #include "test_helpers.h"
 
 namespace strahl::render_job_test {
@@ -52,22 +53,8 @@ class RemoteBackend final : public TileBackend {
   }
 };
 
-struct Result {
-  std::vector<std::array<double, 4>> sums;
-  RenderStats stats;
-  std::vector<std::uint32_t> pixel_samples;
-};
-
-Result run(const RenderScene& rs, TileBackend& backend, JobOptions options) {
-  RenderJob job(rs.view(), rs.sampling, std::move(options));
-  job.run(backend);
-  Result r;
-  for (int row = 0; row < rs.camera.ny; ++row)
-    for (int x = 0; x < rs.camera.nx; ++x) r.sums.push_back(job.film().sums(x, row));
-  r.stats = job.stats();
-  r.pixel_samples.assign(job.pixel_samples().begin(), job.pixel_samples().end());
-  return r;
-}
+using Result = test::JobResult;
+Result run(const RenderScene& rs, TileBackend& backend, JobOptions options) { return test::run_job(rs, backend, options); }
 
 JobOptions tiles(int size, bool progressive = false, std::uint32_t max_pass = 0) {
   JobOptions o;
