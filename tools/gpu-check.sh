@@ -133,6 +133,9 @@ run() {
   local cases=("lecture|--sampler grid|exact" "lecture-whitted|--sampler grid|exact" "lecture-distributed|--sampler grid --spp 4|exact"
                "lecture-distributed||rmse" "lecture|--filter mitchell --filter-radius 2 --spp 4 --sampler sobol|rmse")
   for s in bunny dragon; do [[ " ${scenes[*]} " == *" $s "* ]] && cases+=("$s||rmse" "$s|--sampler grid|exact"); done
+  # The other structures the GPU traverses.
+  cases+=("lecture-whitted|--sampler grid --accel kdtree|exact" "lecture-whitted|--sampler grid --accel octree|exact")
+  [[ " ${scenes[*]} " == *" bunny "* ]] && cases+=("bunny|--sampler grid --accel kdtree|exact" "bunny|--sampler grid --accel octree|exact")
   local c name opts mode i=0
   for c in "${cases[@]}"; do
     IFS='|' read -r name opts mode <<< "$c"; i=$((i + 1))

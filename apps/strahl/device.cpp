@@ -14,8 +14,8 @@ void add_device_option(CLI::App& app, std::string& device) {
 }
 
 std::string device_accel_conflict(const std::string& device, const Options& o) {
-  if (device == "cuda" && o.accel && *o.accel != "bvh" && *o.accel != "naive")
-    return "--device cuda renders with --accel bvh or naive, not " + *o.accel;
+  if (device == "cuda" && o.accel && *o.accel == "embree")
+    return "--device cuda renders with --accel bvh, kdtree, octree or naive, not embree";
   return {};
 }
 

@@ -15,8 +15,8 @@ namespace strahl::cli {
 // Adds --device cpu|cuda|auto (default cpu) to `app`, into `device`.
 void add_device_option(CLI::App& app, std::string& device);
 
-// --device cuda with an --accel the GPU does not traverse: the usage error's text (exit 1), or
-// empty.
+// --device cuda with an --accel the GPU does not traverse (embree): the usage error's text
+// (exit 1), or empty.
 std::string device_accel_conflict(const std::string& device, const Options& o);
 
 // The GPU back end for `scene` as `device` asks for it. cpu: none. cuda: the back end, or none and

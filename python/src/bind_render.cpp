@@ -152,8 +152,9 @@ void run_job(RenderJob& job, TileBackend& backend, const py::object& progress) {
 std::unique_ptr<CudaBackend> open_gpu(const std::string& device, const RenderScene& rs) {
   if (device == "cpu") return nullptr;
   const AccelKind kind = rs.accel.kind;
-  if (device == "cuda" && kind != AccelKind::Bvh && kind != AccelKind::Naive)
-    throw Error("device='cuda' renders with accel='bvh' or 'naive', not '" + std::string(accel_name(kind)) + "'");
+  if (device == "cuda" && !gpu_traverses(kind))
+    throw Error("device='cuda' renders with accel 'bvh', 'kdtree', 'octree' or 'naive', not '" +
+                std::string(accel_name(kind)) + "'");
   std::string why;
   std::unique_ptr<CudaBackend> gpu = CudaBackend::create(rs, why);
   if (gpu) return gpu;

@@ -97,16 +97,24 @@ def gpu_usable():
 
 def test_device_without_a_gpu():
     """device= where no GPU is usable: 'cuda' raises with the reason, 'auto' warns and renders on
-    the CPU the same image as 'cpu'; a misspelt device or the kd-tree with 'cuda' are errors."""
+    the CPU the same image as 'cpu'; a misspelt device and Embree with 'cuda' are errors; the kd-tree
+    asks for the GPU as the BVH does."""
     if gpu_usable():
         pytest.skip("a GPU is usable here")
     scene = strahl.lecture_scene()
-    with pytest.raises(strahl.Error, match=r"^device='cuda': "):
+    with pytest.raises(strahl.Error, match=r"^device='cuda': ") as bvh:
         strahl.render(scene, width=16, height=9, device="cuda")
+    with pytest.raises(strahl.Error) as kdtree:
+        strahl.render(scene, width=16, height=9, device="cuda", accel="kdtree")
+    assert str(kdtree.value) == str(bvh.value)
     with pytest.warns(RuntimeWarning, match=r"^device='auto': .*; rendering on the CPU$"):
         auto = strahl.render(scene, width=16, height=9, device="auto")
     assert_bits_equal(auto, strahl.render(scene, width=16, height=9, device="cpu"))
     with pytest.raises(strahl.Error, match="unknown device 'gpu'"):
         strahl.render(scene, width=16, height=9, device="gpu")
-    with pytest.raises(strahl.Error, match="device='cuda' renders with accel='bvh' or 'naive', not 'kdtree'"):
-        strahl.render(scene, width=16, height=9, device="cuda", accel="kdtree")
+    try:
+        strahl.render(scene, width=4, height=3, accel="embree")
+    except strahl.Error:
+        return  # built without Embree
+    with pytest.raises(strahl.Error, match="device='cuda' renders with accel 'bvh', 'kdtree', 'octree' or 'naive', not 'embree'"):
+        strahl.render(scene, width=16, height=9, device="cuda", accel="embree")

@@ -3,7 +3,8 @@
 #   device_without_gpu.sh <strahl> cuda|none [<strahl-view>]    (cuda: built with the CUDA back end)
 # --device cuda: one line "strahl: error: --device cuda: <why>", exit 2, nothing written;
 # --device auto: renders on the CPU, says so on stderr, the summary names the CPU, and the image
-# equals --device cpu's; --device cuda with --accel kdtree: exit 1; an unknown device: exit 1.
+# equals --device cpu's; --device cuda with --accel kdtree asks for the GPU as with the BVH (exit
+# 2, the same reason); with --accel embree (where built): exit 1; an unknown device: exit 1.
 # strahl-view (where built) the same way, through its headless --benchmark.
 strahl=$1 built=$2 viewer=${3:-}
 fail() { echo "FAIL: $*"; exit 1; }
@@ -31,10 +32,20 @@ grep -q "^device      cpu (" "$work/out" || fail "--device auto: the summary doe
 "$strahl" --device cpu --width 40 --height 30 -o "$work/cpu.png" -q || fail "--device cpu failed"
 cmp -s "$work/auto.png" "$work/cpu.png" || fail "--device auto's image differs from --device cpu's"
 
-"$strahl" --device cuda --accel kdtree -o "$work/kd.png" 2> "$work/err"; rc=$?
-cat "$work/err"
-[ $rc = 1 ] || fail "--device cuda --accel kdtree exited $rc, not 1"
-grep -q "renders with --accel bvh or naive" "$work/err" || fail "--accel kdtree: unexpected message"
+"$strahl" --device cuda --width 40 --height 30 -o "$work/cuda.png" 2> "$work/bvh-err"
+for accel in kdtree octree naive; do
+  "$strahl" --device cuda --accel $accel --width 40 --height 30 -o "$work/kd.png" 2> "$work/err"; rc=$?
+  [ $rc = 2 ] || fail "--device cuda --accel $accel exited $rc, not 2"
+  cmp -s "$work/err" "$work/bvh-err" || fail "--device cuda --accel $accel: not the BVH's reason: $(cat "$work/err")"
+done
+embree=no
+"$strahl" --help | grep -q embree && embree=yes
+if [ $embree = yes ]; then
+  "$strahl" --device cuda --accel embree -o "$work/em.png" 2> "$work/err"; rc=$?
+  cat "$work/err"
+  [ $rc = 1 ] || fail "--device cuda --accel embree exited $rc, not 1"
+  grep -q "renders with --accel bvh, kdtree, octree or naive, not embree" "$work/err" || fail "--accel embree: unexpected message"
+fi
 "$strahl" --device gpu -o "$work/x.png" 2> /dev/null; rc=$?
 [ $rc = 1 ] || fail "--device gpu exited $rc, not 1"
 
@@ -52,9 +63,11 @@ if [ -n "$viewer" ]; then
   grep -q "^strahl-view: --device auto: .*; rendering on the CPU$" "$work/err" \
     || fail "strahl-view --device auto did not say it used the CPU"
   grep -Eq "^strahl-view benchmark: .*, [0-9]+ threads$" "$work/out" || fail "strahl-view --device auto: not on the CPU's threads"
-  "$viewer" --device cuda --accel kdtree "${small[@]}" 2> "$work/err"; rc=$?
-  [ $rc = 1 ] || fail "strahl-view --device cuda --accel kdtree exited $rc, not 1"
-  grep -q "renders with --accel bvh or naive" "$work/err" || fail "strahl-view --accel kdtree: unexpected message"
+  if [ $embree = yes ]; then
+    "$viewer" --device cuda --accel embree "${small[@]}" 2> "$work/err"; rc=$?
+    [ $rc = 1 ] || fail "strahl-view --device cuda --accel embree exited $rc, not 1"
+    grep -q "renders with --accel bvh, kdtree, octree or naive" "$work/err" || fail "strahl-view --accel embree: unexpected message"
+  fi
   "$viewer" --device gpu "${small[@]}" 2> /dev/null; rc=$?
   [ $rc = 1 ] || fail "strahl-view --device gpu exited $rc, not 1"
 fi

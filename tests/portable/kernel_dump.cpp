@@ -131,15 +131,16 @@ void dump_queries(const char* name, const AccelView& a, const std::vector<Ray>& 
   dump_packets<16>(a, rays);
 }
 
-void dump_render(const std::string& path, int width, int height) {
+void dump_render(const std::string& path, int width, int height, AccelKind kind = AccelKind::Bvh) {
   Scene scene = load_scene(path);
   scene.settings.width = width;
   scene.settings.height = height;
-  scene.settings.accel = AccelKind::Bvh;
+  scene.settings.accel = kind;
   const RenderScene rs = compile(scene);
   const SceneView view = rs.view();
-  std::printf("# render %s: %dx%d, %d spp, %s\n", path.substr(path.rfind('/') + 1).c_str(), width, height,
-              effective_spp(rs.sampling.sampler, rs.sampling.spp), view.accel.one_leaf ? "one leaf" : "tree");
+  std::printf("# render %s: %dx%d, %d spp, %s, %s\n", path.substr(path.rfind('/') + 1).c_str(), width, height,
+              effective_spp(rs.sampling.sampler, rs.sampling.spp), std::string(accel_name(kind)).c_str(),
+              view.accel.one_leaf ? "one leaf" : "tree");
   RayCounters counters;
   for (int row = 0; row < height; ++row)
     for (int x = 0; x < width; ++x) {
@@ -173,6 +174,13 @@ int main(int argc, char** argv) {
       const std::string name = "soup " + std::to_string(seed);
       dump_queries(name.c_str(), accel.view(soup.set()), awkward_rays(soup, seed + 100, 3000));
     }
+    // The kd-tree and the octree (the GPU walks them too): their leaves' triangle blocks.
+    for (const AccelKind kind : {AccelKind::KdTree, AccelKind::Octree}) {
+      const Soup soup = awkward_soup(2, 600);
+      const Accel accel = build_accel(kind, soup.set());
+      const std::string name = "soup 2, " + std::string(accel_name(kind));
+      dump_queries(name.c_str(), accel.view(soup.set()), awkward_rays(soup, 102, 3000));
+    }
     // Spheres only, few enough for one leaf (the sphere quads of geometry/sphere_quad.h):
     // overlapping, nested and touching, rays from inside them too.
     for (const int count : {3, 4, 7}) {
@@ -189,6 +197,7 @@ int main(int argc, char** argv) {
     for (const char* scene : {"lecture.yaml", "lecture-whitted.yaml", "lecture-distributed.yaml", "mesh.yaml",
                               "glossy.yaml", "motion-blur.yaml"})
       dump_render(dir + "/scenes/" + scene, 40, 30);
+    for (const AccelKind kind : {AccelKind::KdTree, AccelKind::Octree}) dump_render(dir + "/scenes/mesh.yaml", 40, 30, kind);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

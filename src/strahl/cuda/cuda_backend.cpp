@@ -32,9 +32,9 @@ std::unique_ptr<CudaBackend> CudaBackend::create(const RenderScene& scene, std::
             "): use --device cpu, or write the objects in place";
     return nullptr;
   }
-  if (kind != AccelKind::Bvh && kind != AccelKind::Naive) {
-    error = "the CUDA back end traverses the BVH (or the naive loop), not the " + std::string(accel_name(kind)) +
-            ": use --accel bvh with --device cuda";
+  if (!gpu_traverses(kind)) {
+    error = "the CUDA back end does not traverse " + std::string(accel_name(kind)) +
+            "'s structure: use --accel bvh (or kdtree, octree, naive) with --device cuda";
     return nullptr;
   }
   // Without the driver's library the CUDA runtime reports only an "insufficient" driver: say what

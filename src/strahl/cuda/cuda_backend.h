@@ -3,14 +3,15 @@
 // kernel functions the CPU runs. The scene is uploaded once; each pass's tiles go to the GPU in
 // one launch (one thread per pixel, its samples in sample order, so the film's sums are the same
 // additions as on the CPU) and come back to the job's film. Only the BVH (and the naive loop)
-// run there. Built only where CMake found nvcc; elsewhere create() says strahl was built
-// without CUDA.
+// run there (gpu_traverses: not Embree's). Built only where CMake found nvcc; elsewhere create()
+// says strahl was built without CUDA.
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
 
+#include "strahl/accel/accel.h"
 #include "strahl/render/render_job.h"
 
 namespace strahl {
@@ -19,6 +20,12 @@ struct RenderScene;
 
 // Whether this strahl was built with the CUDA back end.
 bool cuda_built();
+
+// The structures the GPU traverses: the BVH, the kd-tree, the octree (portable code, ropes
+// without a stack) and the naive loop — all but Embree's.
+constexpr bool gpu_traverses(AccelKind kind) {
+  return kind == AccelKind::Bvh || kind == AccelKind::Naive || kind == AccelKind::KdTree || kind == AccelKind::Octree;
+}
 
 struct CudaStats {
   std::string device;  // e.g. "NVIDIA H200 (compute capability 9.0, 132 SMs, 140 GiB)"
@@ -36,13 +43,13 @@ class CudaBackend final : public TileBackend {
   // Opens the first CUDA device and uploads `scene`, which must outlive the back end (jobs render
   // views of it: their camera and settings may differ). nullptr and one line in `error` when
   // there is no usable GPU (no driver, no device, no kernel image for the chip, out of memory),
-  // when strahl was built without CUDA, or when the scene's accelerator is not the BVH.
+  // when strahl was built without CUDA, or when the scene's structure is Embree's.
   static std::unique_ptr<CudaBackend> create(const RenderScene& scene, std::string& error);
   ~CudaBackend() override;
 
   void render_pass(RenderJob& job) override;
   // Whether a job over `view` can render here: a view of the uploaded scene (its camera and
-  // settings may differ) through the BVH or the naive loop.
+  // settings may differ) through a structure the GPU traverses.
   bool holds(const SceneView& view) const;
 
   CudaStats stats() const;

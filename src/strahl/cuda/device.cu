@@ -11,6 +11,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "strahl/cuda/cuda_backend.h"
 #include "strahl/cuda/device.h"
 #include "strahl/render/intersect_scene.h"
 #include "strahl/render/render_scene.h"
@@ -172,7 +173,9 @@ struct Device::Impl {
            map_mutable(out.accel.prims.shapes.tallies) && map(out.accel.prims.shapes.spheres) &&
            map(out.accel.prims.shapes.csgs) && map(out.accel.prims.shapes.csg_code) &&
            map(out.accel.prims.shapes.csg_leaves) && map(out.accel.prims.shapes.placed) &&
-           out.accel.kdtree.nodes == nullptr && out.accel.octree.nodes == nullptr;
+           map(out.accel.kdtree.nodes) && map(out.accel.kdtree.leaves) && map(out.accel.kdtree.blocks) &&
+           map(out.accel.octree.nodes) && map(out.accel.octree.centers) && map(out.accel.octree.leaves) &&
+           map(out.accel.octree.blocks);
   }
 };
 
@@ -230,9 +233,9 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
   Impl& m = *impl_;
   const auto t0 = std::chrono::steady_clock::now();
   const SceneView host = rs.view();
-  if (host.accel.kind != AccelKind::Bvh && host.accel.kind != AccelKind::Naive) {
-    error = std::string("--device cuda renders with the BVH (or the naive loop), not the ") +
-            std::string(accel_name(host.accel.kind)) + " (use --accel bvh)";
+  if (!gpu_traverses(host.accel.kind)) {
+    error = std::string("--device cuda does not traverse ") + std::string(accel_name(host.accel.kind)) +
+            "'s structure (use --accel bvh)";
     return false;
   }
   cudaError_t e = cudaSuccess;
@@ -247,15 +250,15 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
         ok(m.copy_array(rs.disks)) && ok(m.copy_array(rs.tori)) && ok(m.copy_array(rs.quadrics)) &&
         ok(m.copy_array(rs.implicits)) && ok(m.copy_array(rs.implicit_tallies)) &&
         ok(m.copy_array(rs.solid_spheres)) && ok(m.copy_array(rs.csgs)) && ok(m.copy_array(rs.csg_code)) &&
-        ok(m.copy_array(rs.csg_leaves)) && ok(m.copy_array(rs.placed)))) {
+        ok(m.copy_array(rs.csg_leaves)) && ok(m.copy_array(rs.placed)) && ok(m.copy_array(rs.accel.kdtree.nodes)) &&
+        ok(m.copy_array(rs.accel.kdtree.leaves)) && ok(m.copy_array(rs.accel.kdtree.blocks)) &&
+        ok(m.copy_array(rs.accel.octree.nodes)) && ok(m.copy_array(rs.accel.octree.centers)) &&
+        ok(m.copy_array(rs.accel.octree.leaves)) && ok(m.copy_array(rs.accel.octree.blocks)))) {
     error = (e == cudaErrorMemoryAllocation ? "out of GPU memory uploading the scene (" : "scene upload failed (") +
             cuda_message(e) + ")";
     return false;
   }
-  SceneView probe = host;
-  probe.accel.kdtree = {};
-  probe.accel.octree = {};
-  if (!m.device_view(probe, m.uploaded)) {
+  if (!m.device_view(host, m.uploaded)) {
     error = "internal: the scene has an array the CUDA back end does not upload";
     return false;
   }
@@ -275,21 +278,15 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
 }
 
 bool Device::holds(const SceneView& view) const {
-  SceneView probe = view;
-  probe.accel.kdtree = {};
-  probe.accel.octree = {};
   SceneView out;
-  return (view.accel.kind == AccelKind::Bvh || view.accel.kind == AccelKind::Naive) && impl_->device_view(probe, out);
+  return gpu_traverses(view.accel.kind) && impl_->device_view(view, out);
 }
 
 bool Device::run(const SceneView& view, const PixelSampler& sampler, const FilmParams& film, PassData& pass,
                  const std::function<bool()>& stop, RayCounters& counters, std::string& error) {
   Impl& m = *impl_;
   KernelArgs a{};
-  SceneView probe = view;
-  probe.accel.kdtree = {};
-  probe.accel.octree = {};
-  if (!m.device_view(probe, a.pass.view)) {
+  if (!m.device_view(view, a.pass.view)) {
     error = "internal: the job's scene is not the one uploaded to the GPU";
     return false;
   }
@@ -370,10 +367,7 @@ bool Device::run(const SceneView& view, const PixelSampler& sampler, const FilmP
 double Device::primary_benchmark(const SceneView& view, int frames, std::string& error) {
   Impl& m = *impl_;
   SceneView dv;
-  SceneView probe = view;
-  probe.accel.kdtree = {};
-  probe.accel.octree = {};
-  if (!m.device_view(probe, dv)) {
+  if (!m.device_view(view, dv)) {
     error = "internal: the benchmark's scene is not the one uploaded to the GPU";
     return -1;
   }
