@@ -7,14 +7,17 @@
 #       [build dir] (default build-gpu), and packs them into .gpu/ with every shared library they
 #       load (glibc and its loader included: they run through .gpu/lib/ld-linux-x86-64.so.2, so
 #       the GPU machine's own libraries do not matter), the scenes, and the bunny and the dragon
-#       (../shared/data). .gpu/ is ignored by git (.git/info/exclude); about 25 MB.
+#       (../shared/data). .gpu/ is ignored by git (.git/info/exclude); about 31 MB.
 #   tools/gpu-check.sh run
 #       On the GPU machine (the device tool: carry [".gpu"], command "bash tools/gpu-check.sh run"),
 #       or here to rehearse: CPU references, then the GPU — which is where a machine without
 #       one stops (exit 3, "FAIL at the GPU: …"). With a GPU: every scene on both devices,
 #       compared (identical bytes for the grid sampler on the lecture scenes, RMSE ≤ 1e-6
 #       elsewhere), then frames/s and Grays/s. Logs and images go under $OUT (the device tool's
-#       folder) when it is set, else .gpu/out; the last lines are the table.
+#       folder) when it is set, else .gpu/out; the last lines are the table and a "GOAL met|MISSED"
+#       line per goal of issue 17.
+#   tools/gpu-check.sh goals-of TABLE
+#       The goal lines of a saved table (the run's last lines).
 # Exit codes: 0 every check passed, 1 a comparison failed, 2 set-up (no bundle, a tool failed),
 # 3 no usable GPU.
 set -u
@@ -114,6 +117,24 @@ bench() {
   while read -r l; do note "$l"; done < <(grep -h '^frame\|^primary\|^strahl-view benchmark' <<< "$log")
 }
 
+# The issue's goals, judged from the table's strahl-gpu-bench lines: one "GOAL met|MISSED" line each.
+#   goal <kind: frame|primary> <scene file name> <figure: frames/s|Grays/s> <at least>
+goal() {
+  local kind=$1 scene=$2 unit=$3 least=$4 line value
+  line=$(printf '%s\n' "${table[@]}" | grep -E "^$kind +$scene " | head -1)
+  value=$(grep -oE "[0-9.]+ $unit" <<< "$line" | head -1 | cut -d' ' -f1)
+  if [ -z "$value" ]; then echo "GOAL not measured  $kind $scene: ≥ $least $unit"
+  elif awk -v v="$value" -v l="$least" 'BEGIN {exit !(v + 0 >= l + 0)}'; then echo "GOAL met     $kind $scene: $value $unit ≥ $least"
+  else echo "GOAL MISSED  $kind $scene: $value $unit < $least"; fi
+}
+goals() {
+  goal frame lecture-whitted.yaml frames/s 200
+  goal frame lecture-distributed.yaml frames/s 10
+  goal primary bunny.yaml Grays/s 1
+  goal primary dragon.yaml Grays/s 1
+  goal primary bumpy.yaml Grays/s 0.5
+}
+
 run() {
   [ -x "$bundle/lib/ld-linux-x86-64.so.2" ] || [ -e "$bundle/lib/ld-linux-x86-64.so.2" ] \
     || { echo "FAIL: no bundle at $bundle: run 'tools/gpu-check.sh prepare' on the build machine and carry .gpu"; exit 2; }
@@ -179,6 +200,7 @@ run() {
   echo "== gpu-check summary (goals on one H200: lecture-whitted 1080p 1 spp ≥ 200 frames/s; bunny/dragon"
   echo "   primary ≥ 1 Grays/s; 1M triangles ≥ 0.5 Grays/s; distributed 16 spp ≥ 10 frames/s)"
   printf '%s\n' "${table[@]}"
+  goals
   [ $failures = 0 ] && echo "all comparisons passed" || echo "$failures comparisons FAILED"
   [ $failures = 0 ]
 }
@@ -186,5 +208,6 @@ run() {
 case "${1:-}" in
   prepare) shift; prepare "$@" ;;
   run) run ;;
-  *) sed -n '2,22p' "$0"; exit 1 ;;
+  goals-of) shift; table=(); while IFS= read -r l; do table+=("$l"); done < "$1"; goals ;;  # a saved table (tests)
+  *) sed -n '2,/^set -u/p' "$0" | sed '$d'; exit 1 ;;
 esac
