@@ -198,6 +198,7 @@ int main(int argc, char** argv) {
                               "glossy.yaml", "motion-blur.yaml"})
       dump_render(dir + "/scenes/" + scene, 40, 30);
     for (const AccelKind kind : {AccelKind::KdTree, AccelKind::Octree}) dump_render(dir + "/scenes/mesh.yaml", 40, 30, kind);
+    dump_render(dir + "/scenes/instances.yaml", 40, 30);  // the two-level hierarchy the GPU walks too
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

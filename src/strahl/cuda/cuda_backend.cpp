@@ -27,11 +27,6 @@ CudaBackend::~CudaBackend() = default;
 
 std::unique_ptr<CudaBackend> CudaBackend::create(const RenderScene& scene, std::string& error) {
   const AccelKind kind = scene.accel.kind;
-  if (!scene.instances.empty()) {
-    error = "the CUDA back end cannot render instances yet (the scene places " + std::to_string(scene.instances.size()) +
-            "): use --device cpu, or write the objects in place";
-    return nullptr;
-  }
   if (!gpu_traverses(kind)) {
     error = "the CUDA back end does not traverse " + std::string(accel_name(kind)) +
             "'s structure: use --accel bvh (or kdtree, octree, naive) with --device cuda";

@@ -23,8 +23,8 @@ namespace strahl::cuda_detail {
 // (Impl::device_view) member by member: a kernel reading an array not uploaded would read host
 // memory. So a new member of SceneView, AccelView or PrimitiveSet stops the build here until it
 // is uploaded and mapped below — then update these sizes.
-// (Instances are not uploaded: CudaBackend::create refuses a scene that has them, and
-// device_view clears their pointers.)
+// Instance groups are RenderScenes of their own: their arrays are uploaded and mapped the same way
+// (copy_scene_arrays, map_accel), and their views (InstanceGroupView) with device pointers.
 static_assert(sizeof(SceneView) - sizeof(AccelView) == 464 && sizeof(PrimitiveSet) == 144 &&
 #if defined(STRAHL_HAVE_EMBREE)
                   sizeof(AccelView) == 408,
@@ -155,27 +155,70 @@ struct Device::Impl {
     return true;
   }
 
+  // Every array of a compiled scene: the scene itself, or one of its instance groups.
+  cudaError_t copy_scene_arrays(const RenderScene& rs) {
+    cudaError_t e = cudaSuccess;
+    const auto ok = [&](cudaError_t r) { return (e = r) == cudaSuccess; };
+    (void)(ok(copy_array(rs.spheres)) && ok(copy_array(rs.planes)) && ok(copy_array(rs.triangles)) &&
+           ok(copy_array(rs.vertex_normals)) && ok(copy_array(rs.accel.sphere_quads)) &&
+           ok(copy_array(rs.accel.bvh.nodes)) && ok(copy_array(rs.accel.bvh.leaves)) &&
+           ok(copy_array(rs.accel.kdtree.nodes)) && ok(copy_array(rs.accel.kdtree.leaves)) &&
+           ok(copy_array(rs.accel.kdtree.blocks)) && ok(copy_array(rs.accel.octree.nodes)) &&
+           ok(copy_array(rs.accel.octree.centers)) && ok(copy_array(rs.accel.octree.leaves)) &&
+           ok(copy_array(rs.accel.octree.blocks)) && ok(copy_array(rs.moving_spheres)) &&
+           ok(copy_array(rs.moving_triangles)) && ok(copy_array(rs.moving_bvh.nodes)) &&
+           ok(copy_array(rs.moving_bvh.prims)) && ok(copy_array(rs.materials)) && ok(copy_array(rs.lights)) &&
+           ok(copy_array(rs.solids)) && ok(copy_array(rs.boxes)) && ok(copy_array(rs.cones)) &&
+           ok(copy_array(rs.disks)) && ok(copy_array(rs.tori)) && ok(copy_array(rs.quadrics)) &&
+           ok(copy_array(rs.implicits)) && ok(copy_array(rs.implicit_tallies)) &&
+           ok(copy_array(rs.solid_spheres)) && ok(copy_array(rs.csgs)) && ok(copy_array(rs.csg_code)) &&
+           ok(copy_array(rs.csg_leaves)) && ok(copy_array(rs.placed)));
+    return e;
+  }
+
+  // The instances (render/instance_queries.h): every group's arrays, the instances' records, their
+  // BVH, and the groups' views with device pointers, which SceneView::groups then maps to.
+  cudaError_t copy_instances(const RenderScene& rs) {
+    if (rs.instances.empty()) return cudaSuccess;
+    cudaError_t e = cudaSuccess;
+    for (const RenderScene& g : rs.groups)
+      if ((e = copy_scene_arrays(g)) != cudaSuccess) return e;
+    if ((e = copy_array(rs.instances)) != cudaSuccess || (e = copy_array(rs.instance_bvh.nodes)) != cudaSuccess ||
+        (e = copy_array(rs.instance_bvh.prims)) != cudaSuccess)
+      return e;
+    std::vector<InstanceGroupView> views(rs.groups.views(), rs.groups.views() + rs.groups.size());
+    for (InstanceGroupView& v : views)
+      if (!map_accel(v.accel) || !map(v.vertex_normals)) return cudaErrorInvalidValue;
+    auto b = std::make_unique<Buffer>();
+    if ((e = b->reserve(views.size() * sizeof(InstanceGroupView))) != cudaSuccess ||
+        (e = cudaMemcpy(b->ptr, views.data(), views.size() * sizeof(InstanceGroupView), cudaMemcpyHostToDevice)) !=
+            cudaSuccess)
+      return e;
+    mapped[rs.groups.views()] = b->ptr;
+    scene_bytes += b->bytes;
+    scene.push_back(std::move(b));
+    return cudaSuccess;
+  }
+
+  // A structure's arrays and its primitives' with device pointers.
+  bool map_accel(AccelView& a) const {
+    return map(a.prims.spheres) && map(a.sphere_quads) && map(a.prims.triangles) && map(a.bvh.nodes) &&
+           map(a.bvh.leaves) && map(a.prims.solids) && map(a.prims.shapes.boxes) && map(a.prims.shapes.cones) &&
+           map(a.prims.shapes.disks) && map(a.prims.shapes.tori) && map(a.prims.shapes.quadrics) &&
+           map(a.prims.shapes.implicits) && map_mutable(a.prims.shapes.tallies) && map(a.prims.shapes.spheres) &&
+           map(a.prims.shapes.csgs) && map(a.prims.shapes.csg_code) && map(a.prims.shapes.csg_leaves) &&
+           map(a.prims.shapes.placed) && map(a.kdtree.nodes) && map(a.kdtree.leaves) && map(a.kdtree.blocks) &&
+           map(a.octree.nodes) && map(a.octree.centers) && map(a.octree.leaves) && map(a.octree.blocks);
+  }
+
   // `host` (a job's view of the uploaded scene: its camera may differ) with device pointers.
   bool device_view(const SceneView& host, SceneView& out) const {
     out = host;
-    if (host.instance_count != 0) return false;  // not uploaded (CudaBackend::create refuses them)
-    out.instances = nullptr;
-    out.instance_bvh = {};
-    out.groups = nullptr;
     return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) &&
-           map(out.accel.prims.spheres) && map(out.accel.sphere_quads) && map(out.accel.prims.triangles) &&
-           map(out.accel.bvh.nodes) &&
-           map(out.accel.bvh.leaves) && map(out.moving_spheres) && map(out.moving_triangles) &&
+           map_accel(out.accel) && map(out.moving_spheres) && map(out.moving_triangles) &&
            map(out.moving_bvh.nodes) && map(out.moving_bvh.prims) && map(out.materials) && map(out.lights) &&
-           map(out.solids) && map(out.accel.prims.solids) && map(out.accel.prims.shapes.boxes) &&
-           map(out.accel.prims.shapes.cones) && map(out.accel.prims.shapes.disks) && map(out.accel.prims.shapes.tori) &&
-           map(out.accel.prims.shapes.quadrics) && map(out.accel.prims.shapes.implicits) &&
-           map_mutable(out.accel.prims.shapes.tallies) && map(out.accel.prims.shapes.spheres) &&
-           map(out.accel.prims.shapes.csgs) && map(out.accel.prims.shapes.csg_code) &&
-           map(out.accel.prims.shapes.csg_leaves) && map(out.accel.prims.shapes.placed) &&
-           map(out.accel.kdtree.nodes) && map(out.accel.kdtree.leaves) && map(out.accel.kdtree.blocks) &&
-           map(out.accel.octree.nodes) && map(out.accel.octree.centers) && map(out.accel.octree.leaves) &&
-           map(out.accel.octree.blocks);
+           map(out.solids) && map(out.instances) && map(out.instance_bvh.nodes) && map(out.instance_bvh.prims) &&
+           map(out.groups);
   }
 };
 
@@ -240,20 +283,7 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
   }
   cudaError_t e = cudaSuccess;
   const auto ok = [&](cudaError_t r) { return (e = r) == cudaSuccess; };
-  if (!(ok(m.copy_array(rs.spheres)) && ok(m.copy_array(rs.planes)) && ok(m.copy_array(rs.triangles)) &&
-        ok(m.copy_array(rs.vertex_normals)) && ok(m.copy_array(rs.accel.sphere_quads)) &&
-        ok(m.copy_array(rs.accel.bvh.nodes)) &&
-        ok(m.copy_array(rs.accel.bvh.leaves)) && ok(m.copy_array(rs.moving_spheres)) &&
-        ok(m.copy_array(rs.moving_triangles)) && ok(m.copy_array(rs.moving_bvh.nodes)) &&
-        ok(m.copy_array(rs.moving_bvh.prims)) && ok(m.copy_array(rs.materials)) && ok(m.copy_array(rs.lights)) &&
-        ok(m.copy_array(rs.solids)) && ok(m.copy_array(rs.boxes)) && ok(m.copy_array(rs.cones)) &&
-        ok(m.copy_array(rs.disks)) && ok(m.copy_array(rs.tori)) && ok(m.copy_array(rs.quadrics)) &&
-        ok(m.copy_array(rs.implicits)) && ok(m.copy_array(rs.implicit_tallies)) &&
-        ok(m.copy_array(rs.solid_spheres)) && ok(m.copy_array(rs.csgs)) && ok(m.copy_array(rs.csg_code)) &&
-        ok(m.copy_array(rs.csg_leaves)) && ok(m.copy_array(rs.placed)) && ok(m.copy_array(rs.accel.kdtree.nodes)) &&
-        ok(m.copy_array(rs.accel.kdtree.leaves)) && ok(m.copy_array(rs.accel.kdtree.blocks)) &&
-        ok(m.copy_array(rs.accel.octree.nodes)) && ok(m.copy_array(rs.accel.octree.centers)) &&
-        ok(m.copy_array(rs.accel.octree.leaves)) && ok(m.copy_array(rs.accel.octree.blocks)))) {
+  if (!(ok(m.copy_scene_arrays(rs)) && ok(m.copy_instances(rs)))) {
     error = (e == cudaErrorMemoryAllocation ? "out of GPU memory uploading the scene (" : "scene upload failed (") +
             cuda_message(e) + ")";
     return false;
