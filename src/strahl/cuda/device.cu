@@ -179,7 +179,10 @@ struct Device::Impl {
   // The instances (render/instance_queries.h): every group's arrays, the instances' records, their
   // BVH, and the groups' views with device pointers, which SceneView::groups then maps to.
   cudaError_t copy_instances(const RenderScene& rs) {
-    if (rs.instances.empty()) return cudaSuccess;
+    if (rs.groups.empty()) {  // (a group placed nowhere is uploaded all the same: SceneView::groups points to it)
+      if (rs.groups.views() != nullptr) mapped[rs.groups.views()] = nullptr;  // reserved, never filled
+      return cudaSuccess;
+    }
     cudaError_t e = cudaSuccess;
     for (const RenderScene& g : rs.groups)
       if ((e = copy_scene_arrays(g)) != cudaSuccess) return e;
