@@ -3,11 +3,12 @@
 #
 #   tools/gpu-check.sh prepare [build dir]
 #       On the build machine (Debian, nvcc 13): builds strahl, strahl-diff and strahl-gpu-bench
-#       for sm_90 + compute_90 PTX, AVX2 (no -march=native), without Embree and MPI, into
+#       for sm_90 + compute_90 PTX, AVX2 (no -march=native), without Embree and MPI, with three
+#       variants of the render kernel (registers for 1, 3 and 4 blocks per SM: 255, 168, 128), into
 #       [build dir] (default build-gpu), and packs them into .gpu/ with every shared library they
 #       load (glibc and its loader included: they run through .gpu/lib/ld-linux-x86-64.so.2, so
 #       the GPU machine's own libraries do not matter), the scenes, and the bunny and the dragon
-#       (../shared/data). .gpu/ is ignored by git (.git/info/exclude); about 31 MB.
+#       (../shared/data). .gpu/ is ignored by git (.git/info/exclude); about 42 MB.
 #   tools/gpu-check.sh run
 #       On the GPU machine (the device tool: carry [".gpu"], command "bash tools/gpu-check.sh run"),
 #       or here to rehearse: CPU references, then the GPU — which is where a machine without
@@ -33,7 +34,7 @@ prepare() {
   mkdir -p "$build"
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSTRAHL_NATIVE=OFF -DCMAKE_CXX_FLAGS=-mavx2 \
     -DSTRAHL_BUILD_TESTS=OFF -DSTRAHL_BUILD_EXTRAS=OFF -DCMAKE_DISABLE_FIND_PACKAGE_embree=ON \
-    -DCMAKE_DISABLE_FIND_PACKAGE_MPI=ON "${launcher[@]}" > "$build/gpu-check-configure.log"
+    -DCMAKE_DISABLE_FIND_PACKAGE_MPI=ON "-DSTRAHL_CUDA_KERNEL_MIN_BLOCKS=1;3;4" "${launcher[@]}" > "$build/gpu-check-configure.log"
   grep -q "building the CUDA back end" "$build/gpu-check-configure.log" || { cat "$build/gpu-check-configure.log"; echo "prepare: CMake found no nvcc"; exit 2; }
   cmake --build "$build" -j"$(nproc)" --target strahl_cli strahl-diff strahl-gpu-bench
   rm -rf "$bundle"
@@ -114,7 +115,7 @@ bench() {
   local log l
   log=$(tool strahl-gpu-bench "$@" 2>&1) || { echo "$log"; note "FAIL  strahl-gpu-bench $*"; failures=$((failures + 1)); return; }
   echo "$log"
-  while read -r l; do note "$l"; done < <(grep -h '^frame\|^primary\|^strahl-view benchmark' <<< "$log")
+  while read -r l; do note "$l"; done < <(grep -h '^frame\|^kernel\|^primary\|^strahl-view benchmark' <<< "$log")
 }
 
 # The issue's goals, judged from the table's strahl-gpu-bench lines: one "GOAL met|MISSED" line each.
@@ -191,9 +192,10 @@ run() {
     [ $failures = "$before" ] && rm -f "$out/cpu-$i.pfm" "$out/gpu-$i.pfm"
   done
 
-  # Speed, scene resident: kernel time per frame (CUDA events), median of the frames.
-  bench "$out/lecture-whitted.yaml" --width 1920 --height 1080 --spp 1 --frames 50 --viewer 50
-  bench "$out/lecture-distributed.yaml" --width 1920 --height 1080 --spp 16 --frames 10
+  # Speed, scene resident: kernel time per frame (CUDA events), median of the frames; the lecture
+  # scenes also with each variant of the render kernel ("kernel" lines: registers, occupancy).
+  bench "$out/lecture-whitted.yaml" --width 1920 --height 1080 --spp 1 --frames 50 --kernels --viewer 50
+  bench "$out/lecture-distributed.yaml" --width 1920 --height 1080 --spp 16 --frames 10 --kernels
   for s in bunny dragon; do
     [[ " ${scenes[*]} " == *" $s "* ]] && bench "$out/$s.yaml" --width 1920 --height 1080 --spp 1 --frames 20 --primary
   done

@@ -72,8 +72,12 @@ CudaStats CudaBackend::stats() const {
   s.upload_seconds = d.upload_seconds();
   s.kernel_seconds = d.kernel_seconds();
   s.launches = d.launches();
+  s.kernel = describe(d.info().kernels[std::size_t(d.kernel())]);
   return s;
 }
+
+const std::vector<CudaKernel>& CudaBackend::kernels() const { return impl_->device->info().kernels; }
+bool CudaBackend::use_kernel(int index) { return impl_->device->use_kernel(index); }
 
 const std::string& CudaBackend::error() const { return impl_->error; }
 

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "strahl/accel/accel.h"
 #include "strahl/render/render_job.h"
@@ -27,6 +28,19 @@ constexpr bool gpu_traverses(AccelKind kind) {
   return kind == AccelKind::Bvh || kind == AccelKind::Naive || kind == AccelKind::KdTree || kind == AccelKind::Octree;
 }
 
+// One variant of the render kernel as the driver loaded it (cuda/device.cu: ptxas fits the
+// registers so that `min_blocks` blocks share a multiprocessor).
+struct CudaKernel {
+  int min_blocks = 0;           // __launch_bounds__'s second argument
+  int block = 0;                // threads per block
+  int registers = 0;            // per thread
+  std::size_t local_bytes = 0;  // local memory per thread: the stack frame, spills included
+  int blocks_per_sm = 0;        // resident blocks per multiprocessor (the occupancy)
+};
+
+// "255 registers, 30224 B local memory per thread, 2 blocks of 128 threads per SM"
+std::string describe(const CudaKernel& k);
+
 struct CudaStats {
   std::string device;  // e.g. "NVIDIA H200 (compute capability 9.0, 132 SMs, 140 GiB)"
   std::size_t memory_used = 0;   // bytes of device memory held: the scene and the last pass
@@ -36,6 +50,7 @@ struct CudaStats {
   double upload_seconds = 0;     // the scene's upload
   double kernel_seconds = 0;     // every kernel launch (device time, CUDA events)
   std::uint64_t launches = 0;
+  std::string kernel;            // the render kernel in use, describe()d
 };
 
 class CudaBackend final : public TileBackend {
@@ -56,6 +71,10 @@ class CudaBackend final : public TileBackend {
   // Set when a pass failed on the GPU: the job was cancelled, every tile taken delivered
   // unchanged. Empty otherwise.
   const std::string& error() const;
+  // The render kernel's variants this build holds (CMake's STRAHL_CUDA_KERNEL_MIN_BLOCKS; one
+  // unless built for measuring), and the one passes launch: an index into kernels(), 0 at first.
+  const std::vector<CudaKernel>& kernels() const;
+  bool use_kernel(int index);  // false for an index out of range
   // Kernel time of the last pass, seconds.
   double last_kernel_seconds() const;
   // Primary rays (one per pixel through its centre, nearest hit): median kernel seconds of one

@@ -23,6 +23,11 @@ void CudaBackend::render_pass(RenderJob&) {}
 bool CudaBackend::holds(const SceneView&) const { return false; }
 CudaStats CudaBackend::stats() const { return {}; }
 const std::string& CudaBackend::error() const { return impl_->error; }
+const std::vector<CudaKernel>& CudaBackend::kernels() const {
+  static const std::vector<CudaKernel> none;
+  return none;
+}
+bool CudaBackend::use_kernel(int) { return false; }
 double CudaBackend::last_kernel_seconds() const { return 0; }
 double CudaBackend::primary_seconds(const SceneView&, int, std::string& error) {
   error = "strahl was built without CUDA";

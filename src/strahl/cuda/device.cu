@@ -15,6 +15,7 @@
 #include "strahl/cuda/device.h"
 #include "strahl/render/intersect_scene.h"
 #include "strahl/render/render_scene.h"
+#include "kernel_variants.h"
 
 namespace strahl::cuda_detail {
 
@@ -37,6 +38,12 @@ namespace {
 
 constexpr int kBlock = 128;
 
+// The render kernel's variants: __launch_bounds__(kBlock, m) for each m of
+// STRAHL_CUDA_KERNEL_MIN_BLOCKS (kernel_variants.h, generated from CMake's option of that name,
+// default 1): ptxas fits the registers so that m blocks of kBlock threads share one multiprocessor
+// (1: up to 255 registers; 3: 168; 4: 128). The first is the one strahl renders with; the others
+// are for measuring (strahl-gpu-bench --kernels; tools/gpu-check.sh builds 1, 3 and 4).
+
 struct KernelArgs {
   PassArgs pass;                 // device pointers (cuda/flat_pass.h)
   unsigned long long* counters;  // kPassCounters (counter_array)
@@ -47,7 +54,8 @@ __device__ inline unsigned long long warp_sum(unsigned long long v) {
   return v;
 }
 
-__global__ void __launch_bounds__(kBlock) render_kernel(const KernelArgs a) {
+template <int MinBlocks>
+__global__ void __launch_bounds__(kBlock, MinBlocks) render_kernel(const KernelArgs a) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   RayCounters c;
   if (i < a.pass.n)
@@ -62,6 +70,15 @@ __global__ void __launch_bounds__(kBlock) render_kernel(const KernelArgs a) {
     if ((threadIdx.x & 31) == 0 && s != 0) atomicAdd(&a.counters[k], s);
   }
 }
+
+using RenderKernel = void (*)(KernelArgs);
+template <int... MinBlocks>
+struct KernelList {
+  static constexpr RenderKernel kernels[] = {render_kernel<MinBlocks>...};
+  static constexpr int min_blocks[] = {MinBlocks...};
+};
+using RenderKernels = KernelList<STRAHL_CUDA_KERNEL_MIN_BLOCKS>;
+constexpr int kKernelCount = int(sizeof(RenderKernels::min_blocks) / sizeof(int));
 
 // Primary rays: the nearest hit of one camera ray through each pixel's centre.
 __global__ void __launch_bounds__(kBlock) primary_kernel(const SceneView view, std::uint32_t* out) {
@@ -257,12 +274,23 @@ std::unique_ptr<Device> Device::open(std::string& error) {
   d->info_.minor = prop.minor;
   d->info_.multiprocessors = prop.multiProcessorCount;
   d->info_.memory_total = prop.totalGlobalMem;
-  // Does this build hold code for the chip (sm_90 machine code, compute_90 PTX)?
-  cudaFuncAttributes attr{};
-  if ((e = cudaFuncGetAttributes(&attr, render_kernel)) != cudaSuccess) {
-    error = std::string("this strahl's CUDA kernels do not run on ") + prop.name + " (compute capability " +
-            std::to_string(prop.major) + "." + std::to_string(prop.minor) + "; " + cuda_message(e) + ")";
-    return nullptr;
+  // Does this build hold code for the chip (sm_90 machine code, compute_90 PTX)? And what did
+  // each variant of the render kernel become there.
+  for (int k = 0; k < kKernelCount; ++k) {
+    cudaFuncAttributes attr{};
+    CudaKernel ki;
+    ki.min_blocks = RenderKernels::min_blocks[k];
+    ki.block = kBlock;
+    if ((e = cudaFuncGetAttributes(&attr, RenderKernels::kernels[k])) != cudaSuccess ||
+        (e = cudaOccupancyMaxActiveBlocksPerMultiprocessor(&ki.blocks_per_sm, RenderKernels::kernels[k], kBlock, 0)) !=
+            cudaSuccess) {
+      error = std::string("this strahl's CUDA kernels do not run on ") + prop.name + " (compute capability " +
+              std::to_string(prop.major) + "." + std::to_string(prop.minor) + "; " + cuda_message(e) + ")";
+      return nullptr;
+    }
+    ki.registers = attr.numRegs;
+    ki.local_bytes = attr.localSizeBytes;
+    d->info_.kernels.push_back(ki);
   }
   Impl& m = *d->impl_;
   if ((e = cudaStreamCreateWithFlags(&m.stream, cudaStreamNonBlocking)) != cudaSuccess ||
@@ -295,18 +323,23 @@ bool Device::upload(const RenderScene& rs, std::string& error) {
     error = "internal: the scene has an array the CUDA back end does not upload";
     return false;
   }
-  // Each thread's stack. The integrator no longer recurses (render/whitted.h: a fixed array of
-  // pending hits), and ptxas (sm_90, nvcc 13.0) reports a 30224-byte frame for the render kernel
-  // (docs/gpu.md); these figures, from the recursive integrator's time, cover it with room to
-  // spare. Fitting them to the kernel is for a session with a GPU to measure.
-  constexpr std::size_t kStackBase = 40960, kStackPerLevel = 1024;
-  const std::size_t stack = kStackBase + kStackPerLevel * std::size_t(host.settings.max_depth + 1);
+  // Each thread's stack: what the kernels' frames need (no recursion: render/whitted.h keeps the
+  // pending rays in a fixed array, so ptxas knows the whole frame). The driver would grow the
+  // stack at the first launch anyway; reserving it here reports a shortage at the upload, and
+  // reserves no more than the kernel uses (the driver reserves it for every resident thread).
+  std::size_t stack = 1024;  // CUDA's default
+  for (const CudaKernel& k : info_.kernels) stack = std::max(stack, k.local_bytes);
   if (!ok(cudaDeviceSetLimit(cudaLimitStackSize, stack))) {
-    error = "cannot reserve the GPU stack for max_depth " + std::to_string(host.settings.max_depth) + " (" +
-            cuda_message(e) + ")";
+    error = "cannot reserve the GPU stack (" + std::to_string(stack) + " bytes per thread; " + cuda_message(e) + ")";
     return false;
   }
   upload_seconds_ = seconds_since(t0);
+  return true;
+}
+
+bool Device::use_kernel(int index) {
+  if (index < 0 || index >= int(info_.kernels.size())) return false;
+  kernel_ = index;
   return true;
 }
 
@@ -360,7 +393,7 @@ bool Device::run(const SceneView& view, const PixelSampler& sampler, const FilmP
   a.counters = static_cast<unsigned long long*>(m.counters.ptr);
   const unsigned blocks = unsigned((n + kBlock - 1) / kBlock);
   cudaEventRecord(m.begin, m.stream);
-  render_kernel<<<blocks, kBlock, 0, m.stream>>>(a);
+  RenderKernels::kernels[kernel_]<<<blocks, kBlock, 0, m.stream>>>(a);
   if (!ok(cudaGetLastError())) {
     error = "kernel launch failed (" + cuda_message(e) + ")";
     return false;

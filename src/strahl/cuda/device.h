@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "strahl/cuda/cuda_backend.h"
 #include "strahl/cuda/flat_pass.h"
 
 namespace strahl {
@@ -23,6 +24,7 @@ struct DeviceInfo {
   std::string name;
   int major = 0, minor = 0, multiprocessors = 0;
   std::size_t memory_total = 0;
+  std::vector<CudaKernel> kernels;  // the render kernel's variants; the first renders unless use_kernel()
 };
 
 // One CUDA device holding one uploaded scene.
@@ -36,6 +38,11 @@ class Device {
   // (no driver, no device, no kernel image for the chip, …) otherwise.
   static std::unique_ptr<Device> open(std::string& error);
   const DeviceInfo& info() const { return info_; }
+
+  // The render kernel's variant that passes launch (an index into info().kernels; 0 at first).
+  // False for an index out of range.
+  bool use_kernel(int index);
+  int kernel() const { return kernel_; }
 
   // Copies every array of `view` to device memory (once; the scene stays resident) and sizes the
   // threads' stacks. False and a reason (out of memory, …) on failure.
@@ -73,6 +80,7 @@ class Device {
   DeviceInfo info_;
   double upload_seconds_ = 0, kernel_seconds_ = 0, last_kernel_seconds_ = 0;
   std::uint64_t launches_ = 0;
+  int kernel_ = 0;
 };
 
 }  // namespace strahl::cuda_detail
