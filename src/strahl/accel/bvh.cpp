@@ -8,6 +8,9 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <memory>
+#include <new>
+#include <type_traits>
 
 #include "strahl/accel/build_stats.h"
 
@@ -31,12 +34,15 @@ Real surface_area(const Bounds& b) {
 Bounds merge(const Bounds& a, const Bounds& b) { return Bounds{min(a.lo, b.lo), max(a.hi, b.hi)}; }
 
 // Builds into a node array sized for the worst case (2n − 1 nodes): a split takes the next two
-// free slots for its children, so subtrees build in parallel without a temporary tree.
+// free slots for its children, so subtrees build in parallel without a temporary tree. The array
+// is allocated, not initialised: each node is constructed when its build begins, so the memory
+// past the nodes taken (a prefix: slots are handed out in order; about n/2 of the 2n − 1 for
+// triangle meshes) is never touched and costs neither time nor resident memory.
 struct Builder {
   const std::vector<Bounds>& prim_bounds;
   const std::vector<Vec3>& centroids;
   std::vector<std::uint32_t>& index;
-  std::vector<BvhNode>& nodes;
+  BvhNode* nodes;
   const BvhBuildOptions& options;
   // Primitives from this index on are solids (accel/primitive.h puts them last): each costs a
   // test of its own (a cone's quadratic, a torus's quartic, an implicit surface's search), not
@@ -55,7 +61,7 @@ struct Builder {
       bounds = merge(bounds, prim_bounds[index[i]]);
       centroid_bounds.extend(centroids[index[i]]);
     }
-    BvhNode& node = nodes[at];
+    BvhNode& node = *::new (static_cast<void*>(nodes + at)) BvhNode{};
     node.bounds = bounds;
     const std::uint32_t count = end - begin;
     std::uint32_t costly = 0;
@@ -190,11 +196,13 @@ Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, con
         bvh.prims[i] = i;
       }
     });
-    bvh.nodes.resize(2 * std::size_t(n) - 1);
-    Builder builder{bounds, centroids, bvh.prims, bvh.nodes, options, first_costly};
+    static_assert(std::is_trivially_copyable_v<BvhNode> && std::is_trivially_destructible_v<BvhNode>);
+    const std::unique_ptr<BvhNode, void (*)(BvhNode*)> slots(
+        static_cast<BvhNode*>(::operator new((2 * std::size_t(n) - 1) * sizeof(BvhNode))),
+        [](BvhNode* p) { ::operator delete(static_cast<void*>(p)); });
+    Builder builder{bounds, centroids, bvh.prims, slots.get(), options, first_costly};
     builder.build(0, 0, n, 1);
-    bvh.nodes.resize(builder.next_node.load());
-    bvh.nodes.shrink_to_fit();
+    bvh.nodes.assign(slots.get(), slots.get() + builder.next_node.load());
     count_nodes(bvh.nodes, stats);
   }
   stats.nodes = bvh.nodes.size();
