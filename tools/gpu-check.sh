@@ -15,8 +15,8 @@
 #       one stops (exit 3, "FAIL at the GPU: …"). With a GPU: every scene on both devices,
 #       compared (identical bytes for the grid sampler on the lecture scenes, RMSE ≤ 1e-6
 #       elsewhere), then frames/s and Grays/s. Logs and images go under $OUT (the device tool's
-#       folder) when it is set, else .gpu/out; the last lines are the table and a "GOAL met|MISSED"
-#       line per goal of issue 17.
+#       folder) when it is set, else /tmp/strahl-gpu-check (not into .gpu/, which must stay small
+#       to travel); the last lines are the table and a "GOAL met|MISSED" line per goal of issue 17.
 #   tools/gpu-check.sh goals-of TABLE
 #       The goal lines of a saved table (the run's last lines).
 # Exit codes: 0 every check passed, 1 a comparison failed, 2 set-up (no bundle, a tool failed),
@@ -62,7 +62,7 @@ prepare() {
 
 # ---- run ----
 
-out=${OUT:-$bundle/out}
+out=${OUT:-${TMPDIR:-/tmp}/strahl-gpu-check}
 table=()
 failures=0
 note() { table+=("$1"); echo "$1"; }
