@@ -38,7 +38,7 @@ struct CudaKernel {
   int blocks_per_sm = 0;        // resident blocks per multiprocessor (the occupancy)
 };
 
-// "255 registers, 30224 B local memory per thread, 2 blocks of 128 threads per SM"
+// "255 registers, 36784 B local memory per thread, 2 blocks of 128 threads per SM"
 std::string describe(const CudaKernel& k);
 
 struct CudaStats {
