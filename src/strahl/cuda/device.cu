@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <thread>
+#include <type_traits>
 #include <unordered_map>
 
 #include "strahl/cuda/cuda_backend.h"
@@ -138,8 +139,10 @@ struct Device::Impl {
     if (control) cudaStreamDestroy(control);
   }
 
-  template <class T>
-  cudaError_t copy_array(const std::vector<T>& host) {
+  // `host`: a std::vector or a ZeroedArray.
+  template <class Array>
+  cudaError_t copy_array(const Array& host) {
+    using T = std::remove_cv_t<std::remove_reference_t<decltype(*host.data())>>;
     if (host.empty()) {
       if (host.data() != nullptr) mapped[host.data()] = nullptr;  // reserved, never filled
       return cudaSuccess;
