@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdint>
 #include <utility>
 
 #include "strahl/image/image.h"
@@ -39,25 +38,6 @@ TEST(ZeroedArray, StartsAtZeroAndCopiesAndMovesLikeAVector) {
   EXPECT_EQ(a.size(), c.size());
   EXPECT_EQ(a[7].n, 3u);
   EXPECT_TRUE(ZeroedArray<int>().empty());
-}
-
-// The BVH's nodes and triangle blocks are cache-line aligned (the AVX box test loads them
-// aligned): small arrays (aligned_alloc) and large ones (whole 2 MiB pages) keep their alignment.
-TEST(ZeroedArray, KeepsTheAlignmentOfItsType) {
-  struct alignas(64) Line {
-    double x[3];
-  };
-  for (const std::size_t n : {std::size_t(1), std::size_t(3), std::size_t(1000), (kLargeBlock / sizeof(Line)) * 3 + 1}) {
-    ZeroedArray<Line> a(n);
-    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a.data()) % 64, 0u) << n;
-    std::size_t nonzero = 0;
-    for (const Line& l : a) nonzero += l.x[0] != 0 || l.x[1] != 0 || l.x[2] != 0;
-    EXPECT_EQ(nonzero, 0u) << n;
-    a[n - 1].x[2] = 1;  // the last element is the array's
-    const ZeroedArray<Line> b(a);
-    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(b.data()) % 64, 0u) << n;
-    EXPECT_EQ(b[n - 1].x[2], 1);
-  }
 }
 
 TEST(ZeroedArray, ImagesCompareByTheirPixels) {

@@ -13,7 +13,6 @@
 #include <type_traits>
 
 #include "strahl/accel/build_stats.h"
-#include "strahl/util/large_pages.h"
 
 namespace strahl {
 
@@ -36,10 +35,9 @@ Bounds merge(const Bounds& a, const Bounds& b) { return Bounds{min(a.lo, b.lo), 
 
 // Builds into a node array sized for the worst case (2n − 1 nodes): a split takes the next two
 // free slots for its children, so subtrees build in parallel without a temporary tree. The array
-// is fresh memory (util/large_pages.h: in 2 MiB pages when large) that each node's build
-// constructs its node in, so the memory past the nodes taken (a prefix: slots are handed out in
-// order; about n/2 of the 2n − 1 for triangle meshes) is never touched and costs neither time nor
-// resident memory.
+// is allocated, not initialised: each node is constructed when its build begins, so the memory
+// past the nodes taken (a prefix: slots are handed out in order; about n/2 of the 2n − 1 for
+// triangle meshes) is never touched and costs neither time nor resident memory.
 struct Builder {
   const std::vector<Bounds>& prim_bounds;
   const std::vector<Vec3>& centroids;
@@ -199,10 +197,9 @@ Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, con
       }
     });
     static_assert(std::is_trivially_copyable_v<BvhNode> && std::is_trivially_destructible_v<BvhNode>);
-    const std::size_t slot_bytes = (2 * std::size_t(n) - 1) * sizeof(BvhNode);
-    const auto free_slots = [slot_bytes](BvhNode* p) { free_zeroed_bytes(p, slot_bytes); };
-    const std::unique_ptr<BvhNode, decltype(free_slots)> slots(
-        static_cast<BvhNode*>(allocate_zeroed_bytes(slot_bytes, alignof(BvhNode))), free_slots);
+    const std::unique_ptr<BvhNode, void (*)(BvhNode*)> slots(
+        static_cast<BvhNode*>(::operator new((2 * std::size_t(n) - 1) * sizeof(BvhNode))),
+        [](BvhNode* p) { ::operator delete(static_cast<void*>(p)); });
     Builder builder{bounds, centroids, bvh.prims, slots.get(), options, first_costly};
     builder.build(0, 0, n, 1);
     bvh.nodes.assign(slots.get(), slots.get() + builder.next_node.load());

@@ -163,7 +163,7 @@ WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     Collapser c{bin, prims, out, {}};
     if (bin.nodes[0].count > 0) {
       // One leaf (the lecture's five spheres): no nodes, no box test.
-      out.leaves = ZeroedArray<WideBvhLeaf>(blocks(bin.nodes[0].count));
+      out.leaves.resize(blocks(bin.nodes[0].count));
       c.copy_leaf(bin.nodes[0], 0);
       out.root_leaf_count = blocks(bin.nodes[0].count);
       stats.leaves = 1;
@@ -171,8 +171,8 @@ WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
     } else {
       c.sizes.resize(bin.nodes.size());
       const Sizes total = c.size_of(0);
-      out.nodes = ZeroedArray<WideBvhNode>(total.nodes);
-      out.leaves = ZeroedArray<WideBvhLeaf>(total.leaves);
+      out.nodes.resize(total.nodes);
+      out.leaves.resize(total.leaves);
       c.fill(0, 0, 0);
       // Depth and leaf count of the wide tree.
       std::vector<std::pair<std::uint32_t, std::size_t>> stack{{0, 1}};

@@ -26,7 +26,6 @@
 #include "strahl/accel/primitive.h"
 #include "strahl/accel/traversal.h"
 #include "strahl/accel/triangle_block.h"
-#include "strahl/util/zeroed_array.h"
 
 // STRAHL_PORTABLE_KERNELS: the portable path (what the GPU runs) on an AVX2 host too
 // (tests/portable checks the two give the same hits, bit for bit).
@@ -61,12 +60,10 @@ struct WideBvhView {
   float extent[3] = {0, 0, 0};        // the largest |coordinate| of any box, per axis (for the margins)
 };
 
-// Owns the arrays (aligned to 64 bytes, a cache line). They are ZeroedArrays (util/zeroed_array.h):
-// fresh pages, in 2 MiB ones when large, written once by the build — not zeroed first and then
-// written, as a std::vector's would be (about 100 MB of leaves for a million triangles).
+// Owns the arrays (nodes aligned to 64 bytes, a cache line).
 struct WideBvh {
-  ZeroedArray<WideBvhNode> nodes;
-  ZeroedArray<WideBvhLeaf> leaves;
+  std::vector<WideBvhNode> nodes;
+  std::vector<WideBvhLeaf> leaves;
   std::uint32_t root_leaf_count = 0;
   float extent[3] = {0, 0, 0};
   WideBvhView view() const {

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <thread>
-#include <type_traits>
 #include <unordered_map>
 
 #include "strahl/cuda/cuda_backend.h"
@@ -139,10 +138,8 @@ struct Device::Impl {
     if (control) cudaStreamDestroy(control);
   }
 
-  // `host`: a std::vector or a ZeroedArray.
-  template <class Array>
-  cudaError_t copy_array(const Array& host) {
-    using T = std::remove_cv_t<std::remove_reference_t<decltype(*host.data())>>;
+  template <class T>
+  cudaError_t copy_array(const std::vector<T>& host) {
     if (host.empty()) {
       if (host.data() != nullptr) mapped[host.data()] = nullptr;  // reserved, never filled
       return cudaSuccess;

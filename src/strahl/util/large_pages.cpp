@@ -58,7 +58,7 @@ bool maps_large_pages(std::size_t bytes) {
 #endif
 }
 
-void* allocate_zeroed_bytes(std::size_t bytes, std::size_t alignment) {
+void* allocate_zeroed_bytes(std::size_t bytes) {
 #if defined(STRAHL_MAPS_LARGE_PAGES)
   if (maps_large_pages(bytes)) {
     // One large page more than needed, then the part before the first aligned address and the
@@ -76,17 +76,8 @@ void* allocate_zeroed_bytes(std::size_t bytes, std::size_t alignment) {
     return p;
   }
 #endif
-  if (alignment <= alignof(std::max_align_t)) {
-    void* p = std::calloc(bytes, 1);
-    if (p == nullptr) throw std::bad_alloc();
-    return p;
-  }
-  // (aligned_alloc wants a multiple of the alignment; std::free frees it as calloc's.)
-  const std::size_t rounded = (bytes + alignment - 1) / alignment * alignment;
-  if (rounded < bytes) throw std::bad_alloc();
-  void* p = std::aligned_alloc(alignment, rounded);
+  void* p = std::calloc(bytes, 1);
   if (p == nullptr) throw std::bad_alloc();
-  std::memset(p, 0, rounded);
   return p;
 }
 

@@ -18,9 +18,9 @@ inline constexpr std::size_t kLargePage = std::size_t(2) << 20;
 // to whole large pages adds at most as much as the block holds.
 inline constexpr std::size_t kLargeBlock = std::size_t(1) << 20;
 
-// `bytes` (> 0) zeroed bytes, aligned to kLargePage when mapped on their own and to `alignment`
-// (a power of two, at most kLargePage) in any case; throws std::bad_alloc when there is no memory.
-void* allocate_zeroed_bytes(std::size_t bytes, std::size_t alignment = alignof(std::max_align_t));
+// `bytes` (> 0) zeroed bytes, aligned to kLargePage when mapped on their own; throws
+// std::bad_alloc when there is no memory.
+void* allocate_zeroed_bytes(std::size_t bytes);
 
 // Frees a block from allocate_zeroed_bytes(bytes) (nullptr: nothing).
 void free_zeroed_bytes(void* p, std::size_t bytes) noexcept;

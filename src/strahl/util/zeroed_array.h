@@ -29,7 +29,6 @@ class ZeroedArray {
   // the value zero) is the user's promise, which no trait can check: it holds for the arithmetic
   // types and the aggregates of them stored here (double, std::int64_t, Rgb, PixelStats).
   static_assert(std::is_trivially_copyable_v<T>, "ZeroedArray copies with memcpy: T must be trivially copyable");
-  static_assert(alignof(T) <= kLargePage);
 
  public:
   ZeroedArray() = default;
@@ -77,7 +76,7 @@ class ZeroedArray {
     if (n == 0) return {nullptr, Free{}};
     if (n > std::size_t(-1) / sizeof(T)) throw std::bad_alloc();
     const std::size_t bytes = n * sizeof(T);
-    return {static_cast<T*>(allocate_zeroed_bytes(bytes, alignof(T))), Free{bytes}};
+    return {static_cast<T*>(allocate_zeroed_bytes(bytes)), Free{bytes}};
   }
   std::unique_ptr<T, Free> data_;
   std::size_t size_ = 0;
