@@ -1,6 +1,7 @@
 // util/large_pages.h: large zeroed blocks mapped on their own, aligned to 2 MiB and advised for
 // transparent huge pages (Linux, not under sanitizers); small ones from calloc. Every block reads
-// as zeros and holds what is written to it.
+// as zeros and holds what is written to it. util/large_array.h: vectors whose blocks of 32 MiB
+// or more are mapped so, and smaller ones come from operator new, aligned as their type asks.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "strahl/util/large_array.h"
 #include "strahl/util/large_pages.h"
 #include "strahl/util/zeroed_array.h"
 
@@ -78,6 +80,47 @@ TEST(LargePages, LargeBlocksAreAlignedAndAdvisedForHugePages) {
     ZeroedArray<double> small(1000);
     EXPECT_EQ(thp_eligible(small.data()), 0);
   }
+}
+
+// A BVH node's alignment (64 bytes), which both kinds of block must honour.
+struct alignas(64) Node {
+  double value[3];
+};
+
+TEST(LargeArray, HoldsWhatIsWrittenAlignedAsItsTypeAsks) {
+  // Small (operator new) and large (mapped when large pages are on) arrays, grown past their first
+  // block: every element keeps its value, every block is aligned to 64 bytes.
+  const std::size_t big = kFreshBlock / sizeof(Node) + 1;
+  for (const std::size_t n : {std::size_t(1), std::size_t(1000), big}) {
+    LargeArray<Node> a;
+    a.resize(n);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a.data()) % 64, 0u) << n;
+    for (std::size_t i = 0; i < n; ++i) a[i].value[0] = double(i);
+    a.push_back(Node{{-1, 0, 0}});  // grows: a new block, the elements moved into it
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a.data()) % 64, 0u) << n;
+    std::size_t wrong = 0;
+    for (std::size_t i = 0; i < n; ++i) wrong += a[i].value[0] != double(i);
+    EXPECT_EQ(wrong, 0u) << n;
+    EXPECT_EQ(a.back().value[0], -1);
+    const LargeArray<Node> copy = a;
+    EXPECT_EQ(copy[n / 2].value[0], double(n / 2));
+  }
+}
+
+TEST(LargeArray, BlocksFromThirtyTwoMiBAreInHugePagesSmallerOnesAreNot) {
+  if (!maps_large_pages(kFreshBlock)) GTEST_SKIP() << "no large pages here (not Linux, a sanitizer, or STRAHL_LARGE_PAGES=0)";
+  LargeArray<double> large(kFreshBlock / sizeof(double));
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(large.data()) % kLargePage, 0u);
+  large.back() = 1;
+  const std::string mode = thp_mode();
+  if (mode != "madvise") GTEST_SKIP() << "transparent huge pages are " << mode << " (the test needs madvise)";
+  const int eligible = thp_eligible(large.data());
+  if (eligible < 0) GTEST_SKIP() << "no THPeligible in /proc/self/smaps";
+  EXPECT_EQ(eligible, 1);
+  // Just below: malloc's block (which it maps afresh, unadvised, or takes from its heap).
+  LargeArray<double> below(kFreshBlock / sizeof(double) - 1);
+  below.back() = 1;
+  EXPECT_EQ(thp_eligible(below.data()), 0);
 }
 
 // STRAHL_LARGE_PAGES=0 or off: no block in large pages; any other value: as without it. The

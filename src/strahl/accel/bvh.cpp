@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "strahl/accel/build_stats.h"
+#include "strahl/util/large_array.h"
 
 namespace strahl {
 
@@ -35,12 +36,13 @@ Bounds merge(const Bounds& a, const Bounds& b) { return Bounds{min(a.lo, b.lo), 
 
 // Builds into a node array sized for the worst case (2n − 1 nodes): a split takes the next two
 // free slots for its children, so subtrees build in parallel without a temporary tree. The array
-// is allocated, not initialised: each node is constructed when its build begins, so the memory
-// past the nodes taken (a prefix: slots are handed out in order; about n/2 of the 2n − 1 for
-// triangle meshes) is never touched and costs neither time nor resident memory.
+// is allocated, not initialised (in 2 MiB pages when large: util/large_array.h): each node is
+// constructed when its build begins, so the memory past the nodes taken (a prefix: slots are
+// handed out in order; about n/2 of the 2n − 1 for triangle meshes) is never touched and costs
+// neither time nor resident memory.
 struct Builder {
-  const std::vector<Bounds>& prim_bounds;
-  const std::vector<Vec3>& centroids;
+  const Bounds* prim_bounds;
+  const Vec3* centroids;
   std::vector<std::uint32_t>& index;
   BvhNode* nodes;
   const BvhBuildOptions& options;
@@ -161,6 +163,12 @@ struct Builder {
   }
 };
 
+// Gives the node slots back (util/large_array.h: how they were allocated depends on their size).
+struct SlotsDeleter {
+  std::size_t count;
+  void operator()(BvhNode* p) const { LargeArrayAllocator<BvhNode>().deallocate(p, count); }
+};
+
 void count_nodes(const std::vector<BvhNode>& nodes, AccelBuildStats& stats) {
   std::vector<std::pair<std::uint32_t, std::size_t>> stack{{0, 1}};
   while (!stack.empty()) {
@@ -180,15 +188,14 @@ void count_nodes(const std::vector<BvhNode>& nodes, AccelBuildStats& stats) {
 
 namespace {
 
-Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, const BvhBuildOptions& options,
-              std::uint32_t first_costly) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto n = static_cast<std::uint32_t>(bounds.size());
+// The build over n boxes; `start` is when the caller began (the boxes' time counts).
+Bvh build_bvh(const Bounds* bounds, std::uint32_t n, AccelBuildStats* stats_out, const BvhBuildOptions& options,
+              std::uint32_t first_costly, std::chrono::steady_clock::time_point start) {
   Bvh bvh;
   AccelBuildStats stats;
   stats.primitives = stats.primitive_references = n;
   if (n > 0) {
-    std::vector<Vec3> centroids(n);
+    LargeArray<Vec3> centroids(n);
     bvh.prims.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1024), [&](const auto& r) {
       for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
@@ -197,10 +204,10 @@ Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, con
       }
     });
     static_assert(std::is_trivially_copyable_v<BvhNode> && std::is_trivially_destructible_v<BvhNode>);
-    const std::unique_ptr<BvhNode, void (*)(BvhNode*)> slots(
-        static_cast<BvhNode*>(::operator new((2 * std::size_t(n) - 1) * sizeof(BvhNode))),
-        [](BvhNode* p) { ::operator delete(static_cast<void*>(p)); });
-    Builder builder{bounds, centroids, bvh.prims, slots.get(), options, first_costly};
+    const std::size_t slot_count = 2 * std::size_t(n) - 1;
+    const std::unique_ptr<BvhNode, SlotsDeleter> slots(LargeArrayAllocator<BvhNode>().allocate(slot_count),
+                                                      SlotsDeleter{slot_count});
+    Builder builder{bounds, centroids.data(), bvh.prims, slots.get(), options, first_costly};
     builder.build(0, 0, n, 1);
     bvh.nodes.assign(slots.get(), slots.get() + builder.next_node.load());
     count_nodes(bvh.nodes, stats);
@@ -215,18 +222,17 @@ Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, con
 }  // namespace
 
 Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, const BvhBuildOptions& options) {
-  return build_bvh(bounds, stats_out, options, ~std::uint32_t(0));
+  return build_bvh(bounds.data(), static_cast<std::uint32_t>(bounds.size()), stats_out, options, ~std::uint32_t(0),
+                   std::chrono::steady_clock::now());
 }
 
 Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out, const BvhBuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  std::vector<Bounds> bounds(prims.size());
+  LargeArray<Bounds> bounds(prims.size());
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, prims.size(), 1024), [&](const auto& r) {
     for (std::uint32_t i = r.begin(); i != r.end(); ++i) bounds[i] = primitive_bounds(prims, i);
   });
-  Bvh bvh = build_bvh(bounds, stats_out, options, prims.first_solid());
-  if (stats_out) stats_out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return bvh;
+  return build_bvh(bounds.data(), prims.size(), stats_out, options, prims.first_solid(), start);
 }
 
 }  // namespace strahl

@@ -26,6 +26,7 @@
 #include "strahl/accel/primitive.h"
 #include "strahl/accel/traversal.h"
 #include "strahl/accel/triangle_block.h"
+#include "strahl/util/large_array.h"
 
 // STRAHL_PORTABLE_KERNELS: the portable path (what the GPU runs) on an AVX2 host too
 // (tests/portable checks the two give the same hits, bit for bit).
@@ -60,10 +61,10 @@ struct WideBvhView {
   float extent[3] = {0, 0, 0};        // the largest |coordinate| of any box, per axis (for the margins)
 };
 
-// Owns the arrays (nodes aligned to 64 bytes, a cache line).
+// Owns the arrays (nodes aligned to 64 bytes, a cache line; large ones in 2 MiB pages).
 struct WideBvh {
-  std::vector<WideBvhNode> nodes;
-  std::vector<WideBvhLeaf> leaves;
+  LargeArray<WideBvhNode> nodes;
+  LargeArray<WideBvhLeaf> leaves;
   std::uint32_t root_leaf_count = 0;
   float extent[3] = {0, 0, 0};
   WideBvhView view() const {

@@ -138,8 +138,8 @@ struct Device::Impl {
     if (control) cudaStreamDestroy(control);
   }
 
-  template <class T>
-  cudaError_t copy_array(const std::vector<T>& host) {
+  template <class T, class Allocator>
+  cudaError_t copy_array(const std::vector<T, Allocator>& host) {
     if (host.empty()) {
       if (host.data() != nullptr) mapped[host.data()] = nullptr;  // reserved, never filled
       return cudaSuccess;

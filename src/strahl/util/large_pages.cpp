@@ -93,4 +93,15 @@ void free_zeroed_bytes(void* p, std::size_t bytes) noexcept {
   std::free(p);
 }
 
+void* allocate_array_bytes(std::size_t bytes, std::size_t align) {
+  if (bytes >= kFreshBlock && maps_large_pages(bytes)) return allocate_zeroed_bytes(bytes);
+  return ::operator new(bytes, std::align_val_t(align));
+}
+
+void free_array_bytes(void* p, std::size_t bytes, std::size_t align) noexcept {
+  if (p == nullptr) return;
+  if (bytes >= kFreshBlock && maps_large_pages(bytes)) return free_zeroed_bytes(p, bytes);
+  ::operator delete(p, std::align_val_t(align));
+}
+
 }  // namespace strahl

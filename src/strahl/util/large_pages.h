@@ -28,6 +28,20 @@ void free_zeroed_bytes(void* p, std::size_t bytes) noexcept;
 // Whether allocate_zeroed_bytes(bytes) maps the block on its own in large pages.
 bool maps_large_pages(std::size_t bytes);
 
+// The smallest block allocate_array_bytes() maps in large pages: glibc's malloc maps every block
+// this large afresh anyway (its mmap threshold grows with the blocks freed, but never past 32 MiB
+// on 64-bit systems), so mapping it in large pages costs no reuse of warm freed memory — which
+// smaller blocks would lose (docs/benchmark.md, "Nineteenth session").
+inline constexpr std::size_t kFreshBlock = std::size_t(32) << 20;
+
+// `bytes` (> 0) bytes aligned to `align` (a power of two up to kLargePage), not initialised
+// (a block mapped afresh reads as zeros): from kFreshBlock bytes on mapped in large pages like
+// allocate_zeroed_bytes(), below from operator new. Throws std::bad_alloc.
+void* allocate_array_bytes(std::size_t bytes, std::size_t align);
+
+// Frees a block from allocate_array_bytes(bytes, align) (nullptr: nothing).
+void free_array_bytes(void* p, std::size_t bytes, std::size_t align) noexcept;
+
 // Whether this build maps large blocks in large pages (Linux with transparent huge pages, no
 // sanitizer), and whether the environment lets it (STRAHL_LARGE_PAGES, read once, at the first call).
 bool large_pages_supported();
