@@ -31,7 +31,7 @@ bool maps_large_pages(std::size_t bytes);
 // The smallest block allocate_array_bytes() maps in large pages: glibc's malloc maps every block
 // this large afresh anyway (its mmap threshold grows with the blocks freed, but never past 32 MiB
 // on 64-bit systems), so mapping it in large pages costs no reuse of warm freed memory — which
-// smaller blocks would lose (docs/benchmark.md, "Nineteenth session").
+// smaller blocks would lose (docs/benchmark.md, "Nineteenth session" and "Twentieth session").
 inline constexpr std::size_t kFreshBlock = std::size_t(32) << 20;
 
 // `bytes` (> 0) bytes aligned to `align` (a power of two up to kLargePage), not initialised
