@@ -93,14 +93,21 @@ void free_zeroed_bytes(void* p, std::size_t bytes) noexcept {
   std::free(p);
 }
 
+namespace {
+
+// Whether allocate_array_bytes(bytes) maps the block (and free_array_bytes unmaps it): one rule for both.
+bool maps_array(std::size_t bytes) { return bytes >= kFreshBlock && maps_large_pages(bytes); }
+
+}  // namespace
+
 void* allocate_array_bytes(std::size_t bytes, std::size_t align) {
-  if (bytes >= kFreshBlock && maps_large_pages(bytes)) return allocate_zeroed_bytes(bytes);
+  if (maps_array(bytes)) return allocate_zeroed_bytes(bytes);
   return ::operator new(bytes, std::align_val_t(align));
 }
 
 void free_array_bytes(void* p, std::size_t bytes, std::size_t align) noexcept {
   if (p == nullptr) return;
-  if (bytes >= kFreshBlock && maps_large_pages(bytes)) return free_zeroed_bytes(p, bytes);
+  if (maps_array(bytes)) return free_zeroed_bytes(p, bytes);
   ::operator delete(p, std::align_val_t(align));
 }
 
