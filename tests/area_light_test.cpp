@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,58 @@ TEST(AreaLightSampling, SphereFollowsTheConeDensity) {
   }
   const auto r = chi_square(obs, expected);
   EXPECT_GT(r.p_value, kAlpha) << describe(r);
+}
+
+// Bit for bit, as the render's image depends on it: -0 and 0 differ here (EXPECT_EQ on doubles
+// would let them pass), so the bits are compared.
+bool same_bits(Real a, Real b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const Vec3& a, const Vec3& b) { return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z); }
+
+// sample_lanes (the shading loop's: a sphere light's samples side by side) gives each sample
+// exactly what sample() gives it, for every kind of light, from points near and far, for the
+// cone's rim (u.x → 1: grazing directions, where the tangent distance stands in), for groups of
+// 1 to 4, and for a point inside a sphere light (no light).
+TEST(AreaLightSampling, SamplesSideBySideEqualOneByOne) {
+  const Light lights[] = {
+      compiled(sphere_light({0.3, 3, -0.2}, 1.2)), compiled(sphere_light({-2, 0.5, 7}, 0.01)),
+      compiled(sphere_light({1e3, -2e3, 5e2}, 40)),
+      compiled(disk_light({0, 2, 0}, {0.2, -1, 0.1}, 0.5)),
+      compiled(rect_light({-0.5, 2, -0.25}, {1, 0, 0}, {0, 0, 0.5}))};
+  const Vec3 points[] = {{0, 0, 0}, {0.3, 1.8001, -0.2}, {5, -3, 2}, {-2.005, 0.5, 7}, {0.3, 3.5, -0.2}};
+  int compared = 0, grazing = 0;
+  for (const Light& l : lights) {
+    for (const Vec3& p : points) {
+      const AreaLightSampler sampler(l, p);
+      for (std::uint32_t i = 0; i < 2000; ++i) {
+        Vec2 u[4];
+        for (int j = 0; j < 4; ++j) u[j] = random2(4 * i + std::uint32_t(j));
+        if (i % 3 == 0) u[i % 4].x = 1 - std::ldexp(Real(1), -int(i % 50));  // towards the rim
+        const int n = 1 + int(i % 4);
+        AreaLightSample lanes[4];
+        sampler.sample_lanes(u, n, lanes);
+        for (int j = 0; j < n; ++j) {
+          const AreaLightSample one = sampler.sample(u[j]);
+          ASSERT_TRUE(same_bits(lanes[j].to_light, one.to_light) && same_bits(lanes[j].point, one.point) &&
+                      same_bits(lanes[j].distance, one.distance) && same_bits(lanes[j].intensity, one.intensity) &&
+                      same_bits(lanes[j].pdf, one.pdf))
+              << "light " << &l - lights << " point " << &p - points << " sample " << i << " lane " << j;
+          const AreaLightSample old = sample_area_light(l, p, u[j]);
+          ASSERT_TRUE(same_bits(old.point, one.point) && same_bits(old.distance, one.distance));
+          if (l.kind == LightKind::Sphere && sampler.lit()) {
+            const kernel::Sphere sphere{l.position, l.radius, 0};
+            grazing += int(kernel::intersect(sphere, Ray{p, one.to_light}, 0, kInfinity) == kInfinity);
+          }
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(compared, 5 * 5 * 5000);
+  EXPECT_GT(grazing, 0);  // the tangent fallback was compared too
+  // Inside a sphere light: not lit, every sample dark.
+  const AreaLightSampler inside(lights[0], {0.3, 3.5, -0.2});
+  EXPECT_FALSE(inside.lit());
+  EXPECT_TRUE(is_black(inside.sample({0.5, 0.5}).intensity));
 }
 
 TEST(GlossySampling, PhongLobeFollowsItsDensity) {

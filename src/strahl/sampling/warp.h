@@ -10,6 +10,11 @@
 
 namespace strahl {
 
+// √max(0, x): the root of a quantity that rounding may push just below zero (1 − z², 1 − cos²).
+// A comparison rather than std::fmax, which GCC compiles to a call into libm (for its NaN
+// rules; a NaN x gives 0 either way).
+STRAHL_HOST_DEVICE inline Real sqrt_clamped(Real x) { return std::sqrt(x > 0 ? x : Real(0)); }
+
 // Shirley–Chiu concentric map: the square onto the unit disk, uniform, low distortion.
 STRAHL_HOST_DEVICE inline Vec2 square_to_disk(const Vec2& u) {
   const Real a = 2 * u.x - 1, b = 2 * u.y - 1;
@@ -29,7 +34,7 @@ STRAHL_HOST_DEVICE inline Real disk_pdf() { return 1 / kPi; }
 // Uniform on the hemisphere z ≥ 0.
 STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_hemisphere(const Vec2& u) {
   const Real z = u.x;
-  const Real r = std::sqrt(std::fmax(Real(0), 1 - z * z));
+  const Real r = sqrt_clamped(1 - z * z);
   const Real phi = 2 * kPi * u.y;
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
@@ -38,14 +43,14 @@ STRAHL_HOST_DEVICE inline Real uniform_hemisphere_pdf() { return 1 / (2 * kPi); 
 // Cosine-weighted on the hemisphere z ≥ 0 (Malley: the disk lifted onto the hemisphere).
 STRAHL_HOST_DEVICE inline Vec3 square_to_cosine_hemisphere(const Vec2& u) {
   const Vec2 d = square_to_disk(u);
-  return {d.x, d.y, std::sqrt(std::fmax(Real(0), 1 - d.x * d.x - d.y * d.y))};
+  return {d.x, d.y, sqrt_clamped(1 - d.x * d.x - d.y * d.y)};
 }
 STRAHL_HOST_DEVICE inline Real cosine_hemisphere_pdf(Real cos_theta) { return cos_theta > 0 ? cos_theta / kPi : 0; }
 
 // Uniform on the whole unit sphere.
 STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_sphere(const Vec2& u) {
   const Real z = 1 - 2 * u.x;
-  const Real r = std::sqrt(std::fmax(Real(0), 1 - z * z));
+  const Real r = sqrt_clamped(1 - z * z);
   const Real phi = 2 * kPi * u.y;
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
@@ -54,7 +59,7 @@ STRAHL_HOST_DEVICE inline Real uniform_sphere_pdf() { return 1 / (4 * kPi); }
 // Uniform in the cone of directions within angle θ_max of +z (cos_max = cos θ_max).
 STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_cone(const Vec2& u, Real cos_max) {
   const Real z = 1 - u.x * (1 - cos_max);
-  const Real r = std::sqrt(std::fmax(Real(0), 1 - z * z));
+  const Real r = sqrt_clamped(1 - z * z);
   const Real phi = 2 * kPi * u.y;
   return {r * std::cos(phi), r * std::sin(phi), z};
 }

@@ -46,56 +46,157 @@ STRAHL_HOST_DEVICE inline Real radiance_from_power(const Light& l, Real power) {
   return a > 0 ? power / (kPi * a) : 0;
 }
 
-// Samples the light for shading point p with the unit-square point u.
-STRAHL_HOST_DEVICE inline AreaLightSample sample_area_light(const Light& l, const Vec3& p, const Vec2& u) {
-  AreaLightSample s;
-  switch (l.kind) {
-    case LightKind::Rect:
-    case LightKind::Disk: {
-      Real area;
-      if (l.kind == LightKind::Rect) {
-        s.point = l.position + l.edge_u * u.x + l.edge_v * u.y;
-        area = length(cross(l.edge_u, l.edge_v));
-      } else {
-        const Vec2 d = square_to_disk(u);
-        const Frame f = Frame::around(l.normal);
-        s.point = l.position + (f.u * d.x + f.v * d.y) * l.radius;
-        area = kPi * l.radius * l.radius;
+// Samples one light from one shading point p: what all of the point's samples share (the
+// disk's frame, the rectangle's area, the cone the sphere subtends and its density) is computed
+// once, by the constructor; sample(u) takes the unit-square point u. Hot: a soft shadow of n×n
+// samples per shading point spent half its time on the shared part when it was redone per sample.
+class AreaLightSampler {
+ public:
+  STRAHL_HOST_DEVICE AreaLightSampler(const Light& l, const Vec3& p) : l_(l), p_(p) {
+    switch (l.kind) {
+      case LightKind::Rect:
+        area_ = length(cross(l.edge_u, l.edge_v));
+        lit_ = true;
+        break;
+      case LightKind::Disk:
+        frame_ = Frame::around(l.normal);
+        area_ = kPi * l.radius * l.radius;
+        lit_ = true;
+        break;
+      case LightKind::Sphere: {
+        const Vec3 axis = l.position - p;
+        const Real d2 = length_squared(axis);
+        const Real r2 = l.radius * l.radius;
+        if (d2 <= r2) break;  // inside the light: not lit by it
+        const Real dist = std::sqrt(d2);
+        const Real sin2_max = r2 / d2;
+        cos_max_ = sqrt_clamped(1 - sin2_max);
+        frame_ = Frame::around(axis / dist);
+        axis_ = axis;
+        pdf_ = uniform_cone_pdf(cos_max_);
+        intensity_ = l.radiance * (1 / (kPi * pdf_));
+        lit_ = true;
+        break;
       }
-      s.pdf = 1 / area;
-      const Vec3 d = s.point - p;
-      const Real r2 = length_squared(d);
-      s.distance = std::sqrt(r2);
-      if (!(s.distance > 0)) return s;
-      s.to_light = d / s.distance;
-      const Real cos_light = -dot(s.to_light, l.normal);
-      if (cos_light <= 0) return s;  // the point sees the back of the light
-      s.intensity = l.radiance * (cos_light * area / (kPi * r2));
-      return s;
+      default: break;
     }
-    case LightKind::Sphere: {
-      const Vec3 axis = l.position - p;
-      const Real d2 = length_squared(axis);
-      const Real r2 = l.radius * l.radius;
-      if (d2 <= r2) return s;  // inside the light: not lit by it
-      const Real dist = std::sqrt(d2);
-      const Real sin2_max = r2 / d2;
-      const Real cos_max = std::sqrt(std::fmax(Real(0), 1 - sin2_max));
-      const Frame f = Frame::around(axis / dist);
-      s.to_light = normalize(f.to_world(square_to_uniform_cone(u, cos_max)));
-      s.pdf = uniform_cone_pdf(cos_max);
+  }
+
+  // False where no sample can illuminate p (p inside a sphere light, or not an area light):
+  // every sample's intensity is then zero.
+  STRAHL_HOST_DEVICE bool lit() const { return lit_; }
+
+  // Samples u[0..n) into out[0..n), n ≤ N: sample(u[i]) for each, bit for bit, but for a sphere
+  // light with the samples side by side in arrays the compiler vectorises (the cosines and sines
+  // one by one, from libm as in sample()).
+  template <int N>
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sample_lanes(const Vec2 (&u)[N], int n, AreaLightSample (&out)[N]) const {
+    if (!lit_ || l_.kind != LightKind::Sphere) {
+      for (int i = 0; i < n; ++i) out[i] = sample(u[i]);
+      return;
+    }
+    // square_to_uniform_cone, frame_.to_world and normalize, as sample() calls them.
+    Real z[N], r[N], cos_phi[N], sin_phi[N];
+    for (int i = 0; i < N; ++i) {
+      const Real x = i < n ? u[i].x : Real(0);
+      z[i] = 1 - x * (1 - cos_max_);
+      r[i] = sqrt_clamped(1 - z[i] * z[i]);
+      cos_phi[i] = 1;
+      sin_phi[i] = 0;
+    }
+    for (int i = 0; i < n; ++i) {
+      const Real phi = 2 * kPi * u[i].y;
+      cos_phi[i] = std::cos(phi);
+      sin_phi[i] = std::sin(phi);
+    }
+    Real dx[N], dy[N], dz[N], t[N];
+    const Vec3 f = p_ - l_.position;  // kernel::intersect's ray origin − centre
+    const Real r2 = l_.radius * l_.radius;
+    const Real c = dot(f, f) - r2;
+    for (int i = 0; i < N; ++i) {
+      const Real lx = r[i] * cos_phi[i], ly = r[i] * sin_phi[i], lz = z[i];
+      const Real wx = frame_.u.x * lx + frame_.v.x * ly + frame_.w.x * lz;
+      const Real wy = frame_.u.y * lx + frame_.v.y * ly + frame_.w.y * lz;
+      const Real wz = frame_.u.z * lx + frame_.v.z * ly + frame_.w.z * lz;
+      const Real inv = Real(1) / std::sqrt(wx * wx + wy * wy + wz * wz);
+      dx[i] = wx * inv;
+      dy[i] = wy * inv;
+      dz[i] = wz * inv;
+      // kernel::intersect(sphere, Ray{p_, d}, 0, kInfinity), its branches as selections.
+      const Real b = -(f.x * dx[i] + f.y * dy[i] + f.z * dz[i]);
+      const Real hx = f.x + dx[i] * b, hy = f.y + dy[i] * b, hz = f.z + dz[i] * b;
+      const Real discriminant = r2 - (hx * hx + hy * hy + hz * hz);
+      const Real root = sqrt_clamped(discriminant);
+      const Real q = b + std::copysign(root, b);
+      Real t0 = q != 0 ? c / q : 0;
+      Real t1 = q;
+      const Real lo = t0 > t1 ? t1 : t0, hi = t0 > t1 ? t0 : t1;
+      t0 = lo;
+      t1 = hi;
+      const Real hit = (t0 > 0 && t0 < kInfinity) ? t0 : (t1 > 0 && t1 < kInfinity) ? t1 : kInfinity;
+      // Grazing directions numerically missing the sphere take the tangent point's distance.
+      const Real tangent = axis_.x * dx[i] + axis_.y * dy[i] + axis_.z * dz[i];
+      t[i] = discriminant < 0 || hit == kInfinity ? tangent : hit;
+    }
+    for (int i = 0; i < n; ++i) {
+      AreaLightSample& s = out[i];
+      s.to_light = Vec3(dx[i], dy[i], dz[i]);
+      s.pdf = pdf_;
+      s.distance = t[i];
+      s.point = p_ + s.to_light * t[i];
+      s.intensity = intensity_;
+    }
+  }
+
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE AreaLightSample sample(const Vec2& u) const {
+    AreaLightSample s;
+    if (!lit_) return s;
+    if (l_.kind == LightKind::Sphere) {
+      s.to_light = normalize(frame_.to_world(square_to_uniform_cone(u, cos_max_)));
+      s.pdf = pdf_;
       // Where the direction meets the sphere (nearest root; grazing rays numerically missing it
       // take the tangent point's distance).
-      const kernel::Sphere sphere{l.position, l.radius, 0};
-      Real t = kernel::intersect(sphere, Ray{p, s.to_light}, 0, kInfinity);
-      if (t == kInfinity) t = dot(axis, s.to_light);
+      const kernel::Sphere sphere{l_.position, l_.radius, 0};
+      Real t = kernel::intersect(sphere, Ray{p_, s.to_light}, 0, kInfinity);
+      if (t == kInfinity) t = dot(axis_, s.to_light);
       s.distance = t;
-      s.point = p + s.to_light * t;
-      s.intensity = l.radiance * (1 / (kPi * s.pdf));
+      s.point = p_ + s.to_light * t;
+      s.intensity = intensity_;
       return s;
     }
-    default: return s;
+    if (l_.kind == LightKind::Rect) {
+      s.point = l_.position + l_.edge_u * u.x + l_.edge_v * u.y;
+    } else {
+      const Vec2 d = square_to_disk(u);
+      s.point = l_.position + (frame_.u * d.x + frame_.v * d.y) * l_.radius;
+    }
+    s.pdf = 1 / area_;
+    const Vec3 d = s.point - p_;
+    const Real r2 = length_squared(d);
+    s.distance = std::sqrt(r2);
+    if (!(s.distance > 0)) return s;
+    s.to_light = d / s.distance;
+    const Real cos_light = -dot(s.to_light, l_.normal);
+    if (cos_light <= 0) return s;  // the point sees the back of the light
+    s.intensity = l_.radiance * (cos_light * area_ / (kPi * r2));
+    return s;
   }
+
+ private:
+  const Light& l_;
+  Vec3 p_;
+  Frame frame_;         // Disk: around its normal; Sphere: around the axis from p to its centre
+  Vec3 axis_;           // Sphere: from p to its centre
+  Vec3 intensity_;      // Sphere: the same for every direction in the cone
+  Real area_ = 0;       // Rect, Disk
+  Real cos_max_ = 0;    // Sphere: the cone's half-angle
+  Real pdf_ = 0;        // Sphere: per solid angle
+  bool lit_ = false;
+};
+
+// One sample of light l for shading point p with the unit-square point u.
+STRAHL_HOST_DEVICE inline AreaLightSample sample_area_light(const Light& l, const Vec3& p, const Vec2& u) {
+  return AreaLightSampler(l, p).sample(u);
 }
 
 // The stratum (i, j) of an n×n grid, jittered by `jitter`.

@@ -10,6 +10,7 @@
 
 #include "strahl/math/frame.h"
 #include "strahl/math/vec2.h"
+#include "strahl/sampling/warp.h"
 
 namespace strahl {
 
@@ -18,7 +19,7 @@ STRAHL_HOST_DEVICE inline Real glossy_exponent(Real roughness) { return 2 / (rou
 // A direction around the unit `axis` with density (e + 1)/(2π) cos^e θ, in world space.
 STRAHL_HOST_DEVICE inline Vec3 sample_phong_lobe(const Vec3& axis, Real exponent, const Vec2& u) {
   const Real cos_theta = std::pow(u.x, 1 / (exponent + 1));
-  const Real sin_theta = std::sqrt(std::fmax(Real(0), 1 - cos_theta * cos_theta));
+  const Real sin_theta = sqrt_clamped(1 - cos_theta * cos_theta);
   const Real phi = 2 * kPi * u.y;
   return normalize(Frame::around(axis).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta}));
 }
