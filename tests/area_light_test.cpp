@@ -126,15 +126,19 @@ bool same_bits(const Vec3& a, const Vec3& b) { return same_bits(a.x, b.x) && sam
 
 // sample_lanes (the shading loop's: a sphere light's samples side by side) gives each sample
 // exactly what sample() gives it, for every kind of light, from points near and far, for the
-// cone's rim (u.x → 1: grazing directions, where the tangent distance stands in), for groups of
-// 1 to 4, and for a point inside a sphere light (no light).
+// cone's rim (u.x → 1: grazing directions, where the tangent distance stands in), at the disk's
+// centre, from behind the flat lights, at distance 0, for groups of 1 to 4, and for a point
+// inside a sphere light (no light).
 TEST(AreaLightSampling, SamplesSideBySideEqualOneByOne) {
   const Light lights[] = {
       compiled(sphere_light({0.3, 3, -0.2}, 1.2)), compiled(sphere_light({-2, 0.5, 7}, 0.01)),
       compiled(sphere_light({1e3, -2e3, 5e2}, 40)),
       compiled(disk_light({0, 2, 0}, {0.2, -1, 0.1}, 0.5)),
       compiled(rect_light({-0.5, 2, -0.25}, {1, 0, 0}, {0, 0, 0.5}))};
-  const Vec3 points[] = {{0, 0, 0}, {0.3, 1.8001, -0.2}, {5, -3, 2}, {-2.005, 0.5, 7}, {0.3, 3.5, -0.2}};
+  // Near and far, behind the disk and the rectangle, inside the first sphere, a corner of the
+  // rectangle (distance 0 for u = (0, 0)).
+  const Vec3 points[] = {{0, 0, 0},       {0.3, 1.8001, -0.2}, {5, -3, 2}, {-2.005, 0.5, 7},
+                         {0.3, 3.5, -0.2}, {-0.5, 2, -0.25}};
   int compared = 0, grazing = 0;
   for (const Light& l : lights) {
     for (const Vec3& p : points) {
@@ -143,6 +147,8 @@ TEST(AreaLightSampling, SamplesSideBySideEqualOneByOne) {
         Vec2 u[4];
         for (int j = 0; j < 4; ++j) u[j] = random2(4 * i + std::uint32_t(j));
         if (i % 3 == 0) u[i % 4].x = 1 - std::ldexp(Real(1), -int(i % 50));  // towards the rim
+        if (i % 7 == 0) u[(i + 1) % 4] = {0.5, 0.5};                             // the disk's centre
+        if (i % 5 == 0) u[(i + 2) % 4] = {0, 0};                                 // the corner
         const int n = 1 + int(i % 4);
         AreaLightSample lanes[4];
         sampler.sample_lanes(u, n, lanes);
@@ -163,7 +169,7 @@ TEST(AreaLightSampling, SamplesSideBySideEqualOneByOne) {
       }
     }
   }
-  EXPECT_EQ(compared, 5 * 5 * 5000);
+  EXPECT_EQ(compared, 5 * 6 * 5000);
   EXPECT_GT(grazing, 0);  // the tangent fallback was compared too
   // Inside a sphere light: not lit, every sample dark.
   const AreaLightSampler inside(lights[0], {0.3, 3.5, -0.2});

@@ -86,28 +86,133 @@ class AreaLightSampler {
   // every sample's intensity is then zero.
   STRAHL_HOST_DEVICE bool lit() const { return lit_; }
 
-  // Samples u[0..n) into out[0..n), n ≤ N: sample(u[i]) for each, bit for bit, but for a sphere
-  // light with the samples side by side in arrays the compiler vectorises (the cosines and sines
-  // one by one, from libm as in sample()).
+  // Samples u[0..n) into out[0..n), n ≤ N: sample(u[i]) for each, bit for bit, but with the
+  // samples side by side in arrays the compiler vectorises (the cosines and sines one by one,
+  // from libm as in sample()).
   template <int N>
   STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sample_lanes(const Vec2 (&u)[N], int n, AreaLightSample (&out)[N]) const {
-    if (!lit_ || l_.kind != LightKind::Sphere) {
-      for (int i = 0; i < n; ++i) out[i] = sample(u[i]);
+    if (!lit_) {
+      for (int i = 0; i < n; ++i) out[i] = AreaLightSample{};
       return;
     }
+    Real ux[N], uy[N];
+    for (int i = 0; i < N; ++i) {
+      ux[i] = i < n ? u[i].x : Real(0.5);
+      uy[i] = i < n ? u[i].y : Real(0.5);
+    }
+    if (l_.kind == LightKind::Sphere) {
+      sphere_lanes(ux, uy, n, out);
+      return;
+    }
+    // The point on the light: the rectangle's directly, the disk's by square_to_disk.
+    Real px[N], py[N], pz[N];
+    if (l_.kind == LightKind::Rect) {
+      for (int i = 0; i < N; ++i) {
+        px[i] = l_.position.x + l_.edge_u.x * ux[i] + l_.edge_v.x * uy[i];
+        py[i] = l_.position.y + l_.edge_u.y * ux[i] + l_.edge_v.y * uy[i];
+        pz[i] = l_.position.z + l_.edge_u.z * ux[i] + l_.edge_v.z * uy[i];
+      }
+    } else {
+      Real r[N], phi[N], cos_phi[N], sin_phi[N];
+      bool centre[N];
+      for (int i = 0; i < N; ++i) {
+        const Real a = 2 * ux[i] - 1, b = 2 * uy[i] - 1;
+        const bool by_a = a * a > b * b;
+        centre[i] = a == 0 && b == 0;
+        r[i] = by_a ? a : b;
+        phi[i] = by_a ? (kPi / 4) * (b / a) : (kPi / 2) - (kPi / 4) * (a / b);
+      }
+      for (int i = 0; i < n; ++i) {
+        cos_phi[i] = std::cos(phi[i]);
+        sin_phi[i] = std::sin(phi[i]);
+      }
+      for (int i = n; i < N; ++i) cos_phi[i] = sin_phi[i] = 0;
+      for (int i = 0; i < N; ++i) {
+        // square_to_disk's {0, 0} at the centre, where phi is 0/0.
+        const Real dx = centre[i] ? Real(0) : r[i] * cos_phi[i], dy = centre[i] ? Real(0) : r[i] * sin_phi[i];
+        px[i] = l_.position.x + (frame_.u.x * dx + frame_.v.x * dy) * l_.radius;
+        py[i] = l_.position.y + (frame_.u.y * dx + frame_.v.y * dy) * l_.radius;
+        pz[i] = l_.position.z + (frame_.u.z * dx + frame_.v.z * dy) * l_.radius;
+      }
+    }
+    // What sample() makes of the point: direction, distance, the cosine at the light, intensity.
+    Real tx[N], ty[N], tz[N], distance[N], factor[N];
+    bool seen[N], lit[N];
+    for (int i = 0; i < N; ++i) {
+      const Real dx = px[i] - p_.x, dy = py[i] - p_.y, dz = pz[i] - p_.z;
+      const Real r2 = dx * dx + dy * dy + dz * dz;
+      distance[i] = std::sqrt(r2);
+      const Real inv = Real(1) / distance[i];
+      seen[i] = distance[i] > 0;
+      tx[i] = seen[i] ? dx * inv : Real(0);
+      ty[i] = seen[i] ? dy * inv : Real(0);
+      tz[i] = seen[i] ? dz * inv : Real(0);
+      const Real cos_light = -(tx[i] * l_.normal.x + ty[i] * l_.normal.y + tz[i] * l_.normal.z);
+      lit[i] = seen[i] && cos_light > 0;
+      factor[i] = cos_light * area_ / (kPi * r2);
+    }
+    for (int i = 0; i < n; ++i) {
+      AreaLightSample& s = out[i];
+      s.point = Vec3(px[i], py[i], pz[i]);
+      s.pdf = 1 / area_;
+      s.distance = distance[i];
+      s.to_light = Vec3(tx[i], ty[i], tz[i]);
+      s.intensity = lit[i] ? l_.radiance * factor[i] : Vec3(0);
+    }
+  }
+
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE AreaLightSample sample(const Vec2& u) const {
+    AreaLightSample s;
+    if (!lit_) return s;
+    if (l_.kind == LightKind::Sphere) {
+      s.to_light = normalize(frame_.to_world(square_to_uniform_cone(u, cos_max_)));
+      s.pdf = pdf_;
+      // Where the direction meets the sphere (nearest root; grazing rays numerically missing it
+      // take the tangent point's distance).
+      const kernel::Sphere sphere{l_.position, l_.radius, 0};
+      Real t = kernel::intersect(sphere, Ray{p_, s.to_light}, 0, kInfinity);
+      if (t == kInfinity) t = dot(axis_, s.to_light);
+      s.distance = t;
+      s.point = p_ + s.to_light * t;
+      s.intensity = intensity_;
+      return s;
+    }
+    if (l_.kind == LightKind::Rect) {
+      s.point = l_.position + l_.edge_u * u.x + l_.edge_v * u.y;
+    } else {
+      const Vec2 d = square_to_disk(u);
+      s.point = l_.position + (frame_.u * d.x + frame_.v * d.y) * l_.radius;
+    }
+    s.pdf = 1 / area_;
+    const Vec3 d = s.point - p_;
+    const Real r2 = length_squared(d);
+    s.distance = std::sqrt(r2);
+    if (!(s.distance > 0)) return s;
+    s.to_light = d / s.distance;
+    const Real cos_light = -dot(s.to_light, l_.normal);
+    if (cos_light <= 0) return s;  // the point sees the back of the light
+    s.intensity = l_.radiance * (cos_light * area_ / (kPi * r2));
+    return s;
+  }
+
+ private:
+  template <int N>
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sphere_lanes(const Real (&ux)[N], const Real (&uy)[N], int n,
+                                                           AreaLightSample (&out)[N]) const {
     // square_to_uniform_cone, frame_.to_world and normalize, as sample() calls them.
     Real z[N], r[N], cos_phi[N], sin_phi[N];
     for (int i = 0; i < N; ++i) {
-      const Real x = i < n ? u[i].x : Real(0);
-      z[i] = 1 - x * (1 - cos_max_);
+      z[i] = 1 - ux[i] * (1 - cos_max_);
       r[i] = sqrt_clamped(1 - z[i] * z[i]);
-      cos_phi[i] = 1;
-      sin_phi[i] = 0;
     }
     for (int i = 0; i < n; ++i) {
-      const Real phi = 2 * kPi * u[i].y;
+      const Real phi = 2 * kPi * uy[i];
       cos_phi[i] = std::cos(phi);
       sin_phi[i] = std::sin(phi);
+    }
+    for (int i = n; i < N; ++i) {
+      cos_phi[i] = 1;
+      sin_phi[i] = 0;
     }
     Real dx[N], dy[N], dz[N], t[N];
     const Vec3 f = p_ - l_.position;  // kernel::intersect's ray origin − centre
@@ -148,41 +253,6 @@ class AreaLightSampler {
     }
   }
 
-  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE AreaLightSample sample(const Vec2& u) const {
-    AreaLightSample s;
-    if (!lit_) return s;
-    if (l_.kind == LightKind::Sphere) {
-      s.to_light = normalize(frame_.to_world(square_to_uniform_cone(u, cos_max_)));
-      s.pdf = pdf_;
-      // Where the direction meets the sphere (nearest root; grazing rays numerically missing it
-      // take the tangent point's distance).
-      const kernel::Sphere sphere{l_.position, l_.radius, 0};
-      Real t = kernel::intersect(sphere, Ray{p_, s.to_light}, 0, kInfinity);
-      if (t == kInfinity) t = dot(axis_, s.to_light);
-      s.distance = t;
-      s.point = p_ + s.to_light * t;
-      s.intensity = intensity_;
-      return s;
-    }
-    if (l_.kind == LightKind::Rect) {
-      s.point = l_.position + l_.edge_u * u.x + l_.edge_v * u.y;
-    } else {
-      const Vec2 d = square_to_disk(u);
-      s.point = l_.position + (frame_.u * d.x + frame_.v * d.y) * l_.radius;
-    }
-    s.pdf = 1 / area_;
-    const Vec3 d = s.point - p_;
-    const Real r2 = length_squared(d);
-    s.distance = std::sqrt(r2);
-    if (!(s.distance > 0)) return s;
-    s.to_light = d / s.distance;
-    const Real cos_light = -dot(s.to_light, l_.normal);
-    if (cos_light <= 0) return s;  // the point sees the back of the light
-    s.intensity = l_.radiance * (cos_light * area_ / (kPi * r2));
-    return s;
-  }
-
- private:
   const Light& l_;
   Vec3 p_;
   Frame frame_;         // Disk: around its normal; Sphere: around the axis from p to its centre
