@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
       dump_queries(name.c_str(), accel.view(spheres.set()), awkward_rays(spheres, std::uint64_t(count) + 200, 2000));
     }
     for (const char* scene : {"lecture.yaml", "lecture-whitted.yaml", "lecture-distributed.yaml", "mesh.yaml",
-                              "glossy.yaml", "motion-blur.yaml"})
+                              "glossy.yaml", "motion-blur.yaml", "soft-shadows.yaml"})
       dump_render(dir + "/scenes/" + scene, 40, 30);
     for (const AccelKind kind : {AccelKind::KdTree, AccelKind::Octree}) dump_render(dir + "/scenes/mesh.yaml", 40, 30, kind);
     dump_render(dir + "/scenes/instances.yaml", 40, 30);  // the two-level hierarchy the GPU walks too
