@@ -15,6 +15,7 @@
 
 #include <cmath>
 
+#include "strahl/accel/packet.h"
 #include "strahl/geometry/sphere.h"
 #include "strahl/math/frame.h"
 #include "strahl/sampling/warp.h"
@@ -214,38 +215,29 @@ class AreaLightSampler {
       cos_phi[i] = 1;
       sin_phi[i] = 0;
     }
-    Real dx[N], dy[N], dz[N], t[N];
-    const Vec3 f = p_ - l_.position;  // kernel::intersect's ray origin − centre
-    const Real r2 = l_.radius * l_.radius;
-    const Real c = dot(f, f) - r2;
+    // The rays from p in those directions and where they meet the sphere: kernel::intersect's
+    // answers, bit for bit, from its lane form (accel/packet.h).
+    PacketRays<N> rays;
+    Real t_min[N], t_max[N], t[N];
     for (int i = 0; i < N; ++i) {
       const Real lx = r[i] * cos_phi[i], ly = r[i] * sin_phi[i], lz = z[i];
       const Real wx = frame_.u.x * lx + frame_.v.x * ly + frame_.w.x * lz;
       const Real wy = frame_.u.y * lx + frame_.v.y * ly + frame_.w.y * lz;
       const Real wz = frame_.u.z * lx + frame_.v.z * ly + frame_.w.z * lz;
       const Real inv = Real(1) / std::sqrt(wx * wx + wy * wy + wz * wz);
-      dx[i] = wx * inv;
-      dy[i] = wy * inv;
-      dz[i] = wz * inv;
-      // kernel::intersect(sphere, Ray{p_, d}, 0, kInfinity), its branches as selections.
-      const Real b = -(f.x * dx[i] + f.y * dy[i] + f.z * dz[i]);
-      const Real hx = f.x + dx[i] * b, hy = f.y + dy[i] * b, hz = f.z + dz[i] * b;
-      const Real discriminant = r2 - (hx * hx + hy * hy + hz * hz);
-      const Real root = sqrt_clamped(discriminant);
-      const Real q = b + std::copysign(root, b);
-      Real t0 = q != 0 ? c / q : 0;
-      Real t1 = q;
-      const Real lo = t0 > t1 ? t1 : t0, hi = t0 > t1 ? t0 : t1;
-      t0 = lo;
-      t1 = hi;
-      const Real hit = (t0 > 0 && t0 < kInfinity) ? t0 : (t1 > 0 && t1 < kInfinity) ? t1 : kInfinity;
-      // Grazing directions numerically missing the sphere take the tangent point's distance.
-      const Real tangent = axis_.x * dx[i] + axis_.y * dy[i] + axis_.z * dz[i];
-      t[i] = discriminant < 0 || hit == kInfinity ? tangent : hit;
+      rays.ox[i] = p_.x, rays.oy[i] = p_.y, rays.oz[i] = p_.z, rays.time[i] = 0;
+      rays.dx[i] = wx * inv, rays.dy[i] = wy * inv, rays.dz[i] = wz * inv;
+      t_min[i] = 0, t_max[i] = kInfinity;
     }
+    const kernel::Sphere sphere{l_.position, l_.radius, 0};
+    if (!intersect_sphere_lanes<N>(sphere, rays, t_min, t_max, t))
+      for (int i = 0; i < N; ++i) t[i] = kInfinity;
+    // Grazing directions numerically missing the sphere take the tangent point's distance.
+    for (int i = 0; i < N; ++i)
+      if (t[i] == kInfinity) t[i] = axis_.x * rays.dx[i] + axis_.y * rays.dy[i] + axis_.z * rays.dz[i];
     for (int i = 0; i < n; ++i) {
       AreaLightSample& s = out[i];
-      s.to_light = Vec3(dx[i], dy[i], dz[i]);
+      s.to_light = Vec3(rays.dx[i], rays.dy[i], rays.dz[i]);
       s.pdf = pdf_;
       s.distance = t[i];
       s.point = p_ + s.to_light * t[i];
