@@ -1,10 +1,12 @@
 #pragma once
 // Warps from the unit square to the shapes the Monte Carlo estimators sample, each with its
 // density (with respect to area for the disk, solid angle for directions). Directions are in a
-// local frame with z as the axis; math/frame.h turns them into world space.
+// local frame with z as the axis; math/frame.h turns them into world space. Angles go through
+// sin_cos_pi (math/trig.h): the same bits on the CPU and the GPU.
 
 #include <cmath>
 
+#include "strahl/math/trig.h"
 #include "strahl/math/vec2.h"
 #include "strahl/math/vec3.h"
 
@@ -19,15 +21,16 @@ STRAHL_HOST_DEVICE inline Real sqrt_clamped(Real x) { return std::sqrt(x > 0 ? x
 STRAHL_HOST_DEVICE inline Vec2 square_to_disk(const Vec2& u) {
   const Real a = 2 * u.x - 1, b = 2 * u.y - 1;
   if (a == 0 && b == 0) return {0, 0};
-  Real r, phi;
+  Real r, phi_over_pi;
   if (a * a > b * b) {
     r = a;
-    phi = (kPi / 4) * (b / a);
+    phi_over_pi = Real(0.25) * (b / a);
   } else {
     r = b;
-    phi = (kPi / 2) - (kPi / 4) * (a / b);
+    phi_over_pi = Real(0.5) - Real(0.25) * (a / b);
   }
-  return {r * std::cos(phi), r * std::sin(phi)};
+  const SinCos phi = sin_cos_pi(phi_over_pi);
+  return {r * phi.cos, r * phi.sin};
 }
 STRAHL_HOST_DEVICE inline Real disk_pdf() { return 1 / kPi; }
 
@@ -35,8 +38,8 @@ STRAHL_HOST_DEVICE inline Real disk_pdf() { return 1 / kPi; }
 STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_hemisphere(const Vec2& u) {
   const Real z = u.x;
   const Real r = sqrt_clamped(1 - z * z);
-  const Real phi = 2 * kPi * u.y;
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  const SinCos phi = sin_cos_pi(2 * u.y);  // φ = 2π·u.y
+  return {r * phi.cos, r * phi.sin, z};
 }
 STRAHL_HOST_DEVICE inline Real uniform_hemisphere_pdf() { return 1 / (2 * kPi); }
 
@@ -51,8 +54,8 @@ STRAHL_HOST_DEVICE inline Real cosine_hemisphere_pdf(Real cos_theta) { return co
 STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_sphere(const Vec2& u) {
   const Real z = 1 - 2 * u.x;
   const Real r = sqrt_clamped(1 - z * z);
-  const Real phi = 2 * kPi * u.y;
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  const SinCos phi = sin_cos_pi(2 * u.y);  // φ = 2π·u.y
+  return {r * phi.cos, r * phi.sin, z};
 }
 STRAHL_HOST_DEVICE inline Real uniform_sphere_pdf() { return 1 / (4 * kPi); }
 
@@ -60,8 +63,8 @@ STRAHL_HOST_DEVICE inline Real uniform_sphere_pdf() { return 1 / (4 * kPi); }
 STRAHL_HOST_DEVICE inline Vec3 square_to_uniform_cone(const Vec2& u, Real cos_max) {
   const Real z = 1 - u.x * (1 - cos_max);
   const Real r = sqrt_clamped(1 - z * z);
-  const Real phi = 2 * kPi * u.y;
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  const SinCos phi = sin_cos_pi(2 * u.y);  // φ = 2π·u.y
+  return {r * phi.cos, r * phi.sin, z};
 }
 STRAHL_HOST_DEVICE inline Real uniform_cone_pdf(Real cos_max) { return 1 / (2 * kPi * (1 - cos_max)); }
 

@@ -18,6 +18,7 @@
 #include "strahl/accel/packet.h"
 #include "strahl/geometry/sphere.h"
 #include "strahl/math/frame.h"
+#include "strahl/math/trig.h"
 #include "strahl/sampling/warp.h"
 #include "strahl/shading/light.h"
 
@@ -88,8 +89,7 @@ class AreaLightSampler {
   STRAHL_HOST_DEVICE bool lit() const { return lit_; }
 
   // Samples u[0..n) into out[0..n), n ≤ N: sample(u[i]) for each, bit for bit, but with the
-  // samples side by side in arrays the compiler vectorises (the cosines and sines one by one,
-  // from libm as in sample()).
+  // samples side by side in arrays the compiler vectorises.
   template <int N>
   STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sample_lanes(const Vec2 (&u)[N], int n, AreaLightSample (&out)[N]) const {
     if (!lit_) {
@@ -114,23 +114,14 @@ class AreaLightSampler {
         pz[i] = l_.position.z + l_.edge_u.z * ux[i] + l_.edge_v.z * uy[i];
       }
     } else {
-      Real r[N], phi[N], cos_phi[N], sin_phi[N];
-      bool centre[N];
       for (int i = 0; i < N; ++i) {
         const Real a = 2 * ux[i] - 1, b = 2 * uy[i] - 1;
         const bool by_a = a * a > b * b;
-        centre[i] = a == 0 && b == 0;
-        r[i] = by_a ? a : b;
-        phi[i] = by_a ? (kPi / 4) * (b / a) : (kPi / 2) - (kPi / 4) * (a / b);
-      }
-      for (int i = 0; i < n; ++i) {
-        cos_phi[i] = std::cos(phi[i]);
-        sin_phi[i] = std::sin(phi[i]);
-      }
-      for (int i = n; i < N; ++i) cos_phi[i] = sin_phi[i] = 0;
-      for (int i = 0; i < N; ++i) {
+        const Real r = by_a ? a : b;
+        const SinCos phi = sin_cos_pi(by_a ? Real(0.25) * (b / a) : Real(0.5) - Real(0.25) * (a / b));
         // square_to_disk's {0, 0} at the centre, where phi is 0/0.
-        const Real dx = centre[i] ? Real(0) : r[i] * cos_phi[i], dy = centre[i] ? Real(0) : r[i] * sin_phi[i];
+        const bool centre = a == 0 && b == 0;
+        const Real dx = centre ? Real(0) : r * phi.cos, dy = centre ? Real(0) : r * phi.sin;
         px[i] = l_.position.x + (frame_.u.x * dx + frame_.v.x * dy) * l_.radius;
         py[i] = l_.position.y + (frame_.u.y * dx + frame_.v.y * dy) * l_.radius;
         pz[i] = l_.position.z + (frame_.u.z * dx + frame_.v.z * dy) * l_.radius;
@@ -205,15 +196,9 @@ class AreaLightSampler {
     for (int i = 0; i < N; ++i) {
       z[i] = 1 - ux[i] * (1 - cos_max_);
       r[i] = sqrt_clamped(1 - z[i] * z[i]);
-    }
-    for (int i = 0; i < n; ++i) {
-      const Real phi = 2 * kPi * uy[i];
-      cos_phi[i] = std::cos(phi);
-      sin_phi[i] = std::sin(phi);
-    }
-    for (int i = n; i < N; ++i) {
-      cos_phi[i] = 1;
-      sin_phi[i] = 0;
+      const SinCos phi = sin_cos_pi(2 * uy[i]);  // φ = 2π·u.y
+      cos_phi[i] = phi.cos;
+      sin_phi[i] = phi.sin;
     }
     // The rays from p in those directions and where they meet the sphere: kernel::intersect's
     // answers, bit for bit, from its lane form (accel/packet.h).

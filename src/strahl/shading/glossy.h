@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "strahl/math/frame.h"
+#include "strahl/math/trig.h"
 #include "strahl/math/vec2.h"
 #include "strahl/sampling/warp.h"
 
@@ -20,8 +21,8 @@ STRAHL_HOST_DEVICE inline Real glossy_exponent(Real roughness) { return 2 / (rou
 STRAHL_HOST_DEVICE inline Vec3 sample_phong_lobe(const Vec3& axis, Real exponent, const Vec2& u) {
   const Real cos_theta = std::pow(u.x, 1 / (exponent + 1));
   const Real sin_theta = sqrt_clamped(1 - cos_theta * cos_theta);
-  const Real phi = 2 * kPi * u.y;
-  return normalize(Frame::around(axis).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta}));
+  const SinCos phi = sin_cos_pi(2 * u.y);  // φ = 2π·u.y
+  return normalize(Frame::around(axis).to_world({sin_theta * phi.cos, sin_theta * phi.sin, cos_theta}));
 }
 STRAHL_HOST_DEVICE inline Real phong_lobe_pdf(Real cos_theta, Real exponent) {
   return cos_theta > 0 ? (exponent + 1) / (2 * kPi) * std::pow(cos_theta, exponent) : 0;
