@@ -59,8 +59,13 @@ struct Camera {
     return ray;
   }
 
-  // The pinhole ray turned into the thin-lens ray from lens sample `lens` (see above).
-  STRAHL_HOST_DEVICE STRAHL_NOINLINE void through_lens(Ray& ray, const Vec2& lens) const {
+  // The pinhole ray turned into the thin-lens ray from lens sample `lens` (see above). Kept out
+  // of line: the pinhole camera's path stays small.
+  STRAHL_HOST_DEVICE STRAHL_NOINLINE void through_lens(Ray& ray, const Vec2& lens) const { lens_ray(ray, lens); }
+
+  // through_lens() inlined, for loops over lanes of camera rays (render/packet_radiance.h) that
+  // the compiler vectorises.
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void lens_ray(Ray& ray, const Vec2& lens) const {
     const Vec3 focus = ray.at(focus_distance / -dot(ray.direction, basis.w));
     const Vec2 on_lens = square_to_disk(lens);
     ray.origin = eye + (basis.u * on_lens.x + basis.v * on_lens.y) * lens_radius;

@@ -524,13 +524,16 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     r.ox[i] = camera.eye.x, r.oy[i] = camera.eye.y, r.oz[i] = camera.eye.z;
     r.dx[i] = dx[i], r.dy[i] = dy[i], r.dz[i] = dz[i], r.time[i] = time[i];
   }
-  if (camera.lens_radius > 0)
-    for (int i = 0; i < N; ++i) {
-      Ray ray = r.ray(i);
-      camera.through_lens(ray, cs[i < count ? i : 0].lens);
+  if (camera.lens_radius > 0) {
+    Real lens_x[N], lens_y[N];
+    for (int i = 0; i < N; ++i) lens_x[i] = cs[i < count ? i : 0].lens.x, lens_y[i] = cs[i < count ? i : 0].lens.y;
+    for (int i = 0; i < N; ++i) {  // Camera::through_lens, lane by lane
+      Ray ray{camera.eye, Vec3(dx[i], dy[i], dz[i])};
+      camera.lens_ray(ray, Vec2(lens_x[i], lens_y[i]));
       r.ox[i] = ray.origin.x, r.oy[i] = ray.origin.y, r.oz[i] = ray.origin.z;
       r.dx[i] = ray.direction.x, r.dy[i] = ray.direction.y, r.dz[i] = ray.direction.z;
     }
+  }
   counters.camera += std::uint64_t(count);
 
   PacketStep<N> step;

@@ -115,16 +115,10 @@ class AreaLightSampler {
       }
     } else {
       for (int i = 0; i < N; ++i) {
-        const Real a = 2 * ux[i] - 1, b = 2 * uy[i] - 1;
-        const bool by_a = a * a > b * b;
-        const Real r = by_a ? a : b;
-        const SinCos phi = sin_cos_pi(by_a ? Real(0.25) * (b / a) : Real(0.5) - Real(0.25) * (a / b));
-        // square_to_disk's {0, 0} at the centre, where phi is 0/0.
-        const bool centre = a == 0 && b == 0;
-        const Real dx = centre ? Real(0) : r * phi.cos, dy = centre ? Real(0) : r * phi.sin;
-        px[i] = l_.position.x + (frame_.u.x * dx + frame_.v.x * dy) * l_.radius;
-        py[i] = l_.position.y + (frame_.u.y * dx + frame_.v.y * dy) * l_.radius;
-        pz[i] = l_.position.z + (frame_.u.z * dx + frame_.v.z * dy) * l_.radius;
+        const Vec2 d = square_to_disk({ux[i], uy[i]});
+        px[i] = l_.position.x + (frame_.u.x * d.x + frame_.v.x * d.y) * l_.radius;
+        py[i] = l_.position.y + (frame_.u.y * d.x + frame_.v.y * d.y) * l_.radius;
+        pz[i] = l_.position.z + (frame_.u.z * d.x + frame_.v.z * d.y) * l_.radius;
       }
     }
     // What sample() makes of the point: direction, distance, the cosine at the light, intensity.
