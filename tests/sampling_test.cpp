@@ -50,7 +50,7 @@ TEST(PixelSampler, PowerOfTwoSidesMatchTheDivisions) {
 // The lanes' paths (PixelSequence::samples, render/packet_radiance.h: strata_film_lanes,
 // sobol_film_lanes) against sample() one by one: every side, packets of 8 and 16 starting
 // anywhere in the first rounds (straddling two rounds too: each lane its round's order; a side that
-// is no power of two falls back), lens and time unused as the paths require, the film
+// is no power of two falls back), with and without lens and shutter, the film
 // lanes (FilmLanes) the same positions and times, padded with lane 0's; and the
 // walk-free permutation equals the walking one for every power of two n and element.
 template <int N>
@@ -80,10 +80,12 @@ TEST(PixelSampler, LanesMatchSampleBySample) {
       sampler.kind = kind;
       sampler.side = side;
       sampler.seed = 99 + side;
-      PixelSequence p = sampler.pixel(7, 2, 2 * 640 + 7);
-      p.uses_lens = p.uses_time = false;
-      expect_lanes_match<8>(p, side);
-      expect_lanes_match<16>(p, side);
+      for (const bool lens : {false, true})
+        for (const bool time : {false, true}) {
+          const PixelSequence p = sampler.pixel(7, 2, 2 * 640 + 7, lens, time);
+          expect_lanes_match<8>(p, side);
+          expect_lanes_match<16>(p, side);
+        }
     }
   }
   for (std::uint32_t n = 2; n <= (1u << 12); n *= 2)

@@ -8,8 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "test_helpers.h"
+#include "test_random.h"
 
 namespace strahl::shading_test {
 namespace {
@@ -271,6 +274,16 @@ TEST(Shading, CheckerParityIsExactAndDefinedForAnySize) {
   EXPECT_EQ(surface_color(m, Vec3(0.3, 0.7, -0.1)).x, 1.0);
   m.checker_size = 1;  // −1 + 0 + 0: odd
   EXPECT_EQ(surface_color(m, Vec3(-0.5, 0.5, 0.5)).x, 0.0);
+  // odd_cell against its definition, |fmod(floor(a), 2)| = 1, over every magnitude and sign, the
+  // neighbours of 2^53 and the values that are no number.
+  const auto odd_by_fmod = [](double a) { return std::fabs(std::fmod(std::floor(a), 2.0)) == 1.0; };
+  std::vector<double> values = {0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.5, -2.5, 0x1p53, -0x1p53, 0x1p53 - 1, 1 - 0x1p53,
+                                0x1p52 + 1.5, -0x1p52 - 1.5, 1e300, -1e300, 4.9e-324, -4.9e-324,
+                                std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<double>::quiet_NaN()};
+  test::Random random(12);
+  for (int i = 0; i < 100000; ++i) values.push_back(random.uniform(-1, 1) * std::pow(2.0, random.uniform(-30, 60)));
+  for (const double a : values) EXPECT_EQ(odd_cell(a), odd_by_fmod(a)) << a;
 }
 
 TEST(Shading, CheckerColourIsShadedLikeTheBaseColour) {

@@ -45,6 +45,8 @@ class SamplePackets {
         sobol_((shared.kind == SamplerKind::Sobol || shared.kind == SamplerKind::Adaptive) && !shared.uses_lens &&
                !shared.uses_time),
         strata_(shared.strata_lanes()),
+        lens_(shared.uses_lens),
+        time_(shared.uses_time),
         stratified_(shared.kind == SamplerKind::Stratified),
         side_(shared.side),
         side_shift_(shared.side_shift) {}
@@ -57,8 +59,10 @@ class SamplePackets {
       if (sobol_) {  // the film positions come in flush(), the lanes side by side
         s0_[count_] = sequence.h[0], s1_[count_] = sequence.h[1], s2_[count_] = sequence.h[2];
         px_[count_] = Real(sequence.x), py_[count_] = Real(sequence.y);
-      } else if (strata_) {  // so do these, the strata's order in s0_
+      } else if (strata_) {  // so do these, the film's strata order in s0_, the lens's in s1_, the shutter's in s2_
         s0_[count_] = sequence.strata_order(index);
+        if (lens_) s1_[count_] = sequence.strata_order(index, 1);
+        if (time_) s2_[count_] = sequence.strata_order(index, 2);
         px_[count_] = Real(sequence.x), py_[count_] = Real(sequence.y);
       } else {
         cs_[count_] = sequence.sample(index);
@@ -84,8 +88,10 @@ class SamplePackets {
       film_lanes_.pad(count_);
     } else if (strata_) {
       for (int j = count_; j < kLanes; ++j)  // lanes nobody reads
-        index_[j] = 0, s0_[j] = 0, key_[j] = 0, px_[j] = py_[j] = 0;
+        index_[j] = 0, s0_[j] = s1_[j] = s2_[j] = 0, key_[j] = 0, px_[j] = py_[j] = 0;
       strata_film_lanes<kLanes>(stratified_, side_, side_shift_, index_, s0_, key_, px_, py_, cs_, film_lanes_);
+      if (lens_ || time_)
+        strata_lens_time_lanes<kLanes>(lens_, time_, side_, side_shift_, index_, s1_, s2_, key_, cs_, film_lanes_);
       film_lanes_.pad(count_);
     } else {
       film_lanes_.set(cs_, count_);
@@ -117,7 +123,8 @@ class SamplePackets {
   std::uint64_t key_[kLanes];
   std::uint32_t index_[kLanes];
   const bool sobol_;  // Sobol film positions without lens and time: computed in flush()
-  const bool strata_;  // grid or stratified ones of a power-of-two side without lens and time: so are these
+  const bool strata_;  // grid or stratified samples of a power-of-two side: so are these, lens and time too
+  const bool lens_, time_;  // the camera uses the lens, the shutter
   const bool stratified_;
   const std::uint32_t side_;
   const int side_shift_;

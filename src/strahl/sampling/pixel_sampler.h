@@ -90,8 +90,9 @@ inline const char* filter_name(FilterKind kind) {
 inline constexpr const char* kFilterNames = "box, tent, gaussian, mitchell";
 
 // The film positions of N Sobol samples, lane i sample index[i] of the pixel at (px[i], py[i])
-// with film-pair scrambles s0[i], s1[i], s2[i] (PixelSequence::h[0 … 2]): PixelSequence::sample()'s
-// for a camera without lens and shutter (lens (0.5, 0.5), time 0), the lanes side by side.
+// with film-pair scrambles s0[i], s1[i], s2[i] (PixelSequence::h[0 … 2]): PixelSequence::sample()'s,
+// the lanes side by side, with lens (0.5, 0.5) and time 0 (PixelSequence::samples() sets those
+// where the camera uses them).
 template <int N>
 STRAHL_HOST_DEVICE inline void sobol_film_lanes(const std::uint32_t* __restrict index, const std::uint32_t* __restrict s0,
                                                 const std::uint32_t* __restrict s1, const std::uint32_t* __restrict s2,
@@ -108,7 +109,8 @@ STRAHL_HOST_DEVICE inline void sobol_film_lanes(const std::uint32_t* __restrict 
 }
 
 // The film positions of N grid or stratified samples whose strata side is a power of two
-// (side = 2^side_shift), for a camera without lens and shutter: lane i is sample index[i] of the
+// (side = 2^side_shift), with lens (0.5, 0.5) and time 0 (strata_lens_time_lanes() sets those
+// where the camera uses them): lane i is sample index[i] of the
 // pixel at (px[i], py[i]), whose round visits the strata in order order[i]
 // (PixelSequence::strata_order) and whose random numbers are keyed by stream[i] — sample()'s
 // arithmetic, the lanes side by side. `jitter`: stratified (else the strata's centres, the grid).
@@ -140,6 +142,38 @@ STRAHL_HOST_DEVICE inline void strata_film_lanes(bool jitter, std::uint32_t side
   film.get(cs);
 }
 
+// The lens positions (unit square) and shutter times of N grid or stratified samples whose strata
+// side is a power of two, beside strata_film_lanes()'s film positions: lane i is sample index[i],
+// whose round visits the lens's strata in order lens_order[i] and the shutter's in time_order[i]
+// (PixelSequence::strata_order, purposes 1 and 2), both jittered — sample()'s arithmetic, the lanes
+// side by side, into cs[0 … N) and film.time.
+template <int N>
+STRAHL_HOST_DEVICE inline void strata_lens_time_lanes(bool lens, bool time, std::uint32_t side, int side_shift,
+                                                      const std::uint32_t* __restrict index,
+                                                      const std::uint32_t* __restrict lens_order,
+                                                      const std::uint32_t* __restrict time_order,
+                                                      const std::uint64_t* __restrict stream, CameraSample* cs,
+                                                      FilmLanes<N>& __restrict film) {
+  const std::uint32_t n = side * side;
+  if (lens) {
+    const Real inv = Real(1) / Real(side);  // exact (1 for one stratum: (0 + j) · 1 = j)
+    for (int i = 0; i < N; ++i) {
+      const std::uint32_t s = permutation_element_pow2(index[i] & (n - 1), n, lens_order[i]);
+      const Real jx = to_unit(keyed_bits(stream[i], index[i], kDimLens));
+      const Real jy = to_unit(keyed_bits(stream[i], index[i], kDimLens + 1));
+      cs[i].lens = Vec2{(Real(s & (side - 1)) + jx) * inv, (Real(s >> side_shift) + jy) * inv};
+    }
+  }
+  if (time) {
+    const Real inv = Real(1) / Real(n);  // exact
+    for (int i = 0; i < N; ++i) {
+      const std::uint32_t s = permutation_element_pow2(index[i] & (n - 1), n, time_order[i]);
+      film.time[i] = (Real(s) + to_unit(keyed_bits(stream[i], index[i], kDimTime))) * inv;
+      cs[i].time = film.time[i];
+    }
+  }
+}
+
 // The samples of one pixel, with the pixel's hashes (permutation and scrambling seeds) computed
 // once rather than per sample.
 struct PixelSequence {
@@ -169,16 +203,16 @@ struct PixelSequence {
   }
 
   // Grid and stratified with a power-of-two side: the order in which the round of sample `index`
-  // visits the film's strata (sample()'s order(0); 0 for one stratum, which needs no order).
-  STRAHL_HOST_DEVICE std::uint32_t strata_order(std::uint32_t index) const {
+  // visits the film's strata (purpose 0), the lens's (1) or the shutter's (2) — sample()'s
+  // order(purpose); 0 for one stratum, which needs no order.
+  STRAHL_HOST_DEVICE std::uint32_t strata_order(std::uint32_t index, std::uint32_t purpose = 0) const {
     const std::uint32_t round = index >> (2 * side_shift);
-    return side_shift == 0 ? 0u : round == 0 ? h[0] : hash(3 * round);
+    return side_shift == 0 ? 0u : round == 0 ? h[purpose] : hash(3 * round + purpose);
   }
-  // Whether the film positions of this sequence's samples come from strata_film_lanes() (else
-  // sobol_film_lanes() or sample() by sample).
+  // Whether this sequence's samples come from strata_film_lanes() and strata_lens_time_lanes()
+  // (else sobol's lanes or sample() by sample).
   STRAHL_HOST_DEVICE bool strata_lanes() const {
-    return (kind == SamplerKind::Grid || kind == SamplerKind::Stratified) && side_shift >= 0 && !uses_lens &&
-           !uses_time;
+    return (kind == SamplerKind::Grid || kind == SamplerKind::Stratified) && side_shift >= 0;
   }
 
   STRAHL_HOST_DEVICE Vec2 stratum_2d(std::uint32_t k, std::uint32_t order, Vec2 jitter) const {
@@ -249,27 +283,34 @@ struct PixelSequence {
 
   // sample(first + i) for i < count (≤ N) into cs[0 … N), their film positions and times into
   // `film` too (padded: FilmLanes::pad): for grid and stratified with a power-of-two side and for
-  // sobol, without lens and shutter, with the lanes side by side (sample()'s arithmetic;
-  // cs[count …] get positions nobody reads); sample by sample otherwise.
+  // sobol with the lanes side by side (sample()'s arithmetic; cs[count …] get positions nobody
+  // reads); sample by sample otherwise.
   template <int N>
   STRAHL_HOST_DEVICE void samples(std::uint32_t first, int count, CameraSample* cs, FilmLanes<N>& film) const {
     if (strata_lanes() && count > 0) {
-      std::uint32_t index[N], order[N];
+      std::uint32_t index[N], order[3][N];  // the film's, the lens's and the shutter's orders
       std::uint64_t streams[N];
       Real px[N], py[N];
-      const std::uint32_t order0 = strata_order(first);
+      const int purposes = uses_time ? 3 : uses_lens ? 2 : 1;
+      for (int k = 0; k < purposes; ++k) {
+        const std::uint32_t first_order = strata_order(first, std::uint32_t(k));
+        for (int i = 0; i < N; ++i) order[k][i] = first_order;
+      }
       for (int i = 0; i < N; ++i) {
-        index[i] = first + std::uint32_t(i), order[i] = order0, streams[i] = stream;
+        index[i] = first + std::uint32_t(i), streams[i] = stream;
         px[i] = Real(x), py[i] = Real(y);
       }
       const std::uint32_t last = first + std::uint32_t(count) - 1;
       if (side_shift > 0 && last >> (2 * side_shift) != first >> (2 * side_shift))  // the samples start a new round
-        for (int i = 1; i < count; ++i) order[i] = strata_order(index[i]);
-      strata_film_lanes<N>(kind == SamplerKind::Stratified, side, side_shift, index, order, streams, px, py, cs, film);
+        for (int k = 0; k < purposes; ++k)
+          for (int i = 1; i < count; ++i) order[k][i] = strata_order(index[i], std::uint32_t(k));
+      strata_film_lanes<N>(kind == SamplerKind::Stratified, side, side_shift, index, order[0], streams, px, py, cs, film);
+      if (uses_lens || uses_time)
+        strata_lens_time_lanes<N>(uses_lens, uses_time, side, side_shift, index, order[1], order[2], streams, cs, film);
       film.pad(count);
       return;
     }
-    if ((kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) && !uses_lens && !uses_time) {
+    if (kind == SamplerKind::Sobol || kind == SamplerKind::Adaptive) {
       std::uint32_t index[N], s0[N], s1[N], s2[N];
       Real px[N], py[N];
       for (int i = 0; i < N; ++i) {
@@ -277,6 +318,19 @@ struct PixelSequence {
         px[i] = Real(x), py[i] = Real(y);
       }
       sobol_film_lanes<N>(index, s0, s1, s2, px, py, cs, film);
+      // The lens's pair (1) and the shutter's (2), as sample() takes them.
+      if (uses_lens)
+        for (int i = 0; i < N; ++i) {
+          std::uint32_t a, b;
+          sobol_pair(index[i], h[3], h[4], h[5], a, b);
+          cs[i].lens = Vec2{fixed_to_unit(a), fixed_to_unit(b)};
+        }
+      if (uses_time)
+        for (int i = 0; i < N; ++i) {
+          std::uint32_t a, b;
+          sobol_pair(index[i], h[6], h[7], h[8], a, b);
+          film.time[i] = cs[i].time = fixed_to_unit(a);
+        }
       film.pad(count);
       return;
     }

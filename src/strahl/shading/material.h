@@ -32,8 +32,12 @@ struct Material {
 // Is floor(a) odd? Computed in floating point: a cell index past the range of an integer type
 // (a checker of size 1e-300, a point at 1e200) must not be converted to one, which is undefined
 // behaviour. Every Real of magnitude 2^53 (float: 2^24) or more is an even whole number, and
-// NaN or ±∞ (a size so small that 1/size overflows) count as even.
-STRAHL_HOST_DEVICE inline bool odd_cell(Real a) { return std::fabs(std::fmod(std::floor(a), Real(2))) == Real(1); }
+// NaN or ±∞ (a size so small that 1/size overflows) count as even. floor(a) − 2·floor(floor(a)/2)
+// is exact (halving a whole number is) and is fmod(floor(a), 2) without libm's call.
+STRAHL_HOST_DEVICE inline bool odd_cell(Real a) {
+  const Real cell = std::floor(a);
+  return cell - 2 * std::floor(cell * Real(0.5)) == Real(1);
+}
 
 // Colour C at a point with plane coordinates (u, v) or, for solids, position p.
 STRAHL_HOST_DEVICE inline Vec3 surface_color(const Material& m, const Vec3& texcoord) {
