@@ -529,7 +529,7 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
     for (int i = 0; i < N; ++i) lens_x[i] = cs[i < count ? i : 0].lens.x, lens_y[i] = cs[i < count ? i : 0].lens.y;
     for (int i = 0; i < N; ++i) {  // Camera::through_lens, lane by lane
       Ray ray{camera.eye, Vec3(dx[i], dy[i], dz[i])};
-      camera.lens_ray(ray, Vec2(lens_x[i], lens_y[i]));
+      camera.lens_ray(ray, Vec2{lens_x[i], lens_y[i]});
       r.ox[i] = ray.origin.x, r.oy[i] = ray.origin.y, r.oz[i] = ray.origin.z;
       r.dx[i] = ray.direction.x, r.dy[i] = ray.direction.y, r.dz[i] = ray.direction.z;
     }
