@@ -363,11 +363,12 @@ TEST(PacketFrontEnd, LanesOfNeighbouringPixelsEqualTheSingleSamplePath) {
 
 // The tile renderer (fewer than 16 samples per pixel: packets gathered across pixels, a pixel's
 // samples running on from one packet into the next; 16 or more: whole packets of a pixel's own,
-// the rest gathered; the Sobol and strata film positions computed lane by lane in both) against
+// the rest gathered; the Sobol and strata film, lens and shutter samples computed lane by lane in
+// both) against
 // pixel_sample() one sample at a time into the same film layout: the same sums, statistics and
 // counts, bit for bit. per_pixel 0: every pixel its own number of samples, 0 … 20.
 TEST(TileRenderer, EveryPathEqualsPixelSamplesOneByOne) {
-  for (const char* file : {"lecture-whitted.yaml", "depth-of-field.yaml"}) {
+  for (const char* file : {"lecture-whitted.yaml", "depth-of-field.yaml", "motion-blur.yaml"}) {  // (lens; shutter)
     Scene scene = load_scene(std::string(STRAHL_SOURCE_DIR) + "/scenes/" + file);
     scene.settings.width = 37;
     scene.settings.height = 21;

@@ -42,8 +42,7 @@ class SamplePackets {
       : view_(view),
         film_(film),
         work_(work),
-        sobol_((shared.kind == SamplerKind::Sobol || shared.kind == SamplerKind::Adaptive) && !shared.uses_lens &&
-               !shared.uses_time),
+        sobol_(shared.kind == SamplerKind::Sobol || shared.kind == SamplerKind::Adaptive),
         strata_(shared.strata_lanes()),
         lens_(shared.uses_lens),
         time_(shared.uses_time),
@@ -58,6 +57,7 @@ class SamplePackets {
     for (std::uint32_t index = first; index < first + count; ++index) {
       if (sobol_) {  // the film positions come in flush(), the lanes side by side
         s0_[count_] = sequence.h[0], s1_[count_] = sequence.h[1], s2_[count_] = sequence.h[2];
+        for (int k = 0; k < 6; ++k) scramble_[k][count_] = sequence.h[3 + k];  // the lens's and the shutter's
         px_[count_] = Real(sequence.x), py_[count_] = Real(sequence.y);
       } else if (strata_) {  // so do these, the film's strata order in s0_, the lens's in s1_, the shutter's in s2_
         s0_[count_] = sequence.strata_order(index);
@@ -84,7 +84,10 @@ class SamplePackets {
     if (sobol_) {
       for (int j = count_; j < kLanes; ++j)  // lanes nobody reads
         index_[j] = 0, s0_[j] = s1_[j] = s2_[j] = 0, px_[j] = py_[j] = 0;
+      for (int k = 0; k < 6; ++k)
+        for (int j = count_; j < kLanes; ++j) scramble_[k][j] = 0;
       sobol_film_lanes<kLanes>(index_, s0_, s1_, s2_, px_, py_, cs_, film_lanes_);
+      if (lens_ || time_) sobol_lens_time_lanes<kLanes>(lens_, time_, index_, scramble_, cs_, film_lanes_);
       film_lanes_.pad(count_);
     } else if (strata_) {
       for (int j = count_; j < kLanes; ++j)  // lanes nobody reads
@@ -122,13 +125,14 @@ class SamplePackets {
   FilmLanes<kLanes> film_lanes_;  // cs_'s film positions and times, lane by lane
   std::uint64_t key_[kLanes];
   std::uint32_t index_[kLanes];
-  const bool sobol_;  // Sobol film positions without lens and time: computed in flush()
+  const bool sobol_;  // Sobol samples (film, lens, time): computed in flush()
   const bool strata_;  // grid or stratified samples of a power-of-two side: so are these, lens and time too
   const bool lens_, time_;  // the camera uses the lens, the shutter
   const bool stratified_;
   const std::uint32_t side_;
   const int side_shift_;
   std::uint32_t s0_[kLanes], s1_[kLanes], s2_[kLanes];
+  std::uint32_t scramble_[6][kLanes];  // sobol: the lens's and the shutter's pairs' scrambles (PixelSequence::h[3 … 8])
   Real px_[kLanes], py_[kLanes];
   int x_[kLanes], row_[kLanes];
   std::size_t entry_[kLanes];

@@ -108,6 +108,28 @@ STRAHL_HOST_DEVICE inline void sobol_film_lanes(const std::uint32_t* __restrict 
   film.get(cs);
 }
 
+// The lens positions (unit square) and shutter times of N Sobol samples, beside
+// sobol_film_lanes()'s film positions: lane i is sample index[i], scrambled by scramble[0 … 2][i]
+// for the lens's pair (PixelSequence::h[3 … 5]) and scramble[3 … 5][i] for the shutter's (h[6 … 8])
+// — sample()'s arithmetic, the lanes side by side, into cs[0 … N) and film.time.
+template <int N>
+STRAHL_HOST_DEVICE inline void sobol_lens_time_lanes(bool lens, bool time, const std::uint32_t* __restrict index,
+                                                     const std::uint32_t (&scramble)[6][N], CameraSample* cs,
+                                                     FilmLanes<N>& __restrict film) {
+  if (lens)
+    for (int i = 0; i < N; ++i) {
+      std::uint32_t a, b;
+      sobol_pair(index[i], scramble[0][i], scramble[1][i], scramble[2][i], a, b);
+      cs[i].lens = Vec2{fixed_to_unit(a), fixed_to_unit(b)};
+    }
+  if (time)
+    for (int i = 0; i < N; ++i) {
+      std::uint32_t a, b;
+      sobol_pair(index[i], scramble[3][i], scramble[4][i], scramble[5][i], a, b);
+      film.time[i] = cs[i].time = fixed_to_unit(a);
+    }
+}
+
 // The film positions of N grid or stratified samples whose strata side is a power of two
 // (side = 2^side_shift), with lens (0.5, 0.5) and time 0 (strata_lens_time_lanes() sets those
 // where the camera uses them): lane i is sample index[i] of the
@@ -318,19 +340,12 @@ struct PixelSequence {
         px[i] = Real(x), py[i] = Real(y);
       }
       sobol_film_lanes<N>(index, s0, s1, s2, px, py, cs, film);
-      // The lens's pair (1) and the shutter's (2), as sample() takes them.
-      if (uses_lens)
-        for (int i = 0; i < N; ++i) {
-          std::uint32_t a, b;
-          sobol_pair(index[i], h[3], h[4], h[5], a, b);
-          cs[i].lens = Vec2{fixed_to_unit(a), fixed_to_unit(b)};
-        }
-      if (uses_time)
-        for (int i = 0; i < N; ++i) {
-          std::uint32_t a, b;
-          sobol_pair(index[i], h[6], h[7], h[8], a, b);
-          film.time[i] = cs[i].time = fixed_to_unit(a);
-        }
+      if (uses_lens || uses_time) {
+        std::uint32_t scramble[6][N];
+        for (int k = 0; k < 6; ++k)
+          for (int i = 0; i < N; ++i) scramble[k][i] = h[3 + k];
+        sobol_lens_time_lanes<N>(uses_lens, uses_time, index, scramble, cs, film);
+      }
       film.pad(count);
       return;
     }
