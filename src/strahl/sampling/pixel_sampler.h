@@ -130,19 +130,17 @@ STRAHL_HOST_DEVICE inline void sobol_lens_time_lanes(bool lens, bool time, const
     }
 }
 
-// The film positions of N grid or stratified samples whose strata side is a power of two
-// (side = 2^side_shift), with lens (0.5, 0.5) and time 0 (strata_lens_time_lanes() sets those
-// where the camera uses them): lane i is sample index[i] of the
-// pixel at (px[i], py[i]), whose round visits the strata in order order[i]
-// (PixelSequence::strata_order) and whose random numbers are keyed by stream[i] — sample()'s
-// arithmetic, the lanes side by side. `jitter`: stratified (else the strata's centres, the grid).
+// Lane i: the point in [0, 1)² of sample index[i] of a grid or stratified sequence whose strata
+// side is a power of two (side = 2^side_shift) — its stratum in the order order[i] of its round
+// (PixelSequence::strata_order), jittered by dimensions dim, dim + 1 of the random numbers keyed
+// by stream[i] or at the stratum's centre (`jitter` false: the grid's film positions) — into
+// (ux[i], uy[i]): PixelSequence::stratum_2d()'s arithmetic, the lanes side by side.
 template <int N>
-STRAHL_HOST_DEVICE inline void strata_film_lanes(bool jitter, std::uint32_t side, int side_shift,
-                                                 const std::uint32_t* __restrict index,
-                                                 const std::uint32_t* __restrict order,
-                                                 const std::uint64_t* __restrict stream, const Real* __restrict px,
-                                                 const Real* __restrict py, CameraSample* cs,
-                                                 FilmLanes<N>& __restrict film) {
+STRAHL_HOST_DEVICE inline void strata_lanes_2d(bool jitter, std::uint32_t side, int side_shift, std::uint32_t dim,
+                                               const std::uint32_t* __restrict index,
+                                               const std::uint32_t* __restrict order,
+                                               const std::uint64_t* __restrict stream, Real* __restrict ux,
+                                               Real* __restrict uy) {
   const std::uint32_t n = side * side;
   const Real inv = Real(1) / Real(side);  // exact: a power of two (1 for one stratum: (0 + j) · 1 = j)
   std::uint32_t s[N];  // the lanes' strata (permutation_element_pow2 of [0, 1) is 0)
@@ -150,25 +148,43 @@ STRAHL_HOST_DEVICE inline void strata_film_lanes(bool jitter, std::uint32_t side
   Real jx[N], jy[N];
   if (jitter) {
     for (int i = 0; i < N; ++i) {
-      jx[i] = to_unit(keyed_bits(stream[i], index[i], kDimPixel));
-      jy[i] = to_unit(keyed_bits(stream[i], index[i], kDimPixel + 1));
+      jx[i] = to_unit(keyed_bits(stream[i], index[i], dim));
+      jy[i] = to_unit(keyed_bits(stream[i], index[i], dim + 1));
     }
   } else {
     for (int i = 0; i < N; ++i) jx[i] = jy[i] = Real(0.5);
   }
   for (int i = 0; i < N; ++i) {
-    film.x[i] = px[i] + (Real(s[i] & (side - 1)) + jx[i]) * inv;
-    film.y[i] = py[i] + (Real(s[i] >> side_shift) + jy[i]) * inv;
+    ux[i] = (Real(s[i] & (side - 1)) + jx[i]) * inv;
+    uy[i] = (Real(s[i] >> side_shift) + jy[i]) * inv;
+  }
+}
+
+// The film positions of N grid or stratified samples whose strata side is a power of two, with
+// lens (0.5, 0.5) and time 0 (strata_lens_time_lanes() sets those where the camera uses them):
+// lane i is sample index[i] of the pixel at (px[i], py[i]), its film stratum in order order[i]
+// (strata_lanes_2d). `jitter`: stratified (else the strata's centres, the grid).
+template <int N>
+STRAHL_HOST_DEVICE inline void strata_film_lanes(bool jitter, std::uint32_t side, int side_shift,
+                                                 const std::uint32_t* __restrict index,
+                                                 const std::uint32_t* __restrict order,
+                                                 const std::uint64_t* __restrict stream, const Real* __restrict px,
+                                                 const Real* __restrict py, CameraSample* cs,
+                                                 FilmLanes<N>& __restrict film) {
+  Real ux[N], uy[N];
+  strata_lanes_2d<N>(jitter, side, side_shift, kDimPixel, index, order, stream, ux, uy);
+  for (int i = 0; i < N; ++i) {
+    film.x[i] = px[i] + ux[i];
+    film.y[i] = py[i] + uy[i];
     film.time[i] = 0;
   }
   film.get(cs);
 }
 
-// The lens positions (unit square) and shutter times of N grid or stratified samples whose strata
-// side is a power of two, beside strata_film_lanes()'s film positions: lane i is sample index[i],
-// whose round visits the lens's strata in order lens_order[i] and the shutter's in time_order[i]
-// (PixelSequence::strata_order, purposes 1 and 2), both jittered — sample()'s arithmetic, the lanes
-// side by side, into cs[0 … N) and film.time.
+// The lens positions (unit square) and shutter times of the same samples, beside
+// strata_film_lanes(): the lens's strata in orders lens_order[i], the shutter's in time_order[i]
+// (PixelSequence::strata_order, purposes 1 and 2), both jittered — sample()'s arithmetic, the
+// lanes side by side, into cs[0 … N) and film.time.
 template <int N>
 STRAHL_HOST_DEVICE inline void strata_lens_time_lanes(bool lens, bool time, std::uint32_t side, int side_shift,
                                                       const std::uint32_t* __restrict index,
@@ -176,17 +192,13 @@ STRAHL_HOST_DEVICE inline void strata_lens_time_lanes(bool lens, bool time, std:
                                                       const std::uint32_t* __restrict time_order,
                                                       const std::uint64_t* __restrict stream, CameraSample* cs,
                                                       FilmLanes<N>& __restrict film) {
-  const std::uint32_t n = side * side;
   if (lens) {
-    const Real inv = Real(1) / Real(side);  // exact (1 for one stratum: (0 + j) · 1 = j)
-    for (int i = 0; i < N; ++i) {
-      const std::uint32_t s = permutation_element_pow2(index[i] & (n - 1), n, lens_order[i]);
-      const Real jx = to_unit(keyed_bits(stream[i], index[i], kDimLens));
-      const Real jy = to_unit(keyed_bits(stream[i], index[i], kDimLens + 1));
-      cs[i].lens = Vec2{(Real(s & (side - 1)) + jx) * inv, (Real(s >> side_shift) + jy) * inv};
-    }
+    Real ux[N], uy[N];
+    strata_lanes_2d<N>(true, side, side_shift, kDimLens, index, lens_order, stream, ux, uy);
+    for (int i = 0; i < N; ++i) cs[i].lens = Vec2{ux[i], uy[i]};
   }
   if (time) {
+    const std::uint32_t n = side * side;
     const Real inv = Real(1) / Real(n);  // exact
     for (int i = 0; i < N; ++i) {
       const std::uint32_t s = permutation_element_pow2(index[i] & (n - 1), n, time_order[i]);
