@@ -124,11 +124,11 @@ TEST(AreaLightSampling, SphereFollowsTheConeDensity) {
 bool same_bits(Real a, Real b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 bool same_bits(const Vec3& a, const Vec3& b) { return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z); }
 
-// sample_lanes (the shading loop's: a sphere light's samples side by side) gives each sample
-// exactly what sample() gives it, for every kind of light, from points near and far, for the
-// cone's rim (u.x → 1: grazing directions, where the tangent distance stands in), at the disk's
-// centre, from behind the flat lights, at distance 0, for groups of 1 to 4, and for a point
-// inside a sphere light (no light).
+// AreaLightLanes (the shading loops': an area light's samples side by side, from one point or
+// from a point per lane) gives each lane exactly what its point's AreaLightSampler::sample()
+// gives it, for every kind of light, from points near and far, for the cone's rim (u.x → 1:
+// grazing directions, where the tangent distance stands in), at the disk's centre, from behind
+// the flat lights, at distance 0, and for a point inside a sphere light (no light).
 TEST(AreaLightSampling, SamplesSideBySideEqualOneByOne) {
   const Light lights[] = {
       compiled(sphere_light({0.3, 3, -0.2}, 1.2)), compiled(sphere_light({-2, 0.5, 7}, 0.01)),
@@ -139,37 +139,47 @@ TEST(AreaLightSampling, SamplesSideBySideEqualOneByOne) {
   // rectangle (distance 0 for u = (0, 0)).
   const Vec3 points[] = {{0, 0, 0},       {0.3, 1.8001, -0.2}, {5, -3, 2}, {-2.005, 0.5, 7},
                          {0.3, 3.5, -0.2}, {-0.5, 2, -0.25}};
+  constexpr int kPoints = 6, kLanes = 4;
   int compared = 0, grazing = 0;
   for (const Light& l : lights) {
-    for (const Vec3& p : points) {
-      const AreaLightSampler sampler(l, p);
+    // Each point in every lane (one point's strata), then the points spread over the lanes.
+    for (int layout = 0; layout <= kPoints; ++layout) {
+      Vec3 p[kLanes];
+      Real px[kLanes], py[kLanes], pz[kLanes];
+      for (int j = 0; j < kLanes; ++j) {
+        p[j] = points[layout < kPoints ? layout : (j + 3 * j * j) % kPoints];
+        px[j] = p[j].x, py[j] = p[j].y, pz[j] = p[j].z;
+      }
+      const AreaLightLanes<kLanes> lanes = layout < kPoints ? AreaLightLanes<kLanes>(l, p[0])
+                                                           : AreaLightLanes<kLanes>(l, px, py, pz);
       for (std::uint32_t i = 0; i < 2000; ++i) {
-        Vec2 u[4];
-        for (int j = 0; j < 4; ++j) u[j] = random2(4 * i + std::uint32_t(j));
+        Vec2 u[kLanes];
+        for (int j = 0; j < kLanes; ++j) u[j] = random2(kLanes * i + std::uint32_t(j));
         if (i % 3 == 0) u[i % 4].x = 1 - std::ldexp(Real(1), -int(i % 50));  // towards the rim
         if (i % 7 == 0) u[(i + 1) % 4] = {0.5, 0.5};                             // the disk's centre
         if (i % 5 == 0) u[(i + 2) % 4] = {0, 0};                                 // the corner
-        const int n = 1 + int(i % 4);
-        AreaLightSample lanes[4];
-        sampler.sample_lanes(u, n, lanes);
-        for (int j = 0; j < n; ++j) {
+        Real ux[kLanes], uy[kLanes], tx[kLanes], ty[kLanes], tz[kLanes], distance[kLanes], ir[kLanes], ig[kLanes],
+            ib[kLanes];
+        for (int j = 0; j < kLanes; ++j) ux[j] = u[j].x, uy[j] = u[j].y;
+        lanes.sample(ux, uy, tx, ty, tz, distance, ir, ig, ib);
+        for (int j = 0; j < kLanes; ++j) {
+          const AreaLightSampler sampler(l, p[j]);
           const AreaLightSample one = sampler.sample(u[j]);
-          ASSERT_TRUE(same_bits(lanes[j].to_light, one.to_light) && same_bits(lanes[j].point, one.point) &&
-                      same_bits(lanes[j].distance, one.distance) && same_bits(lanes[j].intensity, one.intensity) &&
-                      same_bits(lanes[j].pdf, one.pdf))
-              << "light " << &l - lights << " point " << &p - points << " sample " << i << " lane " << j;
-          const AreaLightSample old = sample_area_light(l, p, u[j]);
+          ASSERT_TRUE(same_bits(Vec3(tx[j], ty[j], tz[j]), one.to_light) && same_bits(distance[j], one.distance) &&
+                      same_bits(Vec3(ir[j], ig[j], ib[j]), one.intensity))
+              << "light " << &l - lights << " layout " << layout << " sample " << i << " lane " << j;
+          const AreaLightSample old = sample_area_light(l, p[j], u[j]);
           ASSERT_TRUE(same_bits(old.point, one.point) && same_bits(old.distance, one.distance));
           if (l.kind == LightKind::Sphere && sampler.lit()) {
             const kernel::Sphere sphere{l.position, l.radius, 0};
-            grazing += int(kernel::intersect(sphere, Ray{p, one.to_light}, 0, kInfinity) == kInfinity);
+            grazing += int(kernel::intersect(sphere, Ray{p[j], one.to_light}, 0, kInfinity) == kInfinity);
           }
           ++compared;
         }
       }
     }
   }
-  EXPECT_EQ(compared, 5 * 6 * 5000);
+  EXPECT_EQ(compared, 5 * (kPoints + 1) * 2000 * kLanes);
   EXPECT_GT(grazing, 0);  // the tangent fallback was compared too
   // Inside a sphere light: not lit, every sample dark.
   const AreaLightSampler inside(lights[0], {0.3, 3.5, -0.2});

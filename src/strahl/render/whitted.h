@@ -96,59 +96,67 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Vec3 shade_from(const SceneView& s, const
 #endif
 
 #if !defined(STRAHL_AREA_LIGHT_ONE_BY_ONE)
-// Strata first … first + size − 1 (size ≤ N) of an area light with k×k strata, added to `sum` in
-// their order: the samples side by side (AreaLightSampler::sample_lanes), then their shadow rays
-// — as one packet (transmittance_packet: from one point towards one light, as coherent as rays
-// get) where more than half of N = 8 lanes take part, else one by one — then shade_from() on each
-// with the shadow ray's answer. The sum is the one-by-one loop's of area_light_illumination,
-// bit for bit.
+// transmittance(s, r.ray(i), distance[i]) for the lanes of `cast`, into (tx[i], ty[i], tz[i]):
+// as one packet (transmittance_packet) where more than half of the N lanes take part, else one
+// by one — a packet half full or less costs more than its rays one by one (a light of 2×2
+// samples in 8 lanes: 14 % slower in the lecture's scene). The other lanes are left as they are.
 template <int N>
-STRAHL_FORCE_INLINE void add_area_light_group(const SceneView& s, const AreaLightSampler& sampler, int k, int first,
-                                              int size, const SurfacePoint& sp, const Vec3& n, const Vec3& view,
-                                              const Vec3& c, const Material& m, RayCounters& counters,
-                                              SampleStream& rng, Vec3& sum) {
-  Vec2 u[N];
-  for (int i = 0; i < size; ++i) {
-    const int stratum = first + i;
-    u[i] = stratified(stratum % k, stratum / k, k, rng.next2());
-  }
-  AreaLightSample group[N];
-  sampler.sample_lanes(u, size, group);
-  PacketRays<N> shadow;
-  shadow.unit = true;  // (to_light: normalised by the sampler)
-  Real distance[N], tx[N], ty[N], tz[N];
-  std::uint32_t cast = 0;  // shade_from() traces a shadow ray where the light is in front
-  for (int i = 0; i < N; ++i) {
-    const bool lit = i < size && !is_black(group[i].intensity) && !(dot(n, group[i].to_light) <= 0);
-    cast |= std::uint32_t(lit) << i;
-    shadow.set(i, lit ? shadow_ray(sp, group[i].to_light) : Ray{sp.p, n, sp.time});
-    distance[i] = lit ? group[i].distance : Real(0);
-  }
-  int rays = 0;
-  for (std::uint32_t q = cast; q != 0; q &= q - 1) ++rays;
-  counters.shadow += std::uint64_t(rays);
+STRAHL_FORCE_INLINE void shadow_transmittance(const SceneView& s, std::uint32_t cast, const PacketRays<N>& shadow,
+                                              const Real* distance, Real* tx, Real* ty, Real* tz) {
   if constexpr (N == 8 || N == 16) {
-    if (rays > N / 2) {
+    if (wide_bvh_detail::popcount(cast) > N / 2) {
       transmittance_packet<N>(s, cast, shadow, distance, tx, ty, tz);
-      rays = 0;
+      return;
     }
   }
-  // A packet half full or less costs more than its rays one by one (a light of 2×2 samples in
-  // 8 lanes: 14 % slower in the lecture's scene).
-  for (std::uint32_t q = rays > 0 ? cast : 0; q != 0; q &= q - 1) {
+  for (std::uint32_t q = cast; q != 0; q &= q - 1) {
     const int i = wide_bvh_detail::lowest_bit(q);
     const Vec3 tr = transmittance(s, shadow.ray(i), distance[i]);
     tx[i] = tr.x, ty[i] = tr.y, tz[i] = tr.z;
   }
+}
+
+// Strata first … first + size − 1 (size ≤ N) of an area light with k×k strata seen from one
+// point (`light`: every lane from sp.p), added to `sum` in their order: the samples side by side,
+// then their shadow rays (shadow_transmittance: from one point towards one light, as coherent as
+// rays get), then shade_from() on each with the shadow ray's answer. The sum is the one-by-one
+// loop's of area_light_illumination, bit for bit.
+template <int N>
+STRAHL_FORCE_INLINE void add_area_light_group(const SceneView& s, const AreaLightLanes<N>& light, int k, int first,
+                                              int size, const SurfacePoint& sp, const Vec3& n, const Vec3& view,
+                                              const Vec3& c, const Material& m, RayCounters& counters,
+                                              SampleStream& rng, Vec3& sum) {
+  Real ux[N], uy[N];
+  for (int i = 0; i < N; ++i) {
+    const int stratum = first + i;
+    const Vec2 u = i < size ? stratified(stratum % k, stratum / k, k, rng.next2()) : Vec2{0.5, 0.5};
+    ux[i] = u.x, uy[i] = u.y;
+  }
+  Real lx[N], ly[N], lz[N], distance[N], ir[N], ig[N], ib[N];
+  light.sample(ux, uy, lx, ly, lz, distance, ir, ig, ib);
+  PacketRays<N> shadow;
+  shadow.unit = true;  // (to_light: normalised by the sampler)
+  Real tx[N], ty[N], tz[N];
+  std::uint32_t cast = 0;  // shade_from() traces a shadow ray where the light is in front
+  for (int i = 0; i < N; ++i) {
+    const Vec3 to_light(lx[i], ly[i], lz[i]);
+    const bool lit = i < size && !is_black(Vec3(ir[i], ig[i], ib[i])) && !(dot(n, to_light) <= 0);
+    cast |= std::uint32_t(lit) << i;
+    shadow.set(i, lit ? shadow_ray(sp, to_light) : Ray{sp.p, n, sp.time});
+    distance[i] = lit ? distance[i] : Real(0);
+  }
+  counters.shadow += std::uint64_t(wide_bvh_detail::popcount(cast));
+  shadow_transmittance<N>(s, cast, shadow, distance, tx, ty, tz);
   for (int i = 0; i < size; ++i) {
-    const AreaLightSample& ls = group[i];
-    if (is_black(ls.intensity)) continue;
+    const Vec3 intensity(ir[i], ig[i], ib[i]);
+    if (is_black(intensity)) continue;
+    const Vec3 to_light(lx[i], ly[i], lz[i]);
     KnownLight known{};  // (read by shade_from only where it casts the shadow ray)
     if ((cast >> i) & 1u) {
       known.transmittance = Vec3(tx[i], ty[i], tz[i]);
-      known.n_dot_h = dot(n, normalize(ls.to_light + view));  // (shade_from's)
+      known.n_dot_h = dot(n, normalize(to_light + view));  // (shade_from's)
     }
-    sum += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, ls.intensity, counters, &known);
+    sum += shade_from(s, sp, n, view, c, m, to_light, distance[i], intensity, counters, &known);
   }
 }
 #endif
@@ -160,9 +168,9 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const Sce
                                                                      RayCounters& counters, SampleStream& rng) {
   const int k = light.samples;
   const int strata = k * k;
-  const AreaLightSampler sampler(light, sp.p);
   Vec3 sum{0};
 #if defined(STRAHL_AREA_LIGHT_ONE_BY_ONE)
+  const AreaLightSampler sampler(light, sp.p);
   for (int stratum = 0; stratum < strata; ++stratum) {
     const AreaLightSample ls = sampler.sample(stratified(stratum % k, stratum / k, k, rng.next2()));
     if (is_black(ls.intensity)) continue;
@@ -172,10 +180,11 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const Sce
   // On the CPU a group of samples at a time, side by side (add_area_light_group): 1×1 and 2×2
   // strata in 4 lanes, more in groups of 8.
   if (strata <= 4) {
-    add_area_light_group<4>(s, sampler, k, 0, strata, sp, n, view, c, m, counters, rng, sum);
+    add_area_light_group<4>(s, AreaLightLanes<4>(light, sp.p), k, 0, strata, sp, n, view, c, m, counters, rng, sum);
   } else {
+    const AreaLightLanes<8> lanes(light, sp.p);
     for (int first = 0; first < strata; first += 8)
-      add_area_light_group<8>(s, sampler, k, first, strata - first < 8 ? strata - first : 8, sp, n, view, c, m,
+      add_area_light_group<8>(s, lanes, k, first, strata - first < 8 ? strata - first : 8, sp, n, view, c, m,
                               counters, rng, sum);
   }
 #endif

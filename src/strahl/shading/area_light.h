@@ -88,65 +88,6 @@ class AreaLightSampler {
   // every sample's intensity is then zero.
   STRAHL_HOST_DEVICE bool lit() const { return lit_; }
 
-  // Samples u[0..n) into out[0..n), n ≤ N: sample(u[i]) for each, bit for bit, but with the
-  // samples side by side in arrays the compiler vectorises.
-  template <int N>
-  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sample_lanes(const Vec2 (&u)[N], int n, AreaLightSample (&out)[N]) const {
-    if (!lit_) {
-      for (int i = 0; i < n; ++i) out[i] = AreaLightSample{};
-      return;
-    }
-    Real ux[N], uy[N];
-    for (int i = 0; i < N; ++i) {
-      ux[i] = i < n ? u[i].x : Real(0.5);
-      uy[i] = i < n ? u[i].y : Real(0.5);
-    }
-    if (l_.kind == LightKind::Sphere) {
-      sphere_lanes(ux, uy, n, out);
-      return;
-    }
-    // The point on the light: the rectangle's directly, the disk's by square_to_disk.
-    Real px[N], py[N], pz[N];
-    if (l_.kind == LightKind::Rect) {
-      for (int i = 0; i < N; ++i) {
-        px[i] = l_.position.x + l_.edge_u.x * ux[i] + l_.edge_v.x * uy[i];
-        py[i] = l_.position.y + l_.edge_u.y * ux[i] + l_.edge_v.y * uy[i];
-        pz[i] = l_.position.z + l_.edge_u.z * ux[i] + l_.edge_v.z * uy[i];
-      }
-    } else {
-      for (int i = 0; i < N; ++i) {
-        const Vec2 d = square_to_disk({ux[i], uy[i]});
-        px[i] = l_.position.x + (frame_.u.x * d.x + frame_.v.x * d.y) * l_.radius;
-        py[i] = l_.position.y + (frame_.u.y * d.x + frame_.v.y * d.y) * l_.radius;
-        pz[i] = l_.position.z + (frame_.u.z * d.x + frame_.v.z * d.y) * l_.radius;
-      }
-    }
-    // What sample() makes of the point: direction, distance, the cosine at the light, intensity.
-    Real tx[N], ty[N], tz[N], distance[N], factor[N];
-    bool seen[N], lit[N];
-    for (int i = 0; i < N; ++i) {
-      const Real dx = px[i] - p_.x, dy = py[i] - p_.y, dz = pz[i] - p_.z;
-      const Real r2 = dx * dx + dy * dy + dz * dz;
-      distance[i] = std::sqrt(r2);
-      const Real inv = Real(1) / distance[i];
-      seen[i] = distance[i] > 0;
-      tx[i] = seen[i] ? dx * inv : Real(0);
-      ty[i] = seen[i] ? dy * inv : Real(0);
-      tz[i] = seen[i] ? dz * inv : Real(0);
-      const Real cos_light = -(tx[i] * l_.normal.x + ty[i] * l_.normal.y + tz[i] * l_.normal.z);
-      lit[i] = seen[i] && cos_light > 0;
-      factor[i] = cos_light * area_ / (kPi * r2);
-    }
-    for (int i = 0; i < n; ++i) {
-      AreaLightSample& s = out[i];
-      s.point = Vec3(px[i], py[i], pz[i]);
-      s.pdf = 1 / area_;
-      s.distance = distance[i];
-      s.to_light = Vec3(tx[i], ty[i], tz[i]);
-      s.intensity = lit[i] ? l_.radiance * factor[i] : Vec3(0);
-    }
-  }
-
   STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE AreaLightSample sample(const Vec2& u) const {
     AreaLightSample s;
     if (!lit_) return s;
@@ -182,48 +123,6 @@ class AreaLightSampler {
   }
 
  private:
-  template <int N>
-  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sphere_lanes(const Real (&ux)[N], const Real (&uy)[N], int n,
-                                                           AreaLightSample (&out)[N]) const {
-    // square_to_uniform_cone, frame_.to_world and normalize, as sample() calls them.
-    Real z[N], r[N], cos_phi[N], sin_phi[N];
-    for (int i = 0; i < N; ++i) {
-      z[i] = 1 - ux[i] * (1 - cos_max_);
-      r[i] = sqrt_clamped(1 - z[i] * z[i]);
-      const SinCos phi = sin_cos_pi(2 * uy[i]);  // φ = 2π·u.y
-      cos_phi[i] = phi.cos;
-      sin_phi[i] = phi.sin;
-    }
-    // The rays from p in those directions and where they meet the sphere: kernel::intersect's
-    // answers, bit for bit, from its lane form (accel/packet.h).
-    PacketRays<N> rays;
-    Real t_min[N], t_max[N], t[N];
-    for (int i = 0; i < N; ++i) {
-      const Real lx = r[i] * cos_phi[i], ly = r[i] * sin_phi[i], lz = z[i];
-      const Real wx = frame_.u.x * lx + frame_.v.x * ly + frame_.w.x * lz;
-      const Real wy = frame_.u.y * lx + frame_.v.y * ly + frame_.w.y * lz;
-      const Real wz = frame_.u.z * lx + frame_.v.z * ly + frame_.w.z * lz;
-      const Real inv = Real(1) / std::sqrt(wx * wx + wy * wy + wz * wz);
-      rays.ox[i] = p_.x, rays.oy[i] = p_.y, rays.oz[i] = p_.z, rays.time[i] = 0;
-      rays.dx[i] = wx * inv, rays.dy[i] = wy * inv, rays.dz[i] = wz * inv;
-      t_min[i] = 0, t_max[i] = kInfinity;
-    }
-    const kernel::Sphere sphere{l_.position, l_.radius, 0};
-    if (!intersect_sphere_lanes<N>(sphere, rays, t_min, t_max, t))
-      for (int i = 0; i < N; ++i) t[i] = kInfinity;
-    // Grazing directions numerically missing the sphere take the tangent point's distance.
-    for (int i = 0; i < N; ++i)
-      if (t[i] == kInfinity) t[i] = axis_.x * rays.dx[i] + axis_.y * rays.dy[i] + axis_.z * rays.dz[i];
-    for (int i = 0; i < n; ++i) {
-      AreaLightSample& s = out[i];
-      s.to_light = Vec3(rays.dx[i], rays.dy[i], rays.dz[i]);
-      s.pdf = pdf_;
-      s.distance = t[i];
-      s.point = p_ + s.to_light * t[i];
-      s.intensity = intensity_;
-    }
-  }
-
   const Light& l_;
   Vec3 p_;
   Frame frame_;         // Disk: around its normal; Sphere: around the axis from p to its centre
@@ -233,6 +132,155 @@ class AreaLightSampler {
   Real cos_max_ = 0;    // Sphere: the cone's half-angle
   Real pdf_ = 0;        // Sphere: per solid angle
   bool lit_ = false;
+};
+
+// An area light seen from N shading points at once, the lanes (p_x[i], p_y[i], p_z[i]): each
+// lane's AreaLightSampler — its set-up and sample() — with the same arithmetic, bit for bit, but
+// the lanes side by side in arrays the compiler vectorises. For the packet front end (a pixel's
+// camera samples, each with its own shading point) and for one point's strata in groups.
+template <int N>
+class AreaLightLanes {
+ public:
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE AreaLightLanes(const Light& l, const Real* p_x, const Real* p_y,
+                                                        const Real* p_z)
+      : l_(l) {
+    for (int i = 0; i < N; ++i) px_[i] = p_x[i], py_[i] = p_y[i], pz_[i] = p_z[i];
+    set_up();
+  }
+  // Every lane from the one point p.
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE AreaLightLanes(const Light& l, const Vec3& p) : l_(l) {
+    for (int i = 0; i < N; ++i) px_[i] = p.x, py_[i] = p.y, pz_[i] = p.z;
+    set_up();
+  }
+
+  // sample(u[i]) of lane i's AreaLightSampler for every lane, u[i] = (u_x[i], u_y[i]): the unit
+  // direction (t_x, t_y, t_z) towards the sample, its distance and its intensity (i_r, i_g,
+  // i_b), zero where the sample does not illuminate the point.
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sample(const Real* u_x, const Real* u_y, Real* t_x, Real* t_y, Real* t_z,
+                                                     Real* distance, Real* i_r, Real* i_g, Real* i_b) const {
+    if (l_.kind == LightKind::Sphere) {
+      sphere(u_x, u_y, t_x, t_y, t_z, distance, i_r, i_g, i_b);
+      return;
+    }
+    if (l_.kind != LightKind::Rect && l_.kind != LightKind::Disk) {
+      for (int i = 0; i < N; ++i) t_x[i] = t_y[i] = t_z[i] = distance[i] = i_r[i] = i_g[i] = i_b[i] = 0;
+      return;
+    }
+    // The point on the light: the rectangle's directly, the disk's by square_to_disk.
+    Real qx[N], qy[N], qz[N];
+    if (l_.kind == LightKind::Rect) {
+      for (int i = 0; i < N; ++i) {
+        qx[i] = l_.position.x + l_.edge_u.x * u_x[i] + l_.edge_v.x * u_y[i];
+        qy[i] = l_.position.y + l_.edge_u.y * u_x[i] + l_.edge_v.y * u_y[i];
+        qz[i] = l_.position.z + l_.edge_u.z * u_x[i] + l_.edge_v.z * u_y[i];
+      }
+    } else {
+      for (int i = 0; i < N; ++i) {
+        const Vec2 d = square_to_disk({u_x[i], u_y[i]});
+        qx[i] = l_.position.x + (disk_.u.x * d.x + disk_.v.x * d.y) * l_.radius;
+        qy[i] = l_.position.y + (disk_.u.y * d.x + disk_.v.y * d.y) * l_.radius;
+        qz[i] = l_.position.z + (disk_.u.z * d.x + disk_.v.z * d.y) * l_.radius;
+      }
+    }
+    // What sample() makes of the point: direction, distance, the cosine at the light, intensity.
+    for (int i = 0; i < N; ++i) {
+      const Real dx = qx[i] - px_[i], dy = qy[i] - py_[i], dz = qz[i] - pz_[i];
+      const Real r2 = dx * dx + dy * dy + dz * dz;
+      distance[i] = std::sqrt(r2);
+      const Real inv = Real(1) / distance[i];
+      const bool seen = distance[i] > 0;
+      t_x[i] = seen ? dx * inv : Real(0);
+      t_y[i] = seen ? dy * inv : Real(0);
+      t_z[i] = seen ? dz * inv : Real(0);
+      const Real cos_light = -(t_x[i] * l_.normal.x + t_y[i] * l_.normal.y + t_z[i] * l_.normal.z);
+      const bool lit = seen && !(cos_light <= 0);  // (sample(): cos_light <= 0 sees the back)
+      const Real factor = cos_light * area_ / (kPi * r2);
+      i_r[i] = lit ? l_.radiance.x * factor : Real(0);
+      i_g[i] = lit ? l_.radiance.y * factor : Real(0);
+      i_b[i] = lit ? l_.radiance.z * factor : Real(0);
+    }
+  }
+
+ private:
+  // AreaLightSampler's constructor, lane by lane.
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void set_up() {
+    if (l_.kind == LightKind::Rect) area_ = length(cross(l_.edge_u, l_.edge_v));
+    if (l_.kind == LightKind::Disk) disk_ = Frame::around(l_.normal), area_ = kPi * l_.radius * l_.radius;
+    if (l_.kind != LightKind::Sphere) {
+      // (Unread, but set: the compiler cannot tell that the light's kind stays what it was.)
+      for (int i = 0; i < N; ++i) {
+        fux_[i] = fuy_[i] = fuz_[i] = fvx_[i] = fvy_[i] = fvz_[i] = fwx_[i] = fwy_[i] = fwz_[i] = 0;
+        ax_[i] = ay_[i] = az_[i] = cos_max_[i] = scale_[i] = 0;
+      }
+      return;
+    }
+    const Real r2 = l_.radius * l_.radius;
+    for (int i = 0; i < N; ++i) {
+      const Real ax = l_.position.x - px_[i], ay = l_.position.y - py_[i], az = l_.position.z - pz_[i];
+      const Real d2 = ax * ax + ay * ay + az * az;
+      lit_[i] = !(d2 <= r2);  // (inside the light: not lit by it)
+      const Real dist = std::sqrt(d2);
+      const Real sin2_max = r2 / d2;
+      cos_max_[i] = sqrt_clamped(1 - sin2_max);
+      // Frame::around(axis / dist)
+      const Real inv = Real(1) / dist;
+      const Real nx = ax * inv, ny = ay * inv, nz = az * inv;
+      const Real sign = nz >= 0 ? Real(1) : Real(-1);
+      const Real a = Real(-1) / (sign + nz);
+      const Real b = nx * ny * a;
+      fux_[i] = 1 + sign * nx * nx * a, fuy_[i] = sign * b, fuz_[i] = -sign * nx;
+      fvx_[i] = b, fvy_[i] = sign + ny * ny * a, fvz_[i] = -ny;
+      fwx_[i] = nx, fwy_[i] = ny, fwz_[i] = nz;
+      ax_[i] = ax, ay_[i] = ay, az_[i] = az;
+      const Real pdf = uniform_cone_pdf(cos_max_[i]);
+      scale_[i] = 1 / (kPi * pdf);
+    }
+  }
+
+  // square_to_uniform_cone, the frame's to_world and normalize, as AreaLightSampler::sample()
+  // calls them, then where the direction meets the sphere.
+  STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void sphere(const Real* u_x, const Real* u_y, Real* t_x, Real* t_y, Real* t_z,
+                                                     Real* distance, Real* i_r, Real* i_g, Real* i_b) const {
+    PacketRays<N> rays;
+    Real t_min[N], t_max[N], t[N];
+    for (int i = 0; i < N; ++i) {
+      const Real z = 1 - u_x[i] * (1 - cos_max_[i]);
+      const Real r = sqrt_clamped(1 - z * z);
+      const SinCos phi = sin_cos_pi(2 * u_y[i]);  // φ = 2π·u.y
+      const Real lx = r * phi.cos, ly = r * phi.sin, lz = z;
+      const Real wx = fux_[i] * lx + fvx_[i] * ly + fwx_[i] * lz;
+      const Real wy = fuy_[i] * lx + fvy_[i] * ly + fwy_[i] * lz;
+      const Real wz = fuz_[i] * lx + fvz_[i] * ly + fwz_[i] * lz;
+      const Real inv = Real(1) / std::sqrt(wx * wx + wy * wy + wz * wz);
+      rays.ox[i] = px_[i], rays.oy[i] = py_[i], rays.oz[i] = pz_[i], rays.time[i] = 0;
+      rays.dx[i] = wx * inv, rays.dy[i] = wy * inv, rays.dz[i] = wz * inv;
+      t_min[i] = 0, t_max[i] = kInfinity;
+    }
+    // kernel::intersect's answers, bit for bit, from its lane form (accel/packet.h).
+    const kernel::Sphere sphere{l_.position, l_.radius, 0};
+    if (!intersect_sphere_lanes<N>(sphere, rays, t_min, t_max, t))
+      for (int i = 0; i < N; ++i) t[i] = kInfinity;
+    for (int i = 0; i < N; ++i) {
+      // Grazing directions numerically missing the sphere take the tangent point's distance.
+      const Real tangent = ax_[i] * rays.dx[i] + ay_[i] * rays.dy[i] + az_[i] * rays.dz[i];
+      const bool lit = lit_[i];
+      t_x[i] = lit ? rays.dx[i] : Real(0), t_y[i] = lit ? rays.dy[i] : Real(0), t_z[i] = lit ? rays.dz[i] : Real(0);
+      distance[i] = lit ? (t[i] == kInfinity ? tangent : t[i]) : Real(0);
+      i_r[i] = lit ? l_.radiance.x * scale_[i] : Real(0);
+      i_g[i] = lit ? l_.radiance.y * scale_[i] : Real(0);
+      i_b[i] = lit ? l_.radiance.z * scale_[i] : Real(0);
+    }
+  }
+
+  const Light& l_;
+  Real px_[N], py_[N], pz_[N];
+  // Sphere, per lane: the cone's frame (around the axis), the axis from p to the centre, the
+  // cone's half-angle, I / L (the intensity's factor), whether the light is seen.
+  Real fux_[N], fuy_[N], fuz_[N], fvx_[N], fvy_[N], fvz_[N], fwx_[N], fwy_[N], fwz_[N];
+  Real ax_[N], ay_[N], az_[N], cos_max_[N], scale_[N];
+  bool lit_[N] = {};
+  Frame disk_;     // Disk: around its normal
+  Real area_ = 0;  // Rect, Disk
 };
 
 // One sample of light l for shading point p with the unit-square point u.
