@@ -139,7 +139,7 @@ void expect_scene_packets_match(const Scene& scene, const std::string& what, Tal
 // differ between the lanes, a fractional and a zero exponent (std::pow, lane by lane), black
 // highlights, a checkerboard, a mirror beside a matte sphere (lanes that go on into trace()),
 // three lights of two kinds — each sample as it would be alone, bit for bit.
-TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
+Scene mixed_materials_scene() {
   Scene scene = lecture_scene();
   scene.settings.width = 24;  // coarse pixels: many straddle two objects
   scene.settings.height = 14;
@@ -159,11 +159,31 @@ TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
   Material mirror = with(100, 0.6);
   mirror.reflectivity = 0.5;
   scene.addSceneObject(new Sphere(Vec3(-0.5, 0.15, 0.5), 0.15, mirror));
+  return scene;
+}
+
+TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
+  Scene scene = mixed_materials_scene();
   scene.add(point_light(Vec3(-1, 2, 2), Vec3(0.5, 0.4, 0.3)));
   scene.add(directional_light(normalize(Vec3(0.3, -1, -0.2)), Vec3(0.2, 0.3, 0.4)));
   Tally tally;
   expect_scene_packets_match(scene, "mixed materials", tally);
   EXPECT_GT(tally.secondary, 0u);
+}
+
+// The same lanes under area lights (add_area_light_lanes: each lane's strata from its own stream,
+// a shading point per lane) between point lights, so that the terms add up in the lights' order:
+// a sphere light of 2×2 strata, a rectangle of 3×3 that some points see from behind — each sample
+// as it would be alone, bit for bit, the ray counts too. (soft-shadows.yaml above has a disk.)
+TEST(PacketFrontEnd, AreaLitLanesOfMixedMaterialsShadeAsAlone) {
+  Scene scene = mixed_materials_scene();
+  scene.add(sphere_light(Vec3(1, 1.5, 1), 0.15, Vec3(40, 35, 30), 2));
+  scene.add(point_light(Vec3(-1, 2, 2), Vec3(0.5, 0.4, 0.3)));
+  scene.add(rect_light(Vec3(-0.5, 0.35, -0.2), Vec3(1, 0, 0), Vec3(0, 0, 0.4), Vec3(3, 2, 1), 3));
+  Tally tally;
+  expect_scene_packets_match(scene, "mixed materials, area lights", tally);
+  EXPECT_GT(tally.secondary, 0u);
+  EXPECT_GT(tally.shadow, 50000u);
 }
 
 // A mirror floor under a mirror sphere, a glass sphere, a matte one, a checkered mirror and a

@@ -4,8 +4,8 @@
 // then, light by light, the shadow rays from those hits — through the packet queries of
 // intersect_packet.h, whose planes and sphere loops run the lanes side by side and whose BVH
 // fetches each node once per packet. A sample whose surface spawns no ray (no mirror, no
-// glass) in a scene of point and directional lights is shaded there too, the lanes side by side
-// (add_light_lanes). So is a sample on a mirror or on glass, and the packet's samples there take
+// glass) is shaded there too, the lanes side by side (add_light_lanes; an area light's strata
+// stratum after stratum, each lane's drawn from its own stream: add_area_light_lanes). So is a sample on a mirror or on glass, and the packet's samples there take
 // their reflected rays together, then their refracted rays, each as another such step, through
 // their ray trees (packet_tree) while enough lanes follow the same branch. Every other sample,
 // and every lane where too few go on together, goes on alone in the one integrator, trace()
@@ -58,14 +58,15 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void whole_power_lanes(const Real* __rest
 #endif
 }
 
-// shade_from()'s term of one point or directional light of intensity `radiance`, added to r in
-// the lanes of `lanes` — the same operations on the same values, lane by lane: Lambert,
-// Blinn-Phong where dot(n, h) > 0 and k_s is not black, times the intensity and the shadow ray's
-// transmittance (tr_x, tr_y, tr_z); 0 where it is black (in shadow) or where the lane cast no
-// shadow ray (not in `cast`: dot(n, to_light) ≤ 0).
+// shade_from()'s term of a light of intensity (i_r[i], i_g[i], i_b[i]) in lane i (a point or
+// directional light, or one sample of an area light), added to r in the lanes of `lanes` — the
+// same operations on the same values, lane by lane: Lambert, Blinn-Phong where dot(n, h) > 0 and
+// k_s is not black, times the intensity and the shadow ray's transmittance (tr_x, tr_y, tr_z); 0
+// where it is black (in shadow) or where the lane cast no shadow ray (not in `cast`:
+// dot(n, to_light) ≤ 0, or a black intensity).
 template <int N>
 STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
-    const Vec3& radiance, std::uint32_t lanes, std::uint32_t cast, const Real* __restrict n_dot_l,
+    const Real* __restrict i_r, const Real* __restrict i_g, const Real* __restrict i_b, std::uint32_t lanes, std::uint32_t cast, const Real* __restrict n_dot_l,
     const Real* __restrict n_dot_h, const Real* __restrict tr_x, const Real* __restrict tr_y,
     const Real* __restrict tr_z, const Real* __restrict cr, const Real* __restrict cg,
     const Real* __restrict cb, const Real* __restrict kd, const Real* __restrict sr, const Real* __restrict sg,
@@ -103,9 +104,9 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
     const Real diffuse = kd[i] * n_dot_l[i];
     const Real x = cr[i] * diffuse, y = cg[i] * diffuse, z = cb[i] * diffuse;
     const Real xs = x + sr[i] * power[i], ys = y + sg[i] * power[i], zs = z + sb[i] * power[i];
-    const Real ax = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? xs : x) : x) * radiance.x * tx[i];
-    const Real ay = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? ys : y) : y) * radiance.y * ty[i];
-    const Real az = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? zs : z) : z) * radiance.z * tz[i];
+    const Real ax = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? xs : x) : x) * i_r[i] * tx[i];
+    const Real ay = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? ys : y) : y) * i_g[i] * ty[i];
+    const Real az = (n_dot_h[i] > 0 ? (shiny[i] != 0 ? zs : z) : z) * i_b[i] * tz[i];
     // shade_from adds nothing where the transmittance is black: (tx, ty, tz) = 0.
     rr[i] = rr[i] + (tx[i] != 0 ? ax : ty[i] != 0 ? ax : tz[i] != 0 ? ax : Real(0));
     rg[i] = rg[i] + (tx[i] != 0 ? ay : ty[i] != 0 ? ay : tz[i] != 0 ? ay : Real(0));
@@ -147,6 +148,91 @@ struct PacketStep {
   std::uint32_t spawn = 0;    // lanes on a mirror or glass the packet follows (packet_spawner), shaded here too
 };
 
+// The per-surface terms of local_terms() in lanes, as add_light_lanes() reads them.
+template <int N>
+struct ShadingLanes {
+  Real cr[N], cg[N], cb[N];  // the colour c
+  Real kd[N];                // k_d times the opacity
+  Real sr[N], sg[N], sb[N];  // k_s
+  Real shiny[N], shininess[N];
+};
+
+// For unit directions (l_x[i], l_y[i], l_z[i]) towards a light from the lanes' surface points
+// (step's normals towards the viewer, the views −r's directions): dot(n, to_light), shade_from()'s
+// dot(n, h) with h = normalize(to_light + view), and the shadow rays as shadow_ray() makes them
+// (spawn_ray's offset along the geometric normal, to the side of the light) — lane by lane the
+// same arithmetic, side by side.
+template <int N>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void light_lanes(const SurfaceLanes<N>& surface, const PacketStep<N>& step,
+                                                        const PacketRays<N>& r, const Real* l_x, const Real* l_y,
+                                                        const Real* l_z, Real* n_dot_l, Real* n_dot_h,
+                                                        PacketRays<N>& shadow) {
+  shadow.unit = true;  // (unit directions)
+  for (int i = 0; i < N; ++i) {
+    const Real nx = step.nx[i], ny = step.ny[i], nz = step.nz[i];
+    const Real lx = l_x[i], ly = l_y[i], lz = l_z[i];
+    n_dot_l[i] = nx * lx + ny * ly + nz * lz;
+    const Real hx = lx + -r.dx[i], hy = ly + -r.dy[i], hz = lz + -r.dz[i];
+    const Real inv = Real(1) / std::sqrt(hx * hx + hy * hy + hz * hz);
+    n_dot_h[i] = nx * (hx * inv) + ny * (hy * inv) + nz * (hz * inv);
+    const Real gx = surface.gx[i], gy = surface.gy[i], gz = surface.gz[i];
+    const Real side = lx * gx + ly * gy + lz * gz >= 0 ? Real(1) : Real(-1);
+    const Real o = side * surface.offset[i];
+    shadow.ox[i] = surface.px[i] + gx * o, shadow.oy[i] = surface.py[i] + gy * o, shadow.oz[i] = surface.pz[i] + gz * o;
+    shadow.dx[i] = lx, shadow.dy[i] = ly, shadow.dz[i] = lz, shadow.time[i] = r.time[i];
+  }
+}
+
+// area_light_illumination()'s term of area light `light` (k×k strata), added to step's colours
+// in the lanes of `lanes` (shaded here: their terms in `shading`), each lane's random numbers
+// drawn from its stream rng[i] in area_light_illumination()'s order: stratum after stratum, the
+// lanes' samples side by side (AreaLightLanes: a shading point per lane), their shadow rays
+// together (shadow_transmittance), their terms (add_light_lanes) summed per lane, and the sums'
+// mean added — the same samples, rays and arithmetic as each lane's alone.
+template <int N>
+STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_area_light_lanes(const SceneView& s, const Light& light,
+                                                             std::uint32_t lanes, const SurfaceLanes<N>& surface,
+                                                             PacketStep<N>& step, const PacketRays<N>& r,
+                                                             SampleStream* rng, const ShadingLanes<N>& shading,
+                                                             RayCounters& counters) {
+  const int k = light.samples;
+  const AreaLightLanes<N> sampler(light, surface.px, surface.py, surface.pz);
+  Real sum_r[N] = {}, sum_g[N] = {}, sum_b[N] = {};
+  for (int stratum = 0; stratum < k * k; ++stratum) {
+    Real ux[N], uy[N];
+    for (int i = 0; i < N; ++i) ux[i] = uy[i] = Real(0.5);  // (lanes nobody reads)
+    for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      const Vec2 u = stratified(stratum % k, stratum / k, k, rng[i].next2());
+      ux[i] = u.x, uy[i] = u.y;
+    }
+    Real lx[N], ly[N], lz[N], distance[N], ir[N], ig[N], ib[N];
+    sampler.sample(ux, uy, lx, ly, lz, distance, ir, ig, ib);
+    Real n_dot_l[N], n_dot_h[N];
+    PacketRays<N> shadow;
+    light_lanes<N>(surface, step, r, lx, ly, lz, n_dot_l, n_dot_h, shadow);
+    std::uint32_t cast = 0;  // shade_from() casts a shadow ray where the sample lights the front
+    for (int i = 0; i < N; ++i) {
+      const bool black = ir[i] == 0 && ig[i] == 0 && ib[i] == 0;
+      cast |= std::uint32_t(!black && !(n_dot_l[i] <= 0)) << i;
+    }
+    cast &= lanes;
+    counters.shadow += std::uint64_t(wide_bvh_detail::popcount(cast));
+    Real tx[N], ty[N], tz[N];
+    for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
+    shadow_transmittance<N>(s, cast, shadow, distance, tx, ty, tz);
+    add_light_lanes<N>(ir, ig, ib, lanes, cast, n_dot_l, n_dot_h, tx, ty, tz, shading.cr, shading.cg, shading.cb,
+                       shading.kd, shading.sr, shading.sg, shading.sb, shading.shiny, shading.shininess, sum_r, sum_g,
+                       sum_b);
+  }
+  const Real mean = Real(1) / (k * k);
+  for (int i = 0; i < N; ++i) {
+    step.rr[i] = step.rr[i] + sum_r[i] * mean;
+    step.rg[i] = step.rg[i] + sum_g[i] * mean;
+    step.rb[i] = step.rb[i] + sum_b[i] * mean;
+  }
+}
+
 // Whether the packet front end follows reflected and refracted rays in packets in scene s
 // (packet_tree): no area lights (whose samples draw random numbers), a depth and a ray budget.
 STRAHL_HOST_DEVICE inline bool packet_trees(const SceneView& s) {
@@ -162,12 +248,15 @@ STRAHL_HOST_DEVICE inline bool packet_spawner(const Material& m) {
 
 // trace()'s first step for the active lanes of r (camera rays, or a branch of packet_tree), the
 // lanes side by side: the nearest hits, then, light by light, the shadow rays from those hits
-// (one packet per light); the lanes whose material spawns no ray are shaded too, when every
-// light is a point or a directional one (add_light_lanes). The same hits, shadow rays and
-// arithmetic as trace()'s, lane by lane; no random numbers are drawn.
+// (one packet per light); the lanes whose material spawns no ray are shaded too
+// (add_light_lanes), in scenes with area lights only where the lanes' random-number streams
+// rng[] are given (add_area_light_lanes draws their samples from them, as trace() would). The
+// same hits, shadow rays and arithmetic as trace()'s, lane by lane; no other random numbers are
+// drawn.
 template <int N>
 STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
-                                           PacketStep<N>& __restrict out, RayCounters& counters) {
+                                           PacketStep<N>& __restrict out, RayCounters& counters,
+                                           SampleStream* rng = nullptr) {
   PacketHits<N> hits;
   closest_hit_packet<N>(s, active, r, hits);
 
@@ -182,8 +271,6 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   Real* const gx = surface.gx; Real* const gy = surface.gy; Real* const gz = surface.gz;
   Real* const offset = surface.offset;
   Real* const nx = out.nx; Real* const ny = out.ny; Real* const nz = out.nz;
-  Real vx[N], vy[N], vz[N];
-  for (int i = 0; i < N; ++i) vx[i] = -r.dx[i], vy[i] = -r.dy[i], vz[i] = -r.dz[i];  // (the rays' directions)
   std::uint32_t& lit = out.lit;  // lanes that hit a surface (and no emitter): they shade
   lit = 0;
   const bool side_by_side = s.area_light_count == 0 && (hits.in_lanes || hits.lanes.set(active, hits.hit.at));
@@ -223,22 +310,27 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   }
 
   // Lanes whose material spawns no ray get their colour here, the local illumination alone
-  // (local_illumination's arithmetic, side by side), when every light is a point or directional
-  // one: the ambient term now, each light's term as its shadow rays come back. So do the lanes
+  // (local_illumination's arithmetic, side by side): the ambient term now, each light's term as
+  // its shadow rays come back. So do the lanes
   // on a mirror or glass whose rays the packet follows (their local colour).
   std::uint32_t& local = out.local;
   std::uint32_t& spawn = out.spawn;
   local = spawn = 0;
   const bool trees = packet_trees(s);
+  // (Area lights draw random numbers: their lanes are shaded here only with the lanes' streams.)
+  const bool shade_here = s.area_light_count == 0 || rng != nullptr;
   Real* const rr = out.rr; Real* const rg = out.rg; Real* const rb = out.rb;
-  Real cr[N], cg[N], cb[N], kd[N], sr[N], sg[N], sb[N], shiny[N], shininess[N];
+  ShadingLanes<N> shading;
+  Real* const cr = shading.cr; Real* const cg = shading.cg; Real* const cb = shading.cb; Real* const kd = shading.kd;
+  Real* const sr = shading.sr; Real* const sg = shading.sg; Real* const sb = shading.sb;
+  Real* const shiny = shading.shiny; Real* const shininess = shading.shininess;
   // All lit lanes on one material without a checker (as a pixel's samples mostly are): its terms
   // computed once and set in every lit lane side by side. Else lane by lane, the terms of the last
   // material without a checker kept for the next lane of the same material.
   const int first_lit = lit != 0 ? wide_bvh_detail::lowest_bit(lit) : 0;
   std::uint32_t other_material = 0;  // lanes on another material than the first lit lane's
   for (int i = 0; i < N; ++i) other_material |= std::uint32_t(surface.material[i] != surface.material[first_lit]) << i;
-  int one_material = int(lit != 0 && s.area_light_count == 0 && (other_material & lit) == 0);
+  int one_material = int(lit != 0 && shade_here && (other_material & lit) == 0);
   bool one_spawner = false;
   if (one_material != 0) {
     const Material& material = s.materials[surface.material[first_lit]];
@@ -263,7 +355,7 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     std::uint32_t plain = ~0u;  // its index (~0u: none yet)
     bool plain_spawner = false;  // whether it spawns rays the packet follows (packet_spawner)
     LocalTerms terms{}, fresh{};
-    for (std::uint32_t m = s.area_light_count == 0 ? lit : 0; m != 0; m &= m - 1) {
+    for (std::uint32_t m = shade_here ? lit : 0; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       const std::uint32_t material_index = surface.material[i];
       const LocalTerms* t = &terms;
@@ -303,7 +395,10 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   // shadow_ray: the same arithmetic, side by side), in one packet per light.
   for (std::uint32_t k = 0; k < s.light_count; ++k) {
     const Light& light = s.lights[k];
-    if (light.is_area()) continue;
+    if (light.is_area()) {
+      if (local != 0) add_area_light_lanes<N>(s, light, local, surface, out, r, rng, shading, counters);
+      continue;
+    }
     Real lx[N], ly[N], lz[N], distance[N];
     if (light.kind == LightKind::Directional) {
       for (int i = 0; i < N; ++i)
@@ -316,17 +411,9 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
         lx[i] = ex * inv, ly[i] = ey * inv, lz[i] = ez * inv, distance[i] = dist;
       }
     }
-    Real ox[N], oy[N], oz[N], n_dot_l[N], n_dot_h[N];
-    for (int i = 0; i < N; ++i) {
-      n_dot_l[i] = nx[i] * lx[i] + ny[i] * ly[i] + nz[i] * lz[i];
-      // shade_from's half vector: normalize(to_light + view).
-      const Real hx = lx[i] + vx[i], hy = ly[i] + vy[i], hz = lz[i] + vz[i];
-      const Real inv = Real(1) / std::sqrt(hx * hx + hy * hy + hz * hz);
-      n_dot_h[i] = nx[i] * (hx * inv) + ny[i] * (hy * inv) + nz[i] * (hz * inv);
-      const Real side = lx[i] * gx[i] + ly[i] * gy[i] + lz[i] * gz[i] >= 0 ? Real(1) : Real(-1);
-      const Real o = side * offset[i];
-      ox[i] = px[i] + gx[i] * o, oy[i] = py[i] + gy[i] * o, oz[i] = pz[i] + gz[i] * o;
-    }
+    Real n_dot_l[N], n_dot_h[N];
+    PacketRays<N> shadow;
+    light_lanes<N>(surface, out, r, lx, ly, lz, n_dot_l, n_dot_h, shadow);
     std::uint32_t cast = 0;  // shade_from() casts no ray where dot(n, to_light) <= 0
     for (int i = 0; i < N; ++i) cast |= std::uint32_t(!(n_dot_l[i] <= 0)) << i;
     cast &= lit;
@@ -336,12 +423,6 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
       slots[i].first.lights[k].sample = LightSample{Vec3(lx[i], ly[i], lz[i]), distance[i]};
     }
     if (cast != 0) {
-      PacketRays<N> shadow;
-      shadow.unit = true;  // (to_light: normalised above)
-      for (int i = 0; i < N; ++i) {
-        shadow.ox[i] = ox[i], shadow.oy[i] = oy[i], shadow.oz[i] = oz[i];
-        shadow.dx[i] = lx[i], shadow.dy[i] = ly[i], shadow.dz[i] = lz[i], shadow.time[i] = r.time[i];
-      }
       for (std::uint32_t m = cast; m != 0; m &= m - 1) ++counters.shadow;
       transmittance_packet<N>(s, cast, shadow, distance, tx, ty, tz);
       for (std::uint32_t m = cast & ~local; m != 0; m &= m - 1) {
@@ -352,9 +433,12 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     } else {
       for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
     }
-    if ((local | spawn) != 0)
-      add_light_lanes<N>(light.radiance, local | spawn, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb,
+    if ((local | spawn) != 0) {
+      Real ir[N], ig[N], ib[N];
+      for (int i = 0; i < N; ++i) ir[i] = light.radiance.x, ig[i] = light.radiance.y, ib[i] = light.radiance.z;
+      add_light_lanes<N>(ir, ig, ib, local | spawn, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb,
                          shiny, shininess, rr, rg, rb);
+    }
   }
 }
 
@@ -536,8 +620,12 @@ STRAHL_HOST_DEVICE inline void packet_radiance_of(const SceneView& s, const Came
   }
   counters.camera += std::uint64_t(count);
 
+  // The lanes' random numbers, for the area lights' samples of the lanes packet_step() shades.
+  UninitializedLanes<SampleStream, N> streams;
+  if (s.area_light_count > 0)
+    for (int i = 0; i < N; ++i) streams.at[i] = SampleStream{key[i < count ? i : 0], index[i < count ? i : 0]};
   PacketStep<N> step;
-  packet_step<N>(s, active, r, step, counters);
+  packet_step<N>(s, active, r, step, counters, s.area_light_count > 0 ? streams.at : nullptr);
   const std::uint32_t lit = step.lit, local = step.local;
 
   // The local lanes' colours, guarded as guard_sample() does, side by side.

@@ -88,20 +88,12 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Vec3 shade_from(const SceneView& s, const
   return contribution * intensity * tr;
 }
 
-// The GPU (one thread per camera sample) takes an area light's samples one after another; so do
-// host builds with STRAHL_PORTABLE_KERNELS, where the test portable_kernels_match demands the
-// images of the CPU's groups below, bit for bit.
-#if defined(__CUDA_ARCH__) || defined(STRAHL_PORTABLE_KERNELS)
-#define STRAHL_AREA_LIGHT_ONE_BY_ONE 1
-#endif
-
-#if !defined(STRAHL_AREA_LIGHT_ONE_BY_ONE)
 // transmittance(s, r.ray(i), distance[i]) for the lanes of `cast`, into (tx[i], ty[i], tz[i]):
 // as one packet (transmittance_packet) where more than half of the N lanes take part, else one
 // by one — a packet half full or less costs more than its rays one by one (a light of 2×2
 // samples in 8 lanes: 14 % slower in the lecture's scene). The other lanes are left as they are.
 template <int N>
-STRAHL_FORCE_INLINE void shadow_transmittance(const SceneView& s, std::uint32_t cast, const PacketRays<N>& shadow,
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void shadow_transmittance(const SceneView& s, std::uint32_t cast, const PacketRays<N>& shadow,
                                               const Real* distance, Real* tx, Real* ty, Real* tz) {
   if constexpr (N == 8 || N == 16) {
     if (wide_bvh_detail::popcount(cast) > N / 2) {
@@ -116,6 +108,14 @@ STRAHL_FORCE_INLINE void shadow_transmittance(const SceneView& s, std::uint32_t 
   }
 }
 
+// The GPU (one thread per camera sample) takes an area light's samples one after another; so do
+// host builds with STRAHL_PORTABLE_KERNELS, where the test portable_kernels_match demands the
+// images of the CPU's groups below, bit for bit.
+#if defined(__CUDA_ARCH__) || defined(STRAHL_PORTABLE_KERNELS)
+#define STRAHL_AREA_LIGHT_ONE_BY_ONE 1
+#endif
+
+#if !defined(STRAHL_AREA_LIGHT_ONE_BY_ONE)
 // Strata first … first + size − 1 (size ≤ N) of an area light with k×k strata seen from one
 // point (`light`: every lane from sp.p), added to `sum` in their order: the samples side by side,
 // then their shadow rays (shadow_transmittance: from one point towards one light, as coherent as
