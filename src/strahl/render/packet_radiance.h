@@ -261,8 +261,8 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   closest_hit_packet<N>(s, active, r, hits);
 
   // trace()'s first step up to the shadow rays: emitter, surface point, normal — side by side
-  // (surface_lanes) where every lane hit a sphere, a plane or nothing and there are no area
-  // lights, else lane by lane; the points, geometric normals, offsets, materials and texture
+  // (surface_lanes) where every lane hit a sphere, a plane or nothing (the emitters, where there
+  // are area lights, lane by lane), else lane by lane; the points, geometric normals, offsets, materials and texture
   // coordinates in `surface`, the normals towards the viewer in (nx, ny, nz) (0 in lanes that do
   // not shade). The lanes that go on in trace() get their FirstHit below, once known.
   FirstHitSlot* const slots = out.slots;
@@ -273,13 +273,20 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   Real* const nx = out.nx; Real* const ny = out.ny; Real* const nz = out.nz;
   std::uint32_t& lit = out.lit;  // lanes that hit a surface (and no emitter): they shade
   lit = 0;
-  const bool side_by_side = s.area_light_count == 0 && (hits.in_lanes || hits.lanes.set(active, hits.hit.at));
+  const bool side_by_side = hits.in_lanes || hits.lanes.set(active, hits.hit.at);
+  int emitter[N];  // side by side: the area light each lane's ray meets first, or −1
   if (side_by_side) {
     surface_lanes<N>(s, active, r, hits.lanes, surface, lit);
     for (int i = 0; i < N; ++i) {
       const Real x = gx[i], y = gy[i], z = gz[i];
       const bool front = r.dx[i] * x + r.dy[i] * y + r.dz[i] * z < 0;  // dot(direction, geometric normal)
       nx[i] = front ? x : -x, ny[i] = front ? y : -y, nz[i] = front ? z : -z;
+      emitter[i] = -1;
+    }
+    for (std::uint32_t m = s.area_light_count > 0 ? active : 0; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      emitter[i] = nearest_emitter(s, r.ray(i), hits.at(i).t);  // (a lane meeting one does not shade)
+      if (emitter[i] >= 0) lit &= ~(1u << i);
     }
   } else {
     lit = 0;
@@ -387,7 +394,7 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
       const int i = wide_bvh_detail::lowest_bit(m);
       FirstHit& f = slots[i].first;
       f.hit = hits.at(i);
-      f.emitter = -1;
+      f.emitter = emitter[i];
       if ((lit >> i) & 1u) surface.get(i, r.time[i], f.sp);
     }
 
