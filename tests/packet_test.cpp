@@ -491,12 +491,23 @@ TEST(Packet, OtherStructuresAndTinyScenes) {
     EXPECT_GT(check_all<8>(b.view, rays, t_max).hits, 0u);
     check_all<16>(b.view, rays, t_max);
   }
+  // One leaf of spheres and triangles (one_leaf_occluded_packet: the spheres side by side, the
+  // triangles lane by lane), rays ending short of it too.
   Prims tiny;
   tiny.triangle(Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0));
   tiny.spheres.push_back({Vec3(0, 0, 0.5), 0.3, 0});
+  tiny.spheres.push_back({Vec3(0.8, 0.5, -0.4), 0.4, 0});
+  tiny.spheres.push_back({Vec3(-0.9, 0.2, 0.1), 0.25, 0});
+  tiny.triangle(Vec3(-1, 1, -1), Vec3(1, 1, -1), Vec3(0, 1.2, 1));
   const Accel one = build_accel(AccelKind::Bvh, tiny.set());
-  check_all<8>(one.view(tiny.set()), rays, t_max);
-  check_all<16>(one.view(tiny.set()), rays, t_max);
+  const AccelView one_view = one.view(tiny.set());
+  ASSERT_TRUE(one_view.one_leaf);
+  std::vector<Real> short_of(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) short_of[i] = i % 3 == 0 ? Real(0.5) : kInfinity;
+  const Counts c8 = check_all<8>(one_view, rays, short_of);
+  EXPECT_GT(c8.occluded, rays.size() / 8);
+  EXPECT_LT(c8.occluded, rays.size());
+  check_all<16>(one_view, rays, t_max);
   const Prims none;
   const Accel empty = build_accel(AccelKind::Bvh, none.set());
   EXPECT_EQ(check_all<16>(empty.view(none.set()), rays, t_max).hits, 0u);

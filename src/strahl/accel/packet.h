@@ -264,6 +264,31 @@ STRAHL_HOST_DEVICE inline std::uint32_t sphere_leaf_occluded_packet(const Primit
   return m & active;
 }
 
+// occluded() for each active lane where the structure is one leaf of spheres and other
+// primitives (a few spheres beside a triangle or a solid): the spheres side by side
+// (sphere_leaf_occluded_packet), then, for the lanes they leave open, the other primitives
+// lane by lane with the naive loop's tests — any hit is an answer, so the order does not matter.
+template <int N>
+STRAHL_HOST_DEVICE inline std::uint32_t one_leaf_occluded_packet(const PrimitiveSet& p, std::uint32_t active,
+                                                                 const Ray* rays, const Real* t_min,
+                                                                 const Real* t_max) {
+  std::uint32_t m = p.sphere_count > 0 ? sphere_leaf_occluded_packet<N>(p, active, PacketRays<N>(rays), t_min, t_max) : 0;
+  for (std::uint32_t open = active & ~m; open != 0; open &= open - 1) {
+    const int i = wide_bvh_detail::lowest_bit(open);
+    const Ray& ray = rays[i];
+    const kernel::RayShear shear = ray_shear_for(p, ray.direction);
+    for (std::uint32_t prim = p.sphere_count; prim < p.size(); ++prim) {
+      const bool hit = p.is_triangle(prim) ? intersect_primitive(p, prim, ray, shear, t_min[i], t_max[i]).t < kInfinity
+                                           : hits_other(p, prim, ray, t_min[i], t_max[i]);
+      if (hit) {
+        m |= 1u << i;
+        break;
+      }
+    }
+  }
+  return m & active;
+}
+
 template <int N>
 STRAHL_HOST_DEVICE inline void nearest_hit_packet(const AccelView& a, std::uint32_t active, const Ray* rays,
                                                   const Real* t_min, const Real* t_max, NearestHit* out) {
@@ -309,6 +334,7 @@ STRAHL_HOST_DEVICE inline std::uint32_t occluded_packet(const AccelView& a, std:
 #endif
   if (a.kind == AccelKind::Bvh && !a.one_leaf) return wide_bvh_occluded_packet<N>(a.bvh, a.prims, active, rays, t_min, t_max);
   if (is_sphere_leaf(a)) return sphere_leaf_occluded_packet<N>(a.prims, active, PacketRays<N>(rays), t_min, t_max);
+  if (a.one_leaf) return one_leaf_occluded_packet<N>(a.prims, active, rays, t_min, t_max);
   std::uint32_t m = 0;
   for (int i = 0; i < N; ++i)
     if (((active >> i) & 1u) && occluded(a, rays[i], t_min[i], t_max[i])) m |= 1u << i;
