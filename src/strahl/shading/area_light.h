@@ -182,22 +182,29 @@ class AreaLightLanes {
         qz[i] = l_.position.z + (disk_.u.z * d.x + disk_.v.z * d.y) * l_.radius;
       }
     }
-    // What sample() makes of the point: direction, distance, the cosine at the light, intensity.
+    // What sample() makes of the point: direction, distance, the cosine at the light, intensity
+    // — every value in every lane, then chosen by comparisons of Reals, so that the loop runs the
+    // lanes side by side.
+    const Vec3 normal = l_.normal, radiance = l_.radiance;
+    const Real area = area_;
+    Real dist[N], tx[N], ty[N], tz[N], ir[N], ig[N], ib[N];
     for (int i = 0; i < N; ++i) {
       const Real dx = qx[i] - px_[i], dy = qy[i] - py_[i], dz = qz[i] - pz_[i];
       const Real r2 = dx * dx + dy * dy + dz * dz;
-      distance[i] = std::sqrt(r2);
-      const Real inv = Real(1) / distance[i];
-      const bool seen = distance[i] > 0;
-      t_x[i] = seen ? dx * inv : Real(0);
-      t_y[i] = seen ? dy * inv : Real(0);
-      t_z[i] = seen ? dz * inv : Real(0);
-      const Real cos_light = -(t_x[i] * l_.normal.x + t_y[i] * l_.normal.y + t_z[i] * l_.normal.z);
-      const bool lit = seen && !(cos_light <= 0);  // (sample(): cos_light <= 0 sees the back)
-      const Real factor = cos_light * area_ / (kPi * r2);
-      i_r[i] = lit ? l_.radiance.x * factor : Real(0);
-      i_g[i] = lit ? l_.radiance.y * factor : Real(0);
-      i_b[i] = lit ? l_.radiance.z * factor : Real(0);
+      const Real d = std::sqrt(r2);
+      const Real inv = Real(1) / d;
+      const Real x = d > 0 ? dx * inv : Real(0), y = d > 0 ? dy * inv : Real(0), z = d > 0 ? dz * inv : Real(0);
+      const Real cos_light = -(x * normal.x + y * normal.y + z * normal.z);
+      const Real factor = cos_light * area / (kPi * r2);
+      // (sample(): no light where d is not > 0, nor where cos_light <= 0: the back is seen)
+      ir[i] = d > 0 ? (cos_light <= 0 ? Real(0) : radiance.x * factor) : Real(0);
+      ig[i] = d > 0 ? (cos_light <= 0 ? Real(0) : radiance.y * factor) : Real(0);
+      ib[i] = d > 0 ? (cos_light <= 0 ? Real(0) : radiance.z * factor) : Real(0);
+      dist[i] = d, tx[i] = x, ty[i] = y, tz[i] = z;
+    }
+    for (int i = 0; i < N; ++i) {
+      distance[i] = dist[i], t_x[i] = tx[i], t_y[i] = ty[i], t_z[i] = tz[i];
+      i_r[i] = ir[i], i_g[i] = ig[i], i_b[i] = ib[i];
     }
   }
 
