@@ -29,24 +29,11 @@
 #include "strahl/render/surface_point.h"
 #include "strahl/sampling/rng.h"
 #include "strahl/shading/area_light.h"
+#include "strahl/shading/blinn_phong.h"
 #include "strahl/shading/glossy.h"
 #include "strahl/shading/optics.h"
 
 namespace strahl {
-
-// x^e for the Blinn-Phong exponent: by repeated squaring when e is a whole number below 2^16
-// (a handful of multiplications instead of a call to pow, which dominated the shading cost).
-STRAHL_HOST_DEVICE inline Real specular_power(Real x, Real e) {
-  if (e >= 0 && e < 65536 && e == Real(static_cast<unsigned>(e))) {
-    Real result = 1;
-    for (unsigned n = static_cast<unsigned>(e); n != 0; n >>= 1) {
-      if (n & 1) result *= x;
-      x *= x;
-    }
-    return result;
-  }
-  return std::pow(x, e);
-}
 
 // The shadow ray from surface point `sp` towards a light in unit direction `to_light`.
 STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Ray shadow_ray(const SurfacePoint& sp, const Vec3& to_light) {
@@ -146,18 +133,26 @@ STRAHL_FORCE_INLINE void add_area_light_group(const SceneView& s, const AreaLigh
     distance[i] = lit ? distance[i] : Real(0);
   }
   counters.shadow += std::uint64_t(wide_bvh_detail::popcount(cast));
+  for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
   shadow_transmittance<N>(s, cast, shadow, distance, tx, ty, tz);
-  for (int i = 0; i < size; ++i) {
-    const Vec3 intensity(ir[i], ig[i], ib[i]);
-    if (is_black(intensity)) continue;
-    const Vec3 to_light(lx[i], ly[i], lz[i]);
-    KnownLight known{};  // (read by shade_from only where it casts the shadow ray)
-    if ((cast >> i) & 1u) {
-      known.transmittance = Vec3(tx[i], ty[i], tz[i]);
-      known.n_dot_h = dot(n, normalize(to_light + view));  // (shade_from's)
-    }
-    sum += shade_from(s, sp, n, view, c, m, to_light, distance[i], intensity, counters, &known);
+  // shade_from() on each sample with its shadow ray's answer, the samples side by side
+  // (add_light_lanes: the same arithmetic; 0 where no ray was cast), added to `sum` in order.
+  ShadingLanes<N> terms;
+  Real n_dot_l[N], n_dot_h[N], rr[N], rg[N], rb[N];
+  const Real kd = m.diffuse * (1 - m.transparency), shiny = is_black(m.specular) ? Real(0) : Real(1);
+  for (int i = 0; i < N; ++i) {
+    terms.cr[i] = c.x, terms.cg[i] = c.y, terms.cb[i] = c.z, terms.kd[i] = kd;
+    terms.sr[i] = m.specular.x, terms.sg[i] = m.specular.y, terms.sb[i] = m.specular.z;
+    terms.shiny[i] = shiny, terms.shininess[i] = m.shininess;
+    n_dot_l[i] = n.x * lx[i] + n.y * ly[i] + n.z * lz[i];
+    const Real hx = lx[i] + view.x, hy = ly[i] + view.y, hz = lz[i] + view.z;  // normalize(to_light + view)
+    const Real inv = Real(1) / std::sqrt(hx * hx + hy * hy + hz * hz);
+    n_dot_h[i] = n.x * (hx * inv) + n.y * (hy * inv) + n.z * (hz * inv);
+    rr[i] = rg[i] = rb[i] = 0;
   }
+  add_light_lanes<N>(ir, ig, ib, (1u << size) - 1, cast, n_dot_l, n_dot_h, tx, ty, tz, terms.cr, terms.cg, terms.cb,
+                     terms.kd, terms.sr, terms.sg, terms.sb, terms.shiny, terms.shininess, rr, rg, rb);
+  for (int i = 0; i < size; ++i) sum += Vec3(rr[i], rg[i], rb[i]);
 }
 #endif
 
