@@ -15,17 +15,9 @@
 #   bench/soft-shadows-pov.sh [build-dir] [width] [height] [goal]   (defaults: build 480 270 2e-3)
 # (needs: apt-get install povray)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=$(cd "${1:-$root/build}" && pwd)
-width=${2:-480}
-height=${3:-270}
-goal=${4:-2e-3}
-pov_scene=$root/../shared/bench/lecture.pov
-[ -f "$pov_scene" ] || { echo "missing $pov_scene" >&2; exit 2; }
-command -v povray >/dev/null || { echo "povray is not installed (apt-get install povray)" >&2; exit 2; }
-threads=$(nproc)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+default_width=480 default_height=270
+# shellcheck source=bench/quality-common.sh
+source "$(dirname "$0")/quality-common.sh"
 cd "$work"
 # The sphere light's radiance L = 150 gives E = L·π·r²/d² (small light), strahl's shading takes
 # E/π; POV-Ray's fade gives I·2/(1 + (d/f)²) ≈ I·2f²/d², so I = 150·0.15² / (2·0.01²) = 16875.
@@ -45,11 +37,6 @@ pov() {  # pov AREA OPTIONS…
   povray -D -V +W"$width" +H"$height" +WT"$threads" +FN16 File_Gamma=1.0 +Isoft.pov +O"$out" \
     Declare=AREA="$area" "$@" >/dev/null 2>&1
 }
-wall1() { local s e; s=$(date +%s.%N); "$@"; e=$(date +%s.%N); echo "$e - $s" | bc; }
-wall() { { wall1 "$@"; wall1 "$@"; wall1 "$@"; } | sort -g | sed -n 2p; }  # the median of three
-rmse() { "$build/bin/strahl-diff" "$1" "$2" | awk '{print $2}'; }
-below() { awk -v a="$1" -v b="$goal" 'BEGIN { exit !(a <= b) }'; }
-faster() { [ -z "$2" ] || awk -v a="$1" -v b="${2%% *}" 'BEGIN { exit !(a < b) }'; }
 size=(--width "$width" --height "$height")
 
 echo "load: $(cut -d' ' -f1-3 /proc/loadavg); ${width}x${height}, $threads threads, goal RMSE $goal"
@@ -65,9 +52,7 @@ for spp in 4 16 64; do
     t=$(wall "$build/bin/strahl" "soft-$k.yaml" "${size[@]}" --sampler stratified --spp $spp -q -o s.pfm)
     e=$(rmse ref-strahl.pfm s.pfm)
     printf "strahl  stratified %2d spp, %dx%d light samples   %7.2f s  rmse %s\n" "$spp" "$k" "$k" "$t" "$e"
-    if below "$e" && faster "$t" "$best_s"; then
-      best_s="$(printf %.3f "$t") s (stratified $spp spp, ${k}x$k light samples, rmse $e)"
-    fi
+    keep_best best_s "$t" "$e" "stratified $spp spp, ${k}x$k light samples"
   done
 done
 out=pov.png
@@ -77,13 +62,9 @@ for area in 4 6 8 12; do
     t=$(wall pov $area $setting)
     e=$(rmse ref-pov.png pov.png)
     printf "POV-Ray %2dx%-2d sub-lights, %-16s    %7.2f s  rmse %s\n" "$area" "$area" "$setting" "$t" "$e"
-    if below "$e" && faster "$t" "$best_p"; then
-      best_p="$(printf %.3f "$t") s (${area}x$area sub-lights, $setting, rmse $e)"
-    fi
+    keep_best best_p "$t" "$e" "${area}x$area sub-lights, $setting"
   done
 done
 echo "fastest within $goal of its own reference: strahl ${best_s:-none}; POV-Ray ${best_p:-none}"
-if [ -n "$best_s" ] && [ -n "$best_p" ]; then
-  printf "soft shadows, time to quality: speed-up %.1fx\n" "$(echo "${best_p%% *} / ${best_s%% *}" | bc -l)"
-fi
+speed_up "soft shadows, time to quality" "$best_s" "$best_p"
 echo "load: $(cut -d' ' -f1-3 /proc/loadavg)"

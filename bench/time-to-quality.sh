@@ -11,17 +11,9 @@
 #   bench/time-to-quality.sh [build-dir] [width] [height] [goal]   (defaults: build 960 540 2e-3)
 # (needs: apt-get install povray)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=$(cd "${1:-$root/build}" && pwd)
-width=${2:-960}
-height=${3:-540}
-goal=${4:-2e-3}
-pov_scene=$root/../shared/bench/lecture.pov
-[ -f "$pov_scene" ] || { echo "missing $pov_scene" >&2; exit 2; }
-command -v povray >/dev/null || { echo "povray is not installed (apt-get install povray)" >&2; exit 2; }
-threads=$(nproc)
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+default_width=960 default_height=540
+# shellcheck source=bench/quality-common.sh
+source "$(dirname "$0")/quality-common.sh"
 cp "$pov_scene" "$work/lecture.pov"
 cd "$work"
 
@@ -31,10 +23,6 @@ pov() {  # pov WHITTED OPTIONS…
   povray -D -V +W"$width" +H"$height" +WT"$threads" +FN16 File_Gamma=1.0 +Ilecture.pov +Opov.png \
     Declare=WHITTED="$variant" "$@" >/dev/null 2>&1
 }
-wall1() { local s e; s=$(date +%s.%N); "$@"; e=$(date +%s.%N); echo "$e - $s" | bc; }
-wall() { { wall1 "$@"; wall1 "$@"; wall1 "$@"; } | sort -g | sed -n 2p; }  # the median of three
-rmse() { "$build/bin/strahl-diff" "$1" "$2" | awk '{print $2}'; }
-below() { awk -v a="$1" -v b="$goal" 'BEGIN { exit !(a <= b) }'; }
 
 echo "load: $(cut -d' ' -f1-3 /proc/loadavg); ${width}x${height}, $threads threads, goal RMSE $goal"
 for variant in 0 1; do
@@ -51,9 +39,7 @@ for variant in 0 1; do
             --adaptive-threshold $thr -q -o s.pfm)
       e=$(rmse ref.pfm s.pfm)
       printf "strahl  adaptive min %2d threshold %-5s  %7.2f s  rmse %s\n" "$min" "$thr" "$t" "$e"
-      if below "$e" && { [ -z "$best_s" ] || awk -v a="$t" -v b="${best_s%% *}" 'BEGIN { exit !(a < b) }'; }; then
-        best_s="$(printf %.3f "$t") s (adaptive min $min threshold $thr, rmse $e)"
-      fi
+      keep_best best_s "$t" "$e" "adaptive min $min threshold $thr"
     done
   done
   # One sample per pixel, then refinement where a pixel stands out from its neighbours.
@@ -62,30 +48,22 @@ for variant in 0 1; do
           --adaptive-threshold $thr -q -o s.pfm)
     e=$(rmse ref.pfm s.pfm)
     printf "strahl  adaptive min  1 threshold %-5s  %7.2f s  rmse %s  (spp 16)\n" "$thr" "$t" "$e"
-    if below "$e" && { [ -z "$best_s" ] || awk -v a="$t" -v b="${best_s%% *}" 'BEGIN { exit !(a < b) }'; }; then
-      best_s="$(printf %.3f "$t") s (adaptive min 1 threshold $thr spp 16, rmse $e)"
-    fi
+    keep_best best_s "$t" "$e" "adaptive min 1 threshold $thr spp 16"
   done
   for spp in 4 16 64; do
     t=$(wall "$build/bin/strahl" "$scene" "${size[@]}" --sampler stratified --spp $spp -q -o s.pfm)
     e=$(rmse ref.pfm s.pfm)
     printf "strahl  stratified %3d spp              %7.2f s  rmse %s\n" "$spp" "$t" "$e"
-    if below "$e" && { [ -z "$best_s" ] || awk -v a="$t" -v b="${best_s%% *}" 'BEGIN { exit !(a < b) }'; }; then
-      best_s="$(printf %.3f "$t") s (stratified $spp spp, rmse $e)"
-    fi
+    keep_best best_s "$t" "$e" "stratified $spp spp"
   done
   for setting in "+AM2 +A0.1 +R3" "+AM2 +A0.05 +R3" "+AM2 +A0.02 +R4" "+AM2 +A0.01 +R4" "+AM2 +A0.0 +R4"; do
     # shellcheck disable=SC2086
     t=$(wall pov $variant $setting)
     e=$(rmse ref.pfm pov.png)
     printf "POV-Ray %-30s %7.2f s  rmse %s\n" "$setting" "$t" "$e"
-    if below "$e" && { [ -z "$best_p" ] || awk -v a="$t" -v b="${best_p%% *}" 'BEGIN { exit !(a < b) }'; }; then
-      best_p="$(printf %.3f "$t") s ($setting, rmse $e)"
-    fi
+    keep_best best_p "$t" "$e" "$setting"
   done
   echo "fastest within $goal: strahl ${best_s:-none}; POV-Ray ${best_p:-none}"
-  if [ -n "$best_s" ] && [ -n "$best_p" ]; then
-    printf "time to quality: speed-up %.1fx\n" "$(echo "${best_p%% *} / ${best_s%% *}" | bc -l)"
-  fi
+  speed_up "time to quality" "$best_s" "$best_p"
 done
 echo "load: $(cut -d' ' -f1-3 /proc/loadavg)"
