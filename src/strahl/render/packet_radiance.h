@@ -98,33 +98,20 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_area_light_lanes(const SceneView& s,
                                                              SampleStream* rng, const ShadingLanes<N>& shading,
                                                              RayCounters& counters) {
   const int k = light.samples;
-  const int first = wide_bvh_detail::lowest_bit(lanes);
   const AreaLightLanes<N> sampler(light, surface.px, surface.py, surface.pz);
   Real sum_r[N] = {}, sum_g[N] = {}, sum_b[N] = {};
   for (int stratum = 0; stratum < k * k; ++stratum) {
-    // Each lane's stratified(stratum % k, stratum / k, k, rng[i].next2()): the lanes side by side
-    // where they have drawn alike so far (one dimension for all, as the lanes of one step have),
-    // else lane by lane. (Lanes outside `lanes` draw too, and are not advanced.)
+    // Each lane's stratified(stratum % k, stratum / k, k, rng[i].next2()), the lanes side by side
+    // (lanes outside `lanes` draw too, and are not advanced).
     Real ux[N], uy[N];
-    const std::uint32_t dimension = rng[first].dimension;
-    bool alike = true;
-    for (std::uint32_t m = lanes; m != 0; m &= m - 1) alike &= rng[wide_bvh_detail::lowest_bit(m)].dimension == dimension;
-    if (alike) {
-      const Real sx = Real(stratum % k), sy = Real(stratum / k), side = Real(k);
-      for (int i = 0; i < N; ++i) {
-        const Real a = to_unit(keyed_bits(rng[i].key, rng[i].sample, dimension));
-        const Real b = to_unit(keyed_bits(rng[i].key, rng[i].sample, dimension + 1));
-        ux[i] = (sx + a) / side, uy[i] = (sy + b) / side;
-      }
-      for (std::uint32_t m = lanes; m != 0; m &= m - 1) rng[wide_bvh_detail::lowest_bit(m)].dimension = dimension + 2;
-    } else {
-      for (int i = 0; i < N; ++i) ux[i] = uy[i] = Real(0.5);  // (lanes nobody reads)
-      for (std::uint32_t m = lanes; m != 0; m &= m - 1) {
-        const int i = wide_bvh_detail::lowest_bit(m);
-        const Vec2 u = stratified(stratum % k, stratum / k, k, rng[i].next2());
-        ux[i] = u.x, uy[i] = u.y;
-      }
+    const Real sx = Real(stratum % k), sy = Real(stratum / k), side = Real(k);
+    for (int i = 0; i < N; ++i) {
+      const SampleStream& r_i = rng[i];
+      const Real a = to_unit(keyed_bits(r_i.key, r_i.sample, r_i.dimension));
+      const Real b = to_unit(keyed_bits(r_i.key, r_i.sample, r_i.dimension + 1));
+      ux[i] = (sx + a) / side, uy[i] = (sy + b) / side;
     }
+    for (std::uint32_t m = lanes; m != 0; m &= m - 1) rng[wide_bvh_detail::lowest_bit(m)].dimension += 2;
     Real lx[N], ly[N], lz[N], distance[N], ir[N], ig[N], ib[N];
     sampler.sample(ux, uy, lx, ly, lz, distance, ir, ig, ib);
     Real n_dot_l[N], n_dot_h[N];
