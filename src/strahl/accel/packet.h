@@ -272,7 +272,8 @@ template <int N>
 STRAHL_HOST_DEVICE inline std::uint32_t one_leaf_occluded_packet(const PrimitiveSet& p, std::uint32_t active,
                                                                  const Ray* rays, const Real* t_min,
                                                                  const Real* t_max) {
-  std::uint32_t m = p.sphere_count > 0 ? sphere_leaf_occluded_packet<N>(p, active, PacketRays<N>(rays), t_min, t_max) : 0;
+  std::uint32_t m =
+      p.sphere_count > 0 ? sphere_leaf_occluded_packet<N>(p, active, PacketRays<N>(rays), t_min, t_max) : 0;
   for (std::uint32_t open = active & ~m; open != 0; open &= open - 1) {
     const int i = wide_bvh_detail::lowest_bit(open);
     const Ray& ray = rays[i];

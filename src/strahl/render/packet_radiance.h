@@ -5,9 +5,10 @@
 // intersect_packet.h, whose planes and sphere loops run the lanes side by side and whose BVH
 // fetches each node once per packet. A sample whose surface spawns no ray (no mirror, no
 // glass) is shaded there too, the lanes side by side (add_light_lanes; an area light's strata
-// stratum after stratum, each lane's drawn from its own stream: add_area_light_lanes). So is a sample on a mirror or on glass, and the packet's samples there take
-// their reflected rays together, then their refracted rays, each as another such step, through
-// their ray trees (packet_tree) while enough lanes follow the same branch. Every other sample,
+// stratum after stratum, each lane's drawn from its own stream: add_area_light_lanes). So is a
+// sample on a mirror or on glass, and the packet's samples there take their reflected rays
+// together, then their refracted rays, each as another such step, through their ray trees
+// (packet_tree) while enough lanes follow the same branch. Every other sample,
 // and every lane where too few go on together, goes on alone in the one integrator, trace()
 // (render/whitted.h), from the step it reached (FirstHit, TraceStart): shading, reflected and
 // refracted rays.
@@ -127,9 +128,7 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_area_light_lanes(const SceneView& s,
     Real tx[N], ty[N], tz[N];
     for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
     shadow_transmittance<N>(s, cast, shadow, distance, tx, ty, tz);
-    add_light_lanes<N>(ir, ig, ib, lanes, cast, n_dot_l, n_dot_h, tx, ty, tz, shading.cr, shading.cg, shading.cb,
-                       shading.kd, shading.sr, shading.sg, shading.sb, shading.shiny, shading.shininess, sum_r, sum_g,
-                       sum_b);
+    add_light_lanes<N>(ir, ig, ib, lanes, cast, n_dot_l, n_dot_h, tx, ty, tz, shading, sum_r, sum_g, sum_b);
   }
   const Real mean = Real(1) / (k * k);
   for (int i = 0; i < N; ++i) {
@@ -168,9 +167,9 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
 
   // trace()'s first step up to the shadow rays: emitter, surface point, normal — side by side
   // (surface_lanes) where every lane hit a sphere, a plane or nothing (the emitters, where there
-  // are area lights, lane by lane), else lane by lane; the points, geometric normals, offsets, materials and texture
-  // coordinates in `surface`, the normals towards the viewer in (nx, ny, nz) (0 in lanes that do
-  // not shade). The lanes that go on in trace() get their FirstHit below, once known.
+  // are area lights, lane by lane), else lane by lane; the points, geometric normals, offsets,
+  // materials and texture coordinates in `surface`, the normals towards the viewer in
+  // (nx, ny, nz) (0 in lanes that do not shade). The lanes that go on in trace() get their FirstHit below, once known.
   FirstHitSlot* const slots = out.slots;
   SurfaceLanes<N> surface;
   Real* const px = surface.px; Real* const py = surface.py; Real* const pz = surface.pz;
@@ -224,8 +223,8 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
 
   // Lanes whose material spawns no ray get their colour here, the local illumination alone
   // (local_illumination's arithmetic, side by side): the ambient term now, each light's term as
-  // its shadow rays come back. So do the lanes
-  // on a mirror or glass whose rays the packet follows (their local colour).
+  // its shadow rays come back. So do the lanes on a mirror or glass whose rays the packet
+  // follows (their local colour).
   std::uint32_t& local = out.local;
   std::uint32_t& spawn = out.spawn;
   local = spawn = 0;
@@ -349,8 +348,7 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     if ((local | spawn) != 0) {
       Real ir[N], ig[N], ib[N];
       for (int i = 0; i < N; ++i) ir[i] = light.radiance.x, ig[i] = light.radiance.y, ib[i] = light.radiance.z;
-      add_light_lanes<N>(ir, ig, ib, local | spawn, cast, n_dot_l, n_dot_h, tx, ty, tz, cr, cg, cb, kd, sr, sg, sb,
-                         shiny, shininess, rr, rg, rb);
+      add_light_lanes<N>(ir, ig, ib, local | spawn, cast, n_dot_l, n_dot_h, tx, ty, tz, shading, rr, rg, rb);
     }
   }
 }

@@ -80,8 +80,9 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Vec3 shade_from(const SceneView& s, const
 // by one — a packet half full or less costs more than its rays one by one (a light of 2×2
 // samples in 8 lanes: 14 % slower in the lecture's scene). The other lanes are left as they are.
 template <int N>
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void shadow_transmittance(const SceneView& s, std::uint32_t cast, const PacketRays<N>& shadow,
-                                              const Real* distance, Real* tx, Real* ty, Real* tz) {
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void shadow_transmittance(const SceneView& s, std::uint32_t cast,
+                                                                 const PacketRays<N>& shadow, const Real* distance,
+                                                                 Real* tx, Real* ty, Real* tz) {
   if constexpr (N == 8 || N == 16) {
     if (wide_bvh_detail::popcount(cast) > N / 2) {
       transmittance_packet<N>(s, cast, shadow, distance, tx, ty, tz);
@@ -106,8 +107,8 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void shadow_transmittance(const SceneView
 // Strata first … first + size − 1 (size ≤ N) of an area light with k×k strata seen from one
 // point (`light`: every lane from sp.p), added to `sum` in their order: the samples side by side,
 // then their shadow rays (shadow_transmittance: from one point towards one light, as coherent as
-// rays get), then shade_from() on each with the shadow ray's answer. The sum is the one-by-one
-// loop's of area_light_illumination, bit for bit.
+// rays get), then shade_from()'s arithmetic on each with the shadow ray's answer (add_light_lanes).
+// The sum is the one-by-one loop's of area_light_illumination, bit for bit.
 template <int N>
 STRAHL_FORCE_INLINE void add_area_light_group(const SceneView& s, const AreaLightLanes<N>& light, int k, int first,
                                               int size, const SurfacePoint& sp, const Vec3& n, const Vec3& view,
@@ -150,8 +151,7 @@ STRAHL_FORCE_INLINE void add_area_light_group(const SceneView& s, const AreaLigh
     n_dot_h[i] = n.x * (hx * inv) + n.y * (hy * inv) + n.z * (hz * inv);
     rr[i] = rg[i] = rb[i] = 0;
   }
-  add_light_lanes<N>(ir, ig, ib, (1u << size) - 1, cast, n_dot_l, n_dot_h, tx, ty, tz, terms.cr, terms.cg, terms.cb,
-                     terms.kd, terms.sr, terms.sg, terms.sb, terms.shiny, terms.shininess, rr, rg, rb);
+  add_light_lanes<N>(ir, ig, ib, (1u << size) - 1, cast, n_dot_l, n_dot_h, tx, ty, tz, terms, rr, rg, rb);
   for (int i = 0; i < size; ++i) sum += Vec3(rr[i], rg[i], rb[i]);
 }
 #endif

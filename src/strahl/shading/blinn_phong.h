@@ -60,6 +60,15 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void whole_power_lanes(const Real* __rest
 #endif
 }
 
+// The per-surface terms of local_terms() in lanes, as add_light_lanes() reads them.
+template <int N>
+struct ShadingLanes {
+  Real cr[N], cg[N], cb[N];  // the colour c
+  Real kd[N];                // k_d times the opacity
+  Real sr[N], sg[N], sb[N];  // k_s
+  Real shiny[N], shininess[N];
+};
+
 // shade_from()'s term of a light of intensity (i_r[i], i_g[i], i_b[i]) in lane i (a point or
 // directional light, or one sample of an area light), added to r in the lanes of `lanes` — the
 // same operations on the same values, lane by lane: Lambert, Blinn-Phong where dot(n, h) > 0 and
@@ -67,13 +76,16 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void whole_power_lanes(const Real* __rest
 // where it is black (in shadow) or where the lane cast no shadow ray (not in `cast`:
 // dot(n, to_light) ≤ 0, or a black intensity).
 template <int N>
-STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
-    const Real* __restrict i_r, const Real* __restrict i_g, const Real* __restrict i_b, std::uint32_t lanes, std::uint32_t cast, const Real* __restrict n_dot_l,
-    const Real* __restrict n_dot_h, const Real* __restrict tr_x, const Real* __restrict tr_y,
-    const Real* __restrict tr_z, const Real* __restrict cr, const Real* __restrict cg,
-    const Real* __restrict cb, const Real* __restrict kd, const Real* __restrict sr, const Real* __restrict sg,
-    const Real* __restrict sb, const Real* __restrict shiny, const Real* __restrict shininess, Real* __restrict rr,
-    Real* __restrict rg, Real* __restrict rb) {
+STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(const Real* __restrict i_r, const Real* __restrict i_g,
+                                                        const Real* __restrict i_b, std::uint32_t lanes,
+                                                        std::uint32_t cast, const Real* __restrict n_dot_l,
+                                                        const Real* __restrict n_dot_h, const Real* __restrict tr_x,
+                                                        const Real* __restrict tr_y, const Real* __restrict tr_z,
+                                                        const ShadingLanes<N>& __restrict terms, Real* __restrict rr,
+                                                        Real* __restrict rg, Real* __restrict rb) {
+  const Real* const cr = terms.cr; const Real* const cg = terms.cg; const Real* const cb = terms.cb;
+  const Real* const kd = terms.kd; const Real* const sr = terms.sr; const Real* const sg = terms.sg;
+  const Real* const sb = terms.sb; const Real* const shiny = terms.shiny; const Real* const shininess = terms.shininess;
   // specular_power(n_dot_h, shininess) side by side when the lanes share a whole exponent (one
   // material, as a pixel's samples mostly are), else lane by lane.
   Real power[N] = {};
@@ -115,14 +127,5 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE void add_light_lanes(
     rb[i] = rb[i] + (tx[i] != 0 ? az : ty[i] != 0 ? az : tz[i] != 0 ? az : Real(0));
   }
 }
-
-// The per-surface terms of local_terms() in lanes, as add_light_lanes() reads them.
-template <int N>
-struct ShadingLanes {
-  Real cr[N], cg[N], cb[N];  // the colour c
-  Real kd[N];                // k_d times the opacity
-  Real sr[N], sg[N], sb[N];  // k_s
-  Real shiny[N], shininess[N];
-};
 
 }  // namespace strahl
