@@ -26,12 +26,6 @@ constexpr std::uint32_t kParallelThreshold = 4096;  // subtrees smaller than thi
 // (bvh.h). SAH alone can peel off one primitive per level (geometrically spaced spheres).
 constexpr std::size_t kMaxSahDepth = 32;
 
-Real surface_area(const Bounds& b) {
-  if (b.empty()) return 0;
-  const Vec3 d = b.hi - b.lo;
-  return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
-}
-
 Bounds merge(const Bounds& a, const Bounds& b) { return Bounds{min(a.lo, b.lo), max(a.hi, b.hi)}; }
 
 // Builds into a node array sized for the worst case (2n − 1 nodes): a split takes the next two

@@ -13,11 +13,6 @@ namespace strahl {
 
 namespace {
 
-Real surface_area(const Bounds& b) {
-  const Vec3 d = b.hi - b.lo;
-  return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
-}
-
 // The children of a wide node: a binary node's two children, then repeatedly the inner one with
 // the largest surface area replaced by its own two children, until there are kWideBvhWidth.
 int gather_children(const Bvh& bin, std::uint32_t at, std::uint32_t out[kWideBvhWidth]) {

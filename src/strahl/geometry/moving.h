@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 
 #include "strahl/geometry/sphere.h"
 #include "strahl/geometry/triangle.h"
@@ -28,13 +29,14 @@ STRAHL_HOST_DEVICE inline Sphere at_time(const MovingSphere& s, Real u) {
   return Sphere{lerp(s.center0, s.center1, u), s.radius0 + (s.radius1 - s.radius0) * u, s.material};
 }
 
-// Each coordinate of the box at time u is linear in u, so the boxes at the two ends hold it.
-inline Bounds swept_bounds(const MovingSphere& s) {
-  Bounds b;
-  b.extend(s.center0 - Vec3(s.radius0)); b.extend(s.center0 + Vec3(s.radius0));
-  b.extend(s.center1 - Vec3(s.radius1)); b.extend(s.center1 + Vec3(s.radius1));
-  return b;
+// The box holding the sphere at every time of [u0, u1] (u0 ≤ u1): at_time's centre and radius are
+// monotone in u even as rounded (a + (b − a)·u), so they lie between their values at u0 and u1.
+inline Bounds swept_bounds(const MovingSphere& s, Real u0, Real u1) {
+  const Sphere a = at_time(s, u0), b = at_time(s, u1);
+  const Vec3 r(a.radius > b.radius ? a.radius : b.radius);
+  return Bounds{min(a.center, b.center) - r, max(a.center, b.center) + r};
 }
+inline Bounds swept_bounds(const MovingSphere& s) { return swept_bounds(s, 0, 1); }
 
 struct MovingTriangle {
   Vec3 p0[3];  // vertices at shutter open
@@ -52,11 +54,15 @@ STRAHL_HOST_DEVICE inline TriangleAtTime at_time(const MovingTriangle& t, Real u
   return {lerp(t.p0[0], t.p1[0], u), lerp(t.p0[1], t.p1[1], u), lerp(t.p0[2], t.p1[2], u)};
 }
 
-inline Bounds swept_bounds(const MovingTriangle& t) {
-  Bounds b;
-  for (int i = 0; i < 3; ++i) { b.extend(t.p0[i]); b.extend(t.p1[i]); }
-  return b;
+// The box holding the triangle at every time of [u0, u1] (u0 ≤ u1): each vertex's at_time
+// coordinates are monotone in u even as rounded, so the vertices at u0 and u1 bound them.
+inline Bounds swept_bounds(const MovingTriangle& t, Real u0, Real u1) {
+  const TriangleAtTime a = at_time(t, u0), b = at_time(t, u1);
+  Bounds box;
+  for (const Vec3& p : {a.a, a.b, a.c, b.a, b.b, b.c}) box.extend(p);
+  return box;
 }
+inline Bounds swept_bounds(const MovingTriangle& t) { return swept_bounds(t, 0, 1); }
 
 // The watertight test (triangle.h) on the triangle where it is at time u: t and barycentrics
 // (b1, b2) of b and c. Neighbours interpolate their shared vertices alike, so they stay watertight.

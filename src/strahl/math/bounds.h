@@ -19,6 +19,13 @@ struct Bounds {
   STRAHL_HOST_DEVICE bool empty() const { return lo.x > hi.x; }
 };
 
+// The box's surface area (0 for an empty box): the SAH's measure of how likely a ray meets it.
+inline Real surface_area(const Bounds& b) {
+  if (b.empty()) return 0;
+  const Vec3 d = b.hi - b.lo;
+  return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
+
 // Slab test with precomputed 1/direction: does the ray meet the box within (t_min, t_max)?
 STRAHL_HOST_DEVICE inline bool hits(const Bounds& b, const Vec3& origin, const Vec3& inv_dir, Real t_min, Real t_max) {
   for (int a = 0; a < 3; ++a) {

@@ -1,7 +1,8 @@
 #pragma once
 // Scene queries against the moving shapes (motion blur): each is intersected where it is at the
-// ray's time. They sit in a BVH of their own over their swept boxes, so static shapes keep their
-// tight tree and a static scene pays nothing (an empty tree is skipped at once).
+// ray's time. They sit in BVHs of their own over their swept boxes, one per time segment of the
+// shutter (accel/motion_bvh.h), so static shapes keep their tight tree and a static scene pays
+// nothing (an empty tree is skipped at once).
 
 #include "strahl/geometry/hit.h"
 #include "strahl/render/scene_view.h"
@@ -40,7 +41,7 @@ STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray&
     }
     return false;
   };
-  traverse(s.moving_bvh, ray, t_min, t_max, visit);
+  traverse(s.moving_bvh.segment_at(u), ray, t_min, t_max, visit);
 }
 
 // Calls cross(material, crossings) for every moving shape the segment (0, distance) of the
@@ -59,7 +60,7 @@ STRAHL_HOST_DEVICE inline void for_each_moving_crossing(const SceneView& s, cons
     const kernel::MovingTriangle& mt = s.moving_triangles[prim - s.moving_sphere_count];
     return kernel::intersect(kernel::at_time(mt, u), ray, 0, t_far).t < kInfinity && cross(mt.material, 1);
   };
-  traverse(s.moving_bvh, ray, 0, t_max, visit);
+  traverse(s.moving_bvh.segment_at(u), ray, 0, t_max, visit);
 }
 
 }  // namespace strahl

@@ -70,7 +70,7 @@ struct RenderScene {
   Accel accel;  // built by compile() over spheres, triangles and the bounded solids
   std::vector<kernel::MovingSphere> moving_spheres;
   std::vector<kernel::MovingTriangle> moving_triangles;
-  Bvh moving_bvh;  // over the moving shapes' swept boxes (empty when nothing moves)
+  MotionBvh moving_bvh;  // over the moving shapes' swept boxes, per time segment (empty when nothing moves)
   // Instances (scene/instances.h): each group compiled once (its own arrays and structure; only
   // spheres, triangles, vertex normals, solids and accel are used), the instances' records, their
   // world boxes and the BVH over them.

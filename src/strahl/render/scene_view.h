@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "strahl/accel/accel.h"
+#include "strahl/accel/motion_bvh.h"
 #include "strahl/camera/camera.h"
 #include "strahl/geometry/moving.h"
 #include "strahl/geometry/plane.h"
@@ -45,13 +46,14 @@ struct SceneView {
   const kernel::Solid* solids = nullptr;
   std::uint32_t solid_count = 0;
   std::uint32_t bounded_solid_count = 0;
-  // Moving shapes (motion blur), in a BVH of their own over their swept boxes: primitive i is
-  // moving sphere i, or moving triangle i − moving_sphere_count. Empty for static scenes.
+  // Moving shapes (motion blur), in BVHs of their own over their swept boxes, one per time
+  // segment (accel/motion_bvh.h): primitive i is moving sphere i, or moving triangle
+  // i − moving_sphere_count. Empty for static scenes.
   const kernel::MovingSphere* moving_spheres = nullptr;
   std::uint32_t moving_sphere_count = 0;
   const kernel::MovingTriangle* moving_triangles = nullptr;
   std::uint32_t moving_triangle_count = 0;
-  BvhView moving_bvh;
+  MotionBvhView moving_bvh;
   // Instances (render/instance_queries.h): small records in a BVH of their own over their world
   // boxes, each placing one of the groups. Empty without instances.
   const kernel::Instance* instances = nullptr;

@@ -432,11 +432,12 @@ RenderScene compile(const Scene& scene) {
                            embree_misfit(out.primitives()) + "; rendering with bvh instead");
 #endif
   if (!out.moving_spheres.empty() || !out.moving_triangles.empty()) {
-    std::vector<Bounds> boxes;
-    boxes.reserve(out.moving_spheres.size() + out.moving_triangles.size());
-    for (const kernel::MovingSphere& m : out.moving_spheres) boxes.push_back(kernel::swept_bounds(m));
-    for (const kernel::MovingTriangle& m : out.moving_triangles) boxes.push_back(kernel::swept_bounds(m));
-    out.moving_bvh = build_bvh(boxes);
+    const auto spheres = static_cast<std::uint32_t>(out.moving_spheres.size());
+    out.moving_bvh = build_motion_bvh(spheres + static_cast<std::uint32_t>(out.moving_triangles.size()),
+                                      [&](std::uint32_t i, Real u0, Real u1) {
+                                        return i < spheres ? kernel::swept_bounds(out.moving_spheres[i], u0, u1)
+                                                           : kernel::swept_bounds(out.moving_triangles[i - spheres], u0, u1);
+                                      });
   }
   build_instance_bvh(out);
   return out;

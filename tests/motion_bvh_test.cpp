@@ -1,0 +1,172 @@
+// The moving shapes' BVH per time segment (accel/motion_bvh.h): a ray at any time finds the same
+// nearest moving shape through the trees of 1, 2, …, 16 segments as by testing every shape where
+// it is at that time; segment_at picks a segment whose interval holds the time; the build cuts
+// the shutter where shapes turn (the motion-blur scene's torus) and not where they barely move.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "strahl/render/intersect_scene.h"
+#include "strahl/render/render_scene.h"
+#include "strahl/scene/scene_file.h"
+
+namespace strahl::motion_bvh_test {
+namespace {
+
+TEST(MotionBvh, SegmentAtHoldsTheTime) {
+  MotionBvh bvh;
+  bvh.nodes.resize(1);
+  bvh.prims.resize(1);
+  for (std::uint32_t segments = 1; segments <= kMaxMotionSegments; segments *= 2) {
+    bvh.segments = segments;
+    for (std::uint32_t k = 0; k < segments; ++k) bvh.first_node[k] = bvh.first_prim[k] = 100 + k;
+    const MotionBvhView v = bvh.view();
+    const auto segment = [&](Real u) { return std::uint32_t(v.segment_at(u).nodes - v.nodes) - 100; };
+    std::mt19937_64 rng(segments);
+    std::uniform_real_distribution<Real> uniform(0, 1);
+    for (int i = 0; i < 10000; ++i) {
+      const Real u = i < 2 ? Real(i) : uniform(rng);
+      const std::uint32_t k = segment(u);
+      ASSERT_LT(k, segments);
+      EXPECT_LE(Real(k) / Real(segments), u);
+      EXPECT_LE(u, Real(k + 1) / Real(segments));
+    }
+    for (std::uint32_t k = 0; k < segments; ++k) EXPECT_EQ(segment(Real(k) / Real(segments)), k);
+    EXPECT_EQ(segment(1), segments - 1);
+    EXPECT_EQ(segment(std::nan("")), 0u);  // never out of range
+  }
+  EXPECT_EQ(MotionBvh{}.view().segment_at(0.5).nodes, nullptr);  // nothing moves: no tree
+}
+
+// Spheres that travel and grow, triangles that turn about the origin by up to 90° (their
+// vertices moving on chords), a few that stand still.
+struct MovingScene {
+  std::vector<kernel::MovingSphere> spheres;
+  std::vector<kernel::MovingTriangle> triangles;
+  MotionBvh bvh;
+
+  explicit MovingScene(std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<Real> uniform(-1, 1);
+    const auto point = [&] { return Vec3(uniform(rng), uniform(rng), uniform(rng)); };
+    for (int i = 0; i < 40; ++i) {
+      kernel::MovingSphere s;
+      s.center0 = point() * 3;
+      s.center1 = i % 4 == 0 ? s.center0 : s.center0 + point() * 2;
+      s.radius0 = 0.05 + 0.2 * (uniform(rng) + 1);
+      s.radius1 = i % 3 == 0 ? s.radius0 : 0.05 + 0.2 * (uniform(rng) + 1);
+      spheres.push_back(s);
+    }
+    for (int i = 0; i < 300; ++i) {
+      kernel::MovingTriangle t;
+      const Vec3 centre = point() * 3, e1 = point() * 0.4, e2 = point() * 0.4;
+      const Real angle = i % 5 == 0 ? 0 : (uniform(rng) + 1) * kPi / 4, c = std::cos(angle), s = std::sin(angle);
+      const Vec3 p[3] = {centre, centre + e1, centre + e2};
+      for (int k = 0; k < 3; ++k) {
+        t.p0[k] = p[k];
+        t.p1[k] = Vec3(c * p[k].x - s * p[k].y, s * p[k].x + c * p[k].y, p[k].z);  // turned about z
+      }
+      triangles.push_back(t);
+    }
+  }
+
+  void build(std::uint32_t segments) {
+    const auto n = static_cast<std::uint32_t>(spheres.size());
+    bvh = build_motion_bvh(n + static_cast<std::uint32_t>(triangles.size()), [&](std::uint32_t i, Real u0, Real u1) {
+      return i < n ? kernel::swept_bounds(spheres[i], u0, u1) : kernel::swept_bounds(triangles[i - n], u0, u1);
+    }, segments);
+  }
+
+  SceneView view() const {
+    SceneView v;
+    v.moving_spheres = spheres.data();
+    v.moving_sphere_count = static_cast<std::uint32_t>(spheres.size());
+    v.moving_triangles = triangles.data();
+    v.moving_triangle_count = static_cast<std::uint32_t>(triangles.size());
+    v.moving_bvh = bvh.view();
+    v.shutter_open = 0;
+    v.inv_shutter = 1;
+    return v;
+  }
+
+  // Every shape tested where it is at the ray's time: the nearest t, and the shapes there.
+  Real nearest(const Ray& ray) const {
+    Real best = kInfinity;
+    for (const kernel::MovingSphere& s : spheres)
+      best = std::fmin(best, kernel::intersect(kernel::at_time(s, ray.time), ray, 0, best));
+    for (const kernel::MovingTriangle& t : triangles)
+      best = std::fmin(best, kernel::intersect(kernel::at_time(t, ray.time), ray, 0, best).t);
+    return best;
+  }
+};
+
+TEST(MotionBvh, SegmentTreesFindTheNearestShapeAtEveryTime) {
+  MovingScene scene(7);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Real> uniform(-1, 1), time(0, 1);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 origin(uniform(rng) * 6, uniform(rng) * 6, 8);
+    const Vec3 target(uniform(rng) * 3, uniform(rng) * 3, uniform(rng) * 3);
+    // Times on the segments' ends too (exactly k/16), where a ray picks one of two trees.
+    rays.push_back({origin, normalize(target - origin), i % 4 == 0 ? Real(i % 17) / 16 : time(rng)});
+  }
+  std::vector<Real> expected;
+  int hits = 0;
+  for (const Ray& ray : rays) {
+    expected.push_back(scene.nearest(ray));
+    hits += expected.back() < kInfinity;
+  }
+  EXPECT_GT(hits, 5000);  // the rays meet the shapes often enough to test something
+  for (std::uint32_t segments : {1u, 2u, 4u, 8u, 16u, 0u}) {
+    scene.build(segments);
+    ASSERT_EQ(scene.bvh.segments, segments == 0 ? scene.bvh.segments : segments);
+    const SceneView v = scene.view();
+    int wrong = 0, wrong_shadow = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      Hit hit;
+      closest_moving_hit(v, rays[i], 0, hit);
+      wrong += hit.t != expected[i];
+      // A shadow ray to just past the nearest shape is blocked, one to just short of it is not.
+      if (expected[i] < kInfinity) {
+        int crossed_far = 0, crossed_near = 0;
+        auto count_far = [&](std::uint32_t, int) { return ++crossed_far, true; };
+        auto count_near = [&](std::uint32_t, int) { return ++crossed_near, true; };
+        for_each_moving_crossing(v, rays[i], expected[i] * (1 + 1e-9), count_far);
+        for_each_moving_crossing(v, rays[i], expected[i] * (1 - 1e-9), count_near);
+        wrong_shadow += crossed_far != 1 || crossed_near != 0;
+      }
+    }
+    EXPECT_EQ(wrong, 0) << segments << " segments";
+    EXPECT_EQ(wrong_shadow, 0) << segments << " segments";
+  }
+  EXPECT_GT(scene.bvh.segments, 1u);  // the build cut the shutter: the triangles turn far
+}
+
+// Where shapes barely move, one tree: more would cost memory and time for nothing.
+TEST(MotionBvh, OneSegmentWhereShapesBarelyMove) {
+  MovingScene scene(3);
+  for (kernel::MovingTriangle& t : scene.triangles)
+    for (int k = 0; k < 3; ++k) t.p1[k] = t.p0[k] + Vec3(0.01, 0, 0);
+  for (kernel::MovingSphere& s : scene.spheres) s.center1 = s.center0 + Vec3(0, 0.01, 0), s.radius1 = s.radius0;
+  scene.build(0);
+  EXPECT_EQ(scene.bvh.segments, 1u);
+  EXPECT_GT(scene.bvh.swept_area[0], 0);
+  EXPECT_GT(scene.bvh.swept_area[1], 0.8 * scene.bvh.swept_area[0]);
+}
+
+// The motion-blur scene's torus turns by 60° during the shutter: its boxes shrink with every
+// segment, and the build takes several.
+TEST(MotionBvh, MotionBlurSceneIsCut) {
+  const RenderScene rs = compile(load_scene(std::string(STRAHL_SOURCE_DIR) + "/scenes/motion-blur.yaml"));
+  ASSERT_GT(rs.moving_triangles.size(), 100u);
+  const MotionBvh& bvh = rs.moving_bvh;
+  for (int i = 0; (1u << i) <= kMaxMotionSegments; ++i) std::printf("K=%u: %g\n", 1u << i, bvh.swept_area[i]);
+  EXPECT_GE(bvh.segments, 4u);
+  EXPECT_LT(bvh.swept_area[2], 0.5 * bvh.swept_area[0]);
+}
+
+}  // namespace
+}  // namespace strahl::motion_bvh_test
