@@ -61,7 +61,8 @@ struct Builder {
     node.bounds = bounds;
     const std::uint32_t count = end - begin;
     std::uint32_t costly = 0;
-    for (std::uint32_t i = begin; i < end; ++i) costly += index[i] >= first_costly;
+    if (first_costly != ~std::uint32_t(0))
+      for (std::uint32_t i = begin; i < end; ++i) costly += index[i] >= first_costly;
     const auto make_leaf = [&] {
       node.offset = begin;
       node.count = std::uint16_t(count);
@@ -82,43 +83,55 @@ struct Builder {
     const auto bin_of = [&](const Vec3& c, int axis) {
       return std::min(kBins - 1, int((c[axis] - centroid_bounds.lo[axis]) * scale[axis]));
     };
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const std::uint32_t p = index[i];
-      for (int axis = 0; axis < 3; ++axis) {
-        const int b = bin_of(centroids[p], axis);
-        bin_bounds[axis][b] = merge(bin_bounds[axis][b], prim_bounds[p]);
-        ++bin_count[axis][b];
-        bin_costly[axis][b] += p >= first_costly;
+    const auto bin_all = [&](auto with_costly) {
+      for (std::uint32_t i = begin; i < end; ++i) {
+        const std::uint32_t p = index[i];
+        for (int axis = 0; axis < 3; ++axis) {
+          const int b = bin_of(centroids[p], axis);
+          bin_bounds[axis][b] = merge(bin_bounds[axis][b], prim_bounds[p]);
+          ++bin_count[axis][b];
+          if constexpr (decltype(with_costly)::value) bin_costly[axis][b] += p >= first_costly;
+        }
       }
-    }
+    };
+    if (costly > 0) bin_all(std::true_type{});
+    else bin_all(std::false_type{});
+    // The candidate planes between two bins that hold primitives all split alike (the empty bins
+    // between them add nothing to either side), so only the bins in use are swept: a small node
+    // uses a few of the kBins. Of equal costs the first plane wins, as in a sweep over every bin:
+    // the plane right after a bin in use.
     Real best_cost = kInfinity;
     int best_axis = -1, best_split = 0;
     for (int axis = 0; axis < 3; ++axis) {
       if (scale[axis] == 0) continue;
-      std::array<Real, kBins> right_area{};
-      std::array<std::uint32_t, kBins> right_count{}, right_costly{};
+      std::array<int, kBins> used;
+      int m = 0;
+      for (int b = 0; b < kBins; ++b)
+        if (bin_count[axis][b] > 0) used[m++] = b;
+      std::array<Real, kBins> right_area;
+      std::array<std::uint32_t, kBins> right_count, right_costly;
       Bounds acc;
       std::uint32_t n = 0, nc = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        acc = merge(acc, bin_bounds[axis][b]);
-        n += bin_count[axis][b];
-        nc += bin_costly[axis][b];
-        right_area[b] = surface_area(acc);
-        right_count[b] = n;
-        right_costly[b] = nc;
+      for (int j = m - 1; j > 0; --j) {
+        acc = merge(acc, bin_bounds[axis][used[j]]);
+        n += bin_count[axis][used[j]];
+        nc += bin_costly[axis][used[j]];
+        right_area[j] = surface_area(acc);
+        right_count[j] = n;
+        right_costly[j] = nc;
       }
       acc = Bounds{};
       n = nc = 0;
-      for (int b = 0; b < kBins - 1; ++b) {
-        acc = merge(acc, bin_bounds[axis][b]);
-        n += bin_count[axis][b];
-        nc += bin_costly[axis][b];
+      for (int j = 0; j < m - 1; ++j) {
+        acc = merge(acc, bin_bounds[axis][used[j]]);
+        n += bin_count[axis][used[j]];
+        nc += bin_costly[axis][used[j]];
         const Real cost = surface_area(acc) * leaf_cost(n, nc) +
-                          right_area[b + 1] * leaf_cost(right_count[b + 1], right_costly[b + 1]);
-        if (n > 0 && right_count[b + 1] > 0 && cost < best_cost) {
+                          right_area[j + 1] * leaf_cost(right_count[j + 1], right_costly[j + 1]);
+        if (cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
-          best_split = b + 1;
+          best_split = used[j] + 1;
         }
       }
     }
