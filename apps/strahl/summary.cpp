@@ -14,12 +14,17 @@ std::string summary(const std::string& output, int width, int height, int thread
   out += fmt::format("image       {} ({}x{}, {} {} spp, {} filter r={}, {} threads)\n", output, width, height,
                      sampler_name(sm.sampler), sm.spp, filter_name(sm.filter.kind), sm.filter.radius, threads);
   const AccelBuildStats& a = scene.accel.stats;
-  // Moving shapes count with the others (and are named, as the accelerator line leaves them out).
+  // Moving shapes count with the others (and are named, as the accelerator line leaves them out),
+  // with the time segments their BVH was cut into (accel/motion_bvh.h) where more than one.
   const std::size_t moving = scene.moving_spheres.size() + scene.moving_triangles.size();
+  const std::uint32_t segments = scene.moving_bvh.segments;
   out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} solids, {} lights{}\n",
                      scene.spheres.size() + scene.moving_spheres.size(), scene.planes.size(),
                      scene.triangles.size() + scene.moving_triangles.size(), scene.solids.size(), scene.lights.size(),
-                     moving > 0 ? fmt::format(" ({} of the shapes moving)", moving) : std::string());
+                     moving == 0     ? std::string()
+                     : segments > 1 ? fmt::format(" ({} of the shapes moving, their BVH cut into {} time segments)",
+                                                  moving, segments)
+                                    : fmt::format(" ({} of the shapes moving)", moving));
   if (!scene.instances.empty()) {
     std::size_t triangles = 0, spheres = 0, solids = 0, bytes = 0;
     for (const RenderScene& g : scene.groups) {
