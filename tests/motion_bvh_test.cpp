@@ -21,7 +21,7 @@ TEST(MotionBvh, SegmentAtHoldsTheTime) {
   bvh.prims.resize(1);
   for (std::uint32_t segments = 1; segments <= kMaxMotionSegments; segments *= 2) {
     bvh.segments = segments;
-    for (std::uint32_t k = 0; k < segments; ++k) bvh.first_node[k] = bvh.first_prim[k] = 100 + k;
+    for (std::uint32_t k = 0; k < segments; ++k) bvh.first_node[k] = 100 + k;
     const MotionBvhView v = bvh.view();
     const auto segment = [&](Real u) { return std::uint32_t(v.segment_at(u).nodes - v.nodes) - 100; };
     std::mt19937_64 rng(segments);

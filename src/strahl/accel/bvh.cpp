@@ -26,8 +26,6 @@ constexpr std::uint32_t kParallelThreshold = 4096;  // subtrees smaller than thi
 // (bvh.h). SAH alone can peel off one primitive per level (geometrically spaced spheres).
 constexpr std::size_t kMaxSahDepth = 32;
 
-Bounds merge(const Bounds& a, const Bounds& b) { return Bounds{min(a.lo, b.lo), max(a.hi, b.hi)}; }
-
 // Builds into a node array sized for the worst case (2n − 1 nodes): a split takes the next two
 // free slots for its children, so subtrees build in parallel without a temporary tree. The array
 // is allocated, not initialised (in 2 MiB pages when large: util/large_array.h): each node is

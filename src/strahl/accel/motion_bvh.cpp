@@ -10,29 +10,30 @@ MotionBvhView MotionBvh::view() const {
   v.nodes = nodes.data();
   v.prims = prims.data();
   v.segments = segments;
-  for (std::uint32_t k = 0; k < segments; ++k) {
-    v.first_node[k] = first_node[k];
-    v.first_prim[k] = first_prim[k];
-  }
+  for (std::uint32_t k = 0; k < segments; ++k) v.first_node[k] = first_node[k];
   return v;
 }
 
 namespace {
 
-constexpr std::uint64_t kMaxSegmentPrimitives = std::uint64_t(1) << 22;
+constexpr std::uint64_t kMaxSegmentPrimitives = std::uint64_t(1) << 20;
 
-std::vector<Bounds> segment_boxes(std::uint32_t count, const SweptBox& box, std::uint32_t k, std::uint32_t segments) {
+// The boxes of segment k of K into `boxes` (count of them; the caller's array, reused: fresh
+// memory costs page faults).
+void segment_boxes(std::uint32_t count, const SweptBox& box, std::uint32_t k, std::uint32_t segments,
+                   std::vector<Bounds>& boxes) {
   const Real u0 = Real(k) / Real(segments), u1 = Real(k + 1) / Real(segments);
-  std::vector<Bounds> boxes(count);
+  boxes.resize(count);
   for (std::uint32_t i = 0; i < count; ++i) boxes[i] = box(i, u0, u1);
-  return boxes;
 }
 
 // Σ of the boxes' surface areas over the K segments, divided by K.
 double mean_swept_area(std::uint32_t count, const SweptBox& box, std::uint32_t segments) {
   double sum = 0;
-  for (std::uint32_t k = 0; k < segments; ++k)
-    for (const Bounds& b : segment_boxes(count, box, k, segments)) sum += double(surface_area(b));
+  for (std::uint32_t k = 0; k < segments; ++k) {
+    const Real u0 = Real(k) / Real(segments), u1 = Real(k + 1) / Real(segments);
+    for (std::uint32_t i = 0; i < count; ++i) sum += double(surface_area(box(i, u0, u1)));
+  }
   return sum / segments;
 }
 
@@ -52,12 +53,29 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
     }
   }
   out.segments = k_chosen;
+  // One tree over the shapes where they are at mid-shutter; each segment gets its nodes with the
+  // boxes refitted to what the shapes sweep in it. Children follow their parent in the array
+  // (bvh.cpp), so a pass from the back sees a node's children before the node.
+  std::vector<Bounds> boxes(count);
+  for (std::uint32_t i = 0; i < count; ++i) boxes[i] = box(i, Real(0.5), Real(0.5));
+  const Bvh tree = build_bvh(boxes);
+  out.prims = tree.prims;
+  out.nodes.reserve(std::size_t(k_chosen) * tree.nodes.size());
   for (std::uint32_t k = 0; k < k_chosen; ++k) {
-    const Bvh tree = build_bvh(segment_boxes(count, box, k, k_chosen));
+    segment_boxes(count, box, k, k_chosen, boxes);
     out.first_node[k] = static_cast<std::uint32_t>(out.nodes.size());
-    out.first_prim[k] = static_cast<std::uint32_t>(out.prims.size());
     out.nodes.insert(out.nodes.end(), tree.nodes.begin(), tree.nodes.end());
-    out.prims.insert(out.prims.end(), tree.prims.begin(), tree.prims.end());
+    BvhNode* nodes = out.nodes.data() + out.first_node[k];
+    for (std::size_t i = tree.nodes.size(); i-- > 0;) {
+      BvhNode& n = nodes[i];
+      Bounds b;
+      if (n.count > 0) {
+        for (std::uint32_t j = n.offset; j < n.offset + n.count; ++j) b = merge(b, boxes[out.prims[j]]);
+      } else {
+        b = merge(nodes[n.offset].bounds, nodes[n.offset + 1].bounds);
+      }
+      n.bounds = b;
+    }
   }
   return out;
 }

@@ -7,14 +7,16 @@
 // segment holding u. The hits are the same as with one tree (each tree bounds every shape at
 // every time of its segment); K is chosen by the build from how much the boxes shrink.
 //
-// The K trees lie one after another in one node and one index array, each with offsets relative
-// to its own beginning: a segment is a plain BvhView, and the GPU uploads two arrays.
+// The K trees lie one after another in one node array, each with offsets relative to its own
+// beginning, and share one index array: a segment is a plain BvhView, and the GPU uploads two
+// arrays.
 
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "strahl/accel/bvh.h"
+#include "strahl/util/large_array.h"
 
 namespace strahl {
 
@@ -25,7 +27,6 @@ struct MotionBvhView {
   const std::uint32_t* prims = nullptr;
   std::uint32_t segments = 0;  // K, a power of two; 0 when nothing moves
   std::uint32_t first_node[kMaxMotionSegments] = {};
-  std::uint32_t first_prim[kMaxMotionSegments] = {};
 
   // The tree of the segment holding u ∈ [0, 1]. Segment k covers [k/K, (k + 1)/K]; K is a power
   // of two, so u·K is exact and k = ⌊u·K⌋ has k/K ≤ u ≤ (k + 1)/K in floating point too.
@@ -34,16 +35,15 @@ struct MotionBvhView {
     const Real x = u * Real(segments);
     std::uint32_t k = 0;
     if (x >= 1) k = x >= Real(segments) ? segments - 1 : static_cast<std::uint32_t>(x);
-    return {nodes + first_node[k], prims + first_prim[k]};
+    return {nodes + first_node[k], prims};
   }
 };
 
 struct MotionBvh {
-  std::vector<BvhNode> nodes;
+  LargeArray<BvhNode> nodes;  // K copies of one tree's nodes, each with its segment's boxes
   std::vector<std::uint32_t> prims;
   std::uint32_t segments = 0;
   std::uint32_t first_node[kMaxMotionSegments] = {};
-  std::uint32_t first_prim[kMaxMotionSegments] = {};
   // Σ of the primitives' surface areas over the segments' boxes, averaged over the segments, for
   // each K = 1, 2, 4, …, kMaxMotionSegments tried (the build's measure; 0 past those tried).
   double swept_area[5] = {};
@@ -54,10 +54,12 @@ struct MotionBvh {
 // The box primitive `prim` sweeps over the shutter fractions [u0, u1].
 using SweptBox = std::function<Bounds(std::uint32_t prim, Real u0, Real u1)>;
 
-// Builds the trees over `count` primitives. K doubles from 1 while that cuts the summed surface
-// area of the boxes by at least a fifth (the expected box and primitive tests of a ray fall with
-// it), up to kMaxMotionSegments and to K·count ≤ 2^22 primitives in all (memory). `segments` > 0
-// forces K (a power of two ≤ kMaxMotionSegments; the tests).
+// Builds the trees over `count` primitives: one tree over the shapes where they are at
+// mid-shutter, its boxes refitted to each segment (one SAH build, K passes over the nodes; the
+// shapes' order is shared). K doubles from 1 while that cuts the summed surface area of the boxes
+// by at least a fifth (the expected box and primitive tests of a ray fall with it), up to
+// kMaxMotionSegments and to K·count ≤ 2^20 (the K copies of the nodes: about 60 bytes for each
+// shape in each segment). `segments` > 0 forces K (a power of two ≤ kMaxMotionSegments; the tests).
 MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32_t segments = 0);
 
 }  // namespace strahl

@@ -19,6 +19,9 @@ struct Bounds {
   STRAHL_HOST_DEVICE bool empty() const { return lo.x > hi.x; }
 };
 
+// The box holding both boxes.
+STRAHL_HOST_DEVICE inline Bounds merge(const Bounds& a, const Bounds& b) { return Bounds{min(a.lo, b.lo), max(a.hi, b.hi)}; }
+
 // The box's surface area (0 for an empty box): the SAH's measure of how likely a ray meets it.
 inline Real surface_area(const Bounds& b) {
   if (b.empty()) return 0;
