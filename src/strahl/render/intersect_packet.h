@@ -174,7 +174,7 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
     }
     return;
   }
-  if (!(s.opaque && !moving)) {
+  if (!s.opaque) {
     // Crossings to count and attenuate by: the single-ray query, lane by lane.
     for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = 0;
     for (std::uint32_t m = active; m != 0; m &= m - 1) {
@@ -206,6 +206,11 @@ STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uin
     for (std::uint32_t m = active & ~blocked; m != 0; m &= m - 1) {
       const int i = wide_bvh_detail::lowest_bit(m);
       if (instance_occluded(s, r.ray(i), 0, distance[i])) blocked |= 1u << i;
+    }
+  if (moving)  // each lane at its own time: one by one
+    for (std::uint32_t m = active & ~blocked; m != 0; m &= m - 1) {
+      const int i = wide_bvh_detail::lowest_bit(m);
+      if (moving_occluded(s, r.ray(i), distance[i])) blocked |= 1u << i;
     }
   for (int i = 0; i < N; ++i) tx[i] = ty[i] = tz[i] = ((blocked >> i) & 1u) ? Real(0) : Real(1);
 }

@@ -71,10 +71,13 @@ STRAHL_HOST_DEVICE STRAHL_DEVICE_NOINLINE Vec3 transmittance(const SceneView& s,
       if (!attenuate(s.materials[s.solids[i].material], tr)) return Vec3(0);
   }
   // Nothing transparent: the first surface found blocks the light (any-hit, no crossings to count).
-  if (s.opaque && s.moving_sphere_count + s.moving_triangle_count == 0) {
+  if (s.opaque) {
     const bool blocked = is_sphere_leaf(s.accel) ? sphere_leaf_occluded(s.accel, ray, 0, distance)
                                                  : occluded(s.accel, ray, 0, distance);
-    return blocked || (s.instance_count > 0 && instance_occluded(s, ray, 0, distance)) ? Vec3(0) : tr;
+    return blocked || (s.instance_count > 0 && instance_occluded(s, ray, 0, distance)) ||
+                   moving_occluded(s, ray, distance)
+               ? Vec3(0)
+               : tr;
   }
   if (is_sphere_leaf(s.accel) && s.moving_sphere_count + s.moving_triangle_count == 0 && s.instance_count == 0) {
     // One leaf of spheres: for_each_crossing's naive loop, without its visitor.

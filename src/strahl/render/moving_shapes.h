@@ -63,4 +63,13 @@ STRAHL_HOST_DEVICE inline void for_each_moving_crossing(const SceneView& s, cons
   traverse(s.moving_bvh.segment_at(u), ray, 0, t_max, visit);
 }
 
+// Does a moving shape lie on the segment (0, distance) of the shadow ray? The any-hit query of
+// scenes with nothing transparent.
+STRAHL_HOST_DEVICE inline bool moving_occluded(const SceneView& s, const Ray& ray, Real distance) {
+  bool blocked = false;
+  auto stop = [&](std::uint32_t, int) { return blocked = true; };
+  for_each_moving_crossing(s, ray, distance, stop);
+  return blocked;
+}
+
 }  // namespace strahl
