@@ -72,12 +72,7 @@ struct MovingScene {
     }
   }
 
-  void build(std::uint32_t segments) {
-    const auto n = static_cast<std::uint32_t>(spheres.size());
-    bvh = build_motion_bvh(n + static_cast<std::uint32_t>(triangles.size()), [&](std::uint32_t i, Real u0, Real u1) {
-      return i < n ? kernel::swept_bounds(spheres[i], u0, u1) : kernel::swept_bounds(triangles[i - n], u0, u1);
-    }, segments);
-  }
+  void build(std::uint32_t segments) { bvh = build_motion_bvh(spheres, triangles, segments); }
 
   SceneView view() const {
     SceneView v;

@@ -16,11 +16,14 @@
 #include <vector>
 
 #include "strahl/accel/bvh.h"
+#include "strahl/geometry/moving.h"
 #include "strahl/util/large_array.h"
 
 namespace strahl {
 
 inline constexpr std::uint32_t kMaxMotionSegments = 16;
+inline constexpr int kMotionSegmentCounts = 5;  // the K tried: 1, 2, 4, 8, 16
+static_assert(1u << (kMotionSegmentCounts - 1) == kMaxMotionSegments);
 
 struct MotionBvhView {
   const BvhNode* nodes = nullptr;
@@ -46,7 +49,7 @@ struct MotionBvh {
   std::uint32_t first_node[kMaxMotionSegments] = {};
   // Σ of the primitives' surface areas over the segments' boxes, averaged over the segments, for
   // each K = 1, 2, 4, …, kMaxMotionSegments tried (the build's measure; 0 past those tried).
-  double swept_area[5] = {};
+  double swept_area[kMotionSegmentCounts] = {};
 
   MotionBvhView view() const;
 };
@@ -61,5 +64,10 @@ using SweptBox = std::function<Bounds(std::uint32_t prim, Real u0, Real u1)>;
 // kMaxMotionSegments and to K·count ≤ 2^20 (the K copies of the nodes: about 60 bytes for each
 // shape in each segment). `segments` > 0 forces K (a power of two ≤ kMaxMotionSegments; the tests).
 MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32_t segments = 0);
+
+// The same over a scene's moving shapes: primitive i is sphere i, or triangle i − spheres.size()
+// (render/moving_shapes.h).
+MotionBvh build_motion_bvh(const std::vector<kernel::MovingSphere>& spheres,
+                           const std::vector<kernel::MovingTriangle>& triangles, std::uint32_t segments = 0);
 
 }  // namespace strahl

@@ -431,14 +431,7 @@ RenderScene compile(const Scene& scene) {
     out.warnings.push_back(s.loc.str() + (s.loc.file.empty() ? "" : ": ") + "accel embree cannot hold this scene, " +
                            embree_misfit(out.primitives()) + "; rendering with bvh instead");
 #endif
-  if (!out.moving_spheres.empty() || !out.moving_triangles.empty()) {
-    const auto spheres = static_cast<std::uint32_t>(out.moving_spheres.size());
-    out.moving_bvh = build_motion_bvh(spheres + static_cast<std::uint32_t>(out.moving_triangles.size()),
-                                      [&](std::uint32_t i, Real u0, Real u1) {
-                                        return i < spheres ? kernel::swept_bounds(out.moving_spheres[i], u0, u1)
-                                                           : kernel::swept_bounds(out.moving_triangles[i - spheres], u0, u1);
-                                      });
-  }
+  out.moving_bvh = build_motion_bvh(out.moving_spheres, out.moving_triangles);
   build_instance_bvh(out);
   return out;
 }
