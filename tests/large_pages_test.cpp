@@ -90,7 +90,7 @@ struct alignas(64) Node {
 TEST(LargeArray, HoldsWhatIsWrittenAlignedAsItsTypeAsks) {
   // Small (operator new) and large (mapped when large pages are on) arrays, grown past their first
   // block: every element keeps its value, every block is aligned to 64 bytes.
-  const std::size_t big = kFreshBlock / sizeof(Node) + 1;
+  const std::size_t big = kLargeBlock / sizeof(Node) + 1;
   for (const std::size_t n : {std::size_t(1), std::size_t(1000), big}) {
     LargeArray<Node> a;
     a.resize(n);
@@ -107,9 +107,9 @@ TEST(LargeArray, HoldsWhatIsWrittenAlignedAsItsTypeAsks) {
   }
 }
 
-TEST(LargeArray, BlocksFromThirtyTwoMiBAreInHugePagesSmallerOnesAreNot) {
-  if (!maps_large_pages(kFreshBlock)) GTEST_SKIP() << "no large pages here (not Linux, a sanitizer, or STRAHL_LARGE_PAGES=0)";
-  LargeArray<double> large(kFreshBlock / sizeof(double));
+TEST(LargeArray, BlocksFromOneMiBAreInHugePagesSmallerOnesAreNot) {
+  if (!maps_large_pages(kLargeBlock)) GTEST_SKIP() << "no large pages here (not Linux, a sanitizer, or STRAHL_LARGE_PAGES=0)";
+  LargeArray<double> large(kLargeBlock / sizeof(double));
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(large.data()) % kLargePage, 0u);
   large.back() = 1;
   const std::string mode = thp_mode();
@@ -118,7 +118,7 @@ TEST(LargeArray, BlocksFromThirtyTwoMiBAreInHugePagesSmallerOnesAreNot) {
   if (eligible < 0) GTEST_SKIP() << "no THPeligible in /proc/self/smaps";
   EXPECT_EQ(eligible, 1);
   // Just below: malloc's block (which it maps afresh, unadvised, or takes from its heap).
-  LargeArray<double> below(kFreshBlock / sizeof(double) - 1);
+  LargeArray<double> below(kLargeBlock / sizeof(double) - 1);
   below.back() = 1;
   EXPECT_EQ(thp_eligible(below.data()), 0);
 }

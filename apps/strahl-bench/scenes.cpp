@@ -18,7 +18,7 @@ namespace {
 
 // Scales and moves the positions to unit size (largest bounding-box side 1), centred on
 // x = z = 0 and resting on y = 0.
-void normalise(std::vector<Vec3>& positions) {
+void normalise(LargeArray<Vec3>& positions) {
   Bounds b;
   for (const Vec3& p : positions) b.extend(p);
   if (b.empty()) return;
@@ -96,7 +96,7 @@ BenchScene lecture_bench_scene(int width, int height) {
   BenchScene out;
   out.name = "lecture";
   out.spheres = rs.spheres;
-  out.triangles = rs.triangles;
+  out.triangles.assign(rs.triangles.begin(), rs.triangles.end());
   out.camera = rs.camera;
   out.light = rs.lights.empty() ? Vec3(1, 1.5, 1) : rs.lights.front().position;
   return out;

@@ -135,7 +135,7 @@ MeshData mesh_from_arrays(const py::handle& vertices, const py::handle& indices,
   return data;
 }
 
-py::array_t<double> vec3_rows(const std::vector<Vec3>& values) {
+py::array_t<double> vec3_rows(const LargeArray<Vec3>& values) {
   py::array_t<double> out({py::ssize_t(values.size()), py::ssize_t(3)});
   auto o = out.mutable_unchecked<2>();
   for (std::size_t i = 0; i < values.size(); ++i) {

@@ -35,7 +35,7 @@ constexpr std::size_t kMaxSahDepth = 32;
 struct Builder {
   const Bounds* prim_bounds;
   const Vec3* centroids;
-  std::vector<std::uint32_t>& index;
+  LargeArray<std::uint32_t>& index;
   BvhNode* nodes;
   const BvhBuildOptions& options;
   // Primitives from this index on are solids (accel/primitive.h puts them last): each costs a
@@ -174,7 +174,7 @@ struct SlotsDeleter {
   void operator()(BvhNode* p) const { LargeArrayAllocator<BvhNode>().deallocate(p, count); }
 };
 
-void count_nodes(const std::vector<BvhNode>& nodes, AccelBuildStats& stats) {
+void count_nodes(const LargeArray<BvhNode>& nodes, AccelBuildStats& stats) {
   std::vector<std::pair<std::uint32_t, std::size_t>> stack{{0, 1}};
   while (!stack.empty()) {
     const auto [at, depth] = stack.back();

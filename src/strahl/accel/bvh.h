@@ -7,6 +7,7 @@
 
 #include "strahl/accel/primitive.h"
 #include "strahl/accel/traversal.h"
+#include "strahl/util/large_array.h"
 
 namespace strahl {
 
@@ -23,9 +24,10 @@ struct BvhView {
   const std::uint32_t* prims = nullptr;
 };
 
+// Its arrays are LargeArrays (util/large_array.h): fresh pages, 2 MiB ones for large trees.
 struct Bvh {
-  std::vector<BvhNode> nodes;
-  std::vector<std::uint32_t> prims;
+  LargeArray<BvhNode> nodes;
+  LargeArray<std::uint32_t> prims;
   BvhView view() const { return {nodes.data(), prims.data()}; }
 };
 

@@ -59,7 +59,7 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
   std::vector<Bounds> boxes(count);
   for (std::uint32_t i = 0; i < count; ++i) boxes[i] = box(i, Real(0.5), Real(0.5));
   const Bvh tree = build_bvh(boxes);
-  out.prims = tree.prims;
+  out.prims.assign(tree.prims.begin(), tree.prims.end());
   out.nodes.reserve(std::size_t(k_chosen) * tree.nodes.size());
   for (std::uint32_t k = 0; k < k_chosen; ++k) {
     segment_boxes(count, box, k, k_chosen, boxes);

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "strahl/accel/primitive.h"
 #include "strahl/geometry/triangle.h"
@@ -42,10 +43,14 @@ inline constexpr std::uint32_t kTriangleBlockEmpty = ~std::uint32_t(0);
 struct alignas(64) TriangleBlock {
   Real v[3][3][kTriangleBlockWidth];          // [vertex 0..2][axis x, y, z][lane]
   std::uint32_t prim[kTriangleBlockWidth];    // the lane's primitive id, kTriangleBlockEmpty when empty
-  std::uint32_t other = 0;                    // bit per lane: not a triangle (vertices NaN), the caller's
-  std::uint32_t triangles = 0;                // bit per lane holding a triangle (0: the test is skipped)
-  std::uint32_t pad[2] = {0, 0};
+  std::uint32_t other;                        // bit per lane: not a triangle (vertices NaN), the caller's
+  std::uint32_t triangles;                    // bit per lane holding a triangle (0: the test is skipped)
+  std::uint32_t pad[2];
 };
+// No member initialisers: a default-initialised block is left as it is (clear() fills it), so
+// the leaf array's resize() touches no memory and the leaves' first writes (and page faults) fall
+// in the parallel fill (accel/wide_bvh.cpp).
+static_assert(std::is_trivially_default_constructible_v<TriangleBlock>);
 static_assert(sizeof(TriangleBlock) == 320);
 
 // Host side: every lane empty (NaN vertices: such a lane never hits).
@@ -56,6 +61,7 @@ inline void clear(TriangleBlock& b) {
   for (std::uint32_t& p : b.prim) p = kTriangleBlockEmpty;
   b.other = 0;
   b.triangles = 0;
+  b.pad[0] = b.pad[1] = 0;
 }
 
 inline void set_triangle(TriangleBlock& b, int lane, const Vec3& v0, const Vec3& v1, const Vec3& v2,

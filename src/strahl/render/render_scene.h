@@ -8,6 +8,7 @@
 #include "strahl/render/scene_view.h"
 #include "strahl/sampling/pixel_sampler.h"
 #include "strahl/util/error.h"
+#include "strahl/util/large_array.h"
 
 namespace strahl {
 
@@ -45,8 +46,8 @@ class InstanceGroups {
 struct RenderScene {
   std::vector<kernel::Sphere> spheres;
   std::vector<kernel::Plane> planes;
-  std::vector<kernel::Triangle> triangles;
-  std::vector<kernel::VertexNormals> vertex_normals;
+  LargeArray<kernel::Triangle> triangles;          // large meshes: 2 MiB pages (util/large_array.h)
+  LargeArray<kernel::VertexNormals> vertex_normals;
   // Solids (geometry/solid.h): handles, bounded ones first (see SceneView), and the arrays of
   // each kind they index. The tallies are what implicit surfaces' root finding met while
   // rendering (written by every thread with atomics, hence mutable).

@@ -29,12 +29,12 @@ struct Hasher {
     add(v.y);
     add(v.z);
   }
-  template <class T>
-  void add_all(const std::vector<T>& items);
+  template <class T, class A>
+  void add_all(const std::vector<T, A>& items);
 };
 
-template <class T>
-void Hasher::add_all(const std::vector<T>& items) {
+template <class T, class A>
+void Hasher::add_all(const std::vector<T, A>& items) {
   add(std::uint64_t(items.size()));
   for (const T& item : items) hash(*this, item);
 }

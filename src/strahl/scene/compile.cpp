@@ -254,8 +254,8 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   // rotation turns it about its own origin); a velocity moves it in world space.
   const Mat3 normal_key[2] = {(m * moved_linear(motion, 0)).inverse().transposed(),
                               (m * moved_linear(motion, 1)).inverse().transposed()};
-  std::vector<Vec3> positions(data.positions.size());
-  std::vector<Vec3> keyed_positions[2];
+  LargeArray<Vec3> positions(data.positions.size());
+  LargeArray<Vec3> keyed_positions[2];
   for (std::size_t i = 0; i < positions.size(); ++i) {
     validate::finite(data.positions[i], loc, "mesh vertex");
     positions[i] = m * data.positions[i] + transform.translate;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "strahl/math/vec3.h"
+#include "strahl/util/large_array.h"
 
 namespace strahl {
 
@@ -14,9 +15,10 @@ struct MeshData {
     std::array<std::uint32_t, 3> v{};        // position indices
     std::array<std::int32_t, 3> n{-1, -1, -1};  // normal indices, −1 where the file gives none
   };
-  std::vector<Vec3> positions;
-  std::vector<Vec3> normals;
-  std::vector<Face> faces;
+  // LargeArrays (util/large_array.h): a large mesh's arrays in 2 MiB pages.
+  LargeArray<Vec3> positions;
+  LargeArray<Vec3> normals;
+  LargeArray<Face> faces;
 };
 
 }  // namespace strahl

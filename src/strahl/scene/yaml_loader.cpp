@@ -24,6 +24,7 @@
 #include "strahl/scene/yaml_limits.h"
 #include "strahl/shading/area_light.h"
 #include "strahl/util/cancel.h"
+#include "strahl/util/large_pages.h"
 #include "strahl/util/number_syntax.h"
 #include "strahl/util/system_error.h"
 
@@ -931,9 +932,13 @@ Scene load_scene(const fs::path& path) {
     throw Error(FileLoc{path.string()}, "is not a regular file (a FIFO, device or socket), not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(FileLoc{path.string()}, "cannot open scene file: " + system_reason(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), path.string(), path.parent_path());
+  Scene scene = [&] {
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_scene(text.str(), path.string(), path.parent_path());
+  }();
+  give_back_free_heap();  // the text's and the parser's memory (util/large_pages.h)
+  return scene;
 }
 
 }  // namespace strahl

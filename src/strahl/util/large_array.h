@@ -1,10 +1,12 @@
 #pragma once
-// The arrays an acceleration structure's build fills once and keeps (nodes, leaf blocks) or
-// throws away (the primitives' boxes): std::vectors whose blocks of 32 MiB or more are mapped in
-// 2 MiB pages (util/large_pages.h, allocate_array_bytes()) — one page fault per 2 MiB instead of
-// 512: in a virtual machine whose 4 KiB faults cost 10 µs each, a million triangles' BVH build
-// spent a fifth of its time in them and built 40 % faster so — and whose resize() leaves the new
-// elements default-initialised (no zeroing pass: the build writes every element it keeps).
+// The large arrays of a scene's way to the renderer — a mesh file's text and its vertices and
+// faces, the scene's triangles, and what an acceleration structure's build fills once and keeps
+// (nodes, leaf blocks) or throws away (the primitives' boxes): std::vectors whose blocks of 1 MiB
+// or more are mapped in 2 MiB pages (util/large_pages.h, allocate_array_bytes()) — one page fault
+// per 2 MiB instead of 512: in a virtual machine whose 4 KiB faults cost 10 µs each, a million
+// triangles' BVH build spent a fifth of its time in them and built 40 % faster so — and whose
+// resize() leaves the new elements default-initialised (no zeroing pass: the build writes every
+// element it keeps; a type with member initialisers gets them, hence none in TriangleBlock).
 
 #include <cstddef>
 #include <limits>

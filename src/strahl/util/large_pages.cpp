@@ -8,6 +8,9 @@
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 // Whether this build maps large blocks itself: Linux with transparent huge pages, not under a
 // sanitizer (whose checks need its own allocator's blocks).
@@ -96,7 +99,7 @@ void free_zeroed_bytes(void* p, std::size_t bytes) noexcept {
 namespace {
 
 // Whether allocate_array_bytes(bytes) maps the block (and free_array_bytes unmaps it): one rule for both.
-bool maps_array(std::size_t bytes) { return bytes >= kFreshBlock && maps_large_pages(bytes); }
+bool maps_array(std::size_t bytes) { return maps_large_pages(bytes); }
 
 }  // namespace
 
@@ -109,6 +112,12 @@ void free_array_bytes(void* p, std::size_t bytes, std::size_t align) noexcept {
   if (p == nullptr) return;
   if (maps_array(bytes)) return free_zeroed_bytes(p, bytes);
   ::operator delete(p, std::align_val_t(align));
+}
+
+void give_back_free_heap() noexcept {
+#if defined(__GLIBC__) && !defined(STRAHL_SANITIZED_ALLOCATOR)
+  malloc_trim(0);
+#endif
 }
 
 }  // namespace strahl

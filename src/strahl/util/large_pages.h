@@ -28,15 +28,15 @@ void free_zeroed_bytes(void* p, std::size_t bytes) noexcept;
 // Whether allocate_zeroed_bytes(bytes) maps the block on its own in large pages.
 bool maps_large_pages(std::size_t bytes);
 
-// The smallest block allocate_array_bytes() maps in large pages: glibc's malloc maps every block
-// this large afresh anyway (its mmap threshold grows with the blocks freed, but never past 32 MiB
-// on 64-bit systems), so mapping it in large pages costs no reuse of warm freed memory — which
-// smaller blocks would lose (docs/benchmark.md, "Nineteenth session" and "Twentieth session").
-inline constexpr std::size_t kFreshBlock = std::size_t(32) << 20;
-
 // `bytes` (> 0) bytes aligned to `align` (a power of two up to kLargePage), not initialised
-// (a block mapped afresh reads as zeros): from kFreshBlock bytes on mapped in large pages like
+// (a block mapped afresh reads as zeros): from kLargeBlock bytes on mapped in large pages like
 // allocate_zeroed_bytes(), below from operator new. Throws std::bad_alloc.
+// Until 2026-12-05 only blocks of 32 MiB or more were mapped, so that smaller ones would reuse
+// the heap's warm, freed memory between builds; but a first build (the CLI's only one) faulted every 4 KiB
+// page of them, at 10 µs a fault in a virtual machine: the dragon's load and build took 0.20 s, of
+// which 0.14 s were page faults (docs/benchmark.md, "Twenty-fifth session"). A fresh 2 MiB page
+// costs about 60 µs, so repeated builds lose little; a block's last large page is rounded up
+// (at most 2 MiB resident beyond the block).
 void* allocate_array_bytes(std::size_t bytes, std::size_t align);
 
 // Frees a block from allocate_array_bytes(bytes, align) (nullptr: nothing).
@@ -46,5 +46,11 @@ void free_array_bytes(void* p, std::size_t bytes, std::size_t align) noexcept;
 // sanitizer), and whether the environment lets it (STRAHL_LARGE_PAGES, read once, at the first call).
 bool large_pages_supported();
 bool large_pages_enabled();
+
+// Gives the heap's free memory back to the system (glibc's malloc_trim; elsewhere nothing). The
+// scene loader calls it once the parser's trees are freed: the build's large arrays are mapped
+// afresh (above), so without it they would stack on that garbage instead of reusing it, and the
+// peak resident memory would grow by it (a YAML file of 50,000 spheres: ~4 MiB).
+void give_back_free_heap() noexcept;
 
 }  // namespace strahl
