@@ -716,6 +716,57 @@ TEST(AccelCrossCheck, BuildStatistics) {
   }
 }
 
+// The BVHs count their leaves and depth while they build (the binary one as it makes its leaves,
+// the wide one in its sizing pass): the same figures as a walk of the finished tree, the root at
+// depth 1.
+TEST(AccelCrossCheck, BvhStatisticsAreThoseOfAWalkOfTheTree) {
+  for (const std::uint64_t seed : {7u, 8u, 9u}) {
+    const Prims s = awkward_scene(seed, nullptr);
+    SCOPED_TRACE(seed);
+    AccelBuildStats bin_stats;
+    const Bvh bin = build_bvh(s.set(), &bin_stats);
+    std::size_t leaves = 0, depth = 0;
+    std::vector<std::pair<std::uint32_t, std::size_t>> stack{{0, 1}};
+    while (!stack.empty()) {
+      const auto [at, d] = stack.back();
+      stack.pop_back();
+      depth = std::max(depth, d);
+      if (bin.nodes[at].count > 0) {
+        ++leaves;
+      } else {
+        stack.push_back({bin.nodes[at].offset, d + 1});
+        stack.push_back({bin.nodes[at].offset + 1, d + 1});
+      }
+    }
+    EXPECT_GT(depth, 3u);
+    EXPECT_EQ(bin_stats.leaves, leaves);
+    EXPECT_EQ(bin_stats.max_depth, depth);
+
+    const Accel a = build_accel(AccelKind::Bvh, s.set());
+    ASSERT_FALSE(a.bvh.nodes.empty());
+    leaves = depth = 0;
+    stack = {{0, 1}};
+    while (!stack.empty()) {
+      const auto [at, d] = stack.back();
+      stack.pop_back();
+      depth = std::max(depth, d);
+      const WideBvhNode& w = a.bvh.nodes[at];
+      for (int k = 0; k < kWideBvhWidth; ++k) {
+        if (w.count[k] > 0) {
+          ++leaves;
+          depth = std::max(depth, d + 1);
+        } else if (w.child[k] != kWideBvhEmpty) {
+          stack.push_back({w.child[k], d + 1});
+        }
+      }
+    }
+    EXPECT_GT(depth, 2u);
+    EXPECT_EQ(a.stats.leaves, leaves);
+    EXPECT_EQ(a.stats.max_depth, depth);
+    EXPECT_EQ(a.stats.nodes, a.bvh.nodes.size() + leaves);
+  }
+}
+
 // Subtrees built in parallel are joined into the same tree as one thread builds.
 TEST(AccelCrossCheck, KdTreeBuildIndependentOfThreads) {
   const Prims s = awkward_scene(9, nullptr);

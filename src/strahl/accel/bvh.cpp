@@ -43,6 +43,8 @@ struct Builder {
   // a share of a block test, so the SAH does not pack them into one leaf behind one box.
   std::uint32_t first_costly = ~std::uint32_t(0);
   std::atomic<std::uint32_t> next_node{1};
+  // The tree's leaves and depth (the root's is 1), counted as the leaves are made.
+  std::atomic<std::size_t> leaves{0}, max_depth{0};
 
   // SAH cost of a leaf of n primitives of which `costly` are solids, in primitive (block) tests.
   Real leaf_cost(std::uint32_t n, std::uint32_t costly = 0) const {
@@ -64,6 +66,10 @@ struct Builder {
     const auto make_leaf = [&] {
       node.offset = begin;
       node.count = std::uint16_t(count);
+      leaves.fetch_add(1, std::memory_order_relaxed);
+      std::size_t deepest = max_depth.load(std::memory_order_relaxed);
+      while (depth > deepest && !max_depth.compare_exchange_weak(deepest, depth, std::memory_order_relaxed)) {
+      }
     };
     // Tiny scenes (the lecture's five spheres) are one leaf: see traverse(). Not when they hold
     // solids, whose own tests cost more than a box test.
@@ -174,25 +180,6 @@ struct SlotsDeleter {
   void operator()(BvhNode* p) const { LargeArrayAllocator<BvhNode>().deallocate(p, count); }
 };
 
-void count_nodes(const LargeArray<BvhNode>& nodes, AccelBuildStats& stats) {
-  std::vector<std::pair<std::uint32_t, std::size_t>> stack{{0, 1}};
-  while (!stack.empty()) {
-    const auto [at, depth] = stack.back();
-    stack.pop_back();
-    stats.max_depth = std::max(stats.max_depth, depth);
-    if (nodes[at].count > 0) {
-      ++stats.leaves;
-    } else {
-      stack.push_back({nodes[at].offset, depth + 1});
-      stack.push_back({nodes[at].offset + 1, depth + 1});
-    }
-  }
-}
-
-}  // namespace
-
-namespace {
-
 // The build over n boxes; `start` is when the caller began (the boxes' time counts).
 Bvh build_bvh(const Bounds* bounds, std::uint32_t n, AccelBuildStats* stats_out, const BvhBuildOptions& options,
               std::uint32_t first_costly, std::chrono::steady_clock::time_point start) {
@@ -215,7 +202,8 @@ Bvh build_bvh(const Bounds* bounds, std::uint32_t n, AccelBuildStats* stats_out,
     Builder builder{bounds, centroids.data(), bvh.prims, slots.get(), options, first_costly};
     builder.build(0, 0, n, 1);
     bvh.nodes.assign(slots.get(), slots.get() + builder.next_node.load());
-    count_nodes(bvh.nodes, stats);
+    stats.leaves = builder.leaves.load();
+    stats.max_depth = builder.max_depth.load();
   }
   stats.nodes = bvh.nodes.size();
   stats.bytes = bvh.nodes.size() * sizeof(BvhNode) + bvh.prims.size() * sizeof(std::uint32_t);

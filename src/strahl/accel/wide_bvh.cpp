@@ -42,30 +42,40 @@ std::uint32_t blocks(std::uint32_t n) { return (n + kernel::kTriangleBlockWidth 
 // First pass (serial, cheap): how many wide nodes and leaf blocks each subtree needs, so the
 // second pass can fill both arrays in parallel at precomputed positions in depth-first order.
 struct Sizes {
-  std::uint32_t nodes = 0, leaves = 0;
+  std::uint32_t nodes, leaves;  // no initialisers: resize() of their array touches nothing
+};
+// What the first pass returns of a subtree: its sizes, and for the statistics its leaves and
+// depth (the subtree's root is 1, a leaf below it 2).
+struct Subtree {
+  Sizes sizes;
+  std::size_t leaf_count = 0, depth = 1;
 };
 
 struct Collapser {
   const Bvh& bin;
   const PrimitiveSet& prims;
   WideBvh& out;
-  std::vector<Sizes> sizes;  // per binary node, of the wide subtree rooted there (inner nodes only)
+  LargeArray<Sizes> sizes;  // per binary node, of the wide subtree rooted there (inner nodes only)
 
-  Sizes size_of(std::uint32_t at) {
+  Subtree size_of(std::uint32_t at) {
     std::uint32_t children[kWideBvhWidth];
     const int n = gather_children(bin, at, children);
-    Sizes s{1, 0};
+    Subtree s{{1, 0}};
     for (int i = 0; i < n; ++i) {
       const BvhNode& c = bin.nodes[children[i]];
       if (c.count > 0) {
-        s.leaves += blocks(c.count);
+        s.sizes.leaves += blocks(c.count);
+        ++s.leaf_count;
+        s.depth = std::max<std::size_t>(s.depth, 2);
       } else {
-        const Sizes cs = size_of(children[i]);
-        s.nodes += cs.nodes;
-        s.leaves += cs.leaves;
+        const Subtree cs = size_of(children[i]);
+        s.sizes.nodes += cs.sizes.nodes;
+        s.sizes.leaves += cs.sizes.leaves;
+        s.leaf_count += cs.leaf_count;
+        s.depth = std::max(s.depth, cs.depth + 1);
       }
     }
-    sizes[at] = s;
+    sizes[at] = s.sizes;
     return s;
   }
 
@@ -165,26 +175,12 @@ WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
       stats.max_depth = 1;
     } else {
       c.sizes.resize(bin.nodes.size());
-      const Sizes total = c.size_of(0);
-      out.nodes.resize(total.nodes);
-      out.leaves.resize(total.leaves);
+      const Subtree total = c.size_of(0);
+      out.nodes.resize(total.sizes.nodes);
+      out.leaves.resize(total.sizes.leaves);
       c.fill(0, 0, 0);
-      // Depth and leaf count of the wide tree.
-      std::vector<std::pair<std::uint32_t, std::size_t>> stack{{0, 1}};
-      while (!stack.empty()) {
-        const auto [at, depth] = stack.back();
-        stack.pop_back();
-        stats.max_depth = std::max(stats.max_depth, depth);
-        const WideBvhNode& w = out.nodes[at];
-        for (int k = 0; k < kWideBvhWidth; ++k) {
-          if (w.count[k] > 0) {
-            ++stats.leaves;
-            stats.max_depth = std::max(stats.max_depth, depth + 1);
-          } else if (w.child[k] != kWideBvhEmpty) {
-            stack.push_back({w.child[k], depth + 1});
-          }
-        }
-      }
+      stats.leaves = total.leaf_count;
+      stats.max_depth = total.depth;
     }
   }
   stats.nodes = out.nodes.size() + stats.leaves;  // inner nodes and leaves, as the other structures count
