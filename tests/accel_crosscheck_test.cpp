@@ -677,7 +677,7 @@ TEST(AccelCrossCheck, AstronomicallyLargeSmallAndFarPrimitivesMatchNaive) {
   }
 }
 
-std::size_t lanes_in_use(const std::vector<SpatialLeaf>& blocks) {
+std::size_t lanes_in_use(const LargeArray<SpatialLeaf>& blocks) {
   std::size_t n = 0;
   for (const SpatialLeaf& b : blocks)
     for (const std::uint32_t p : b.prim) n += p != kernel::kTriangleBlockEmpty;
@@ -903,7 +903,7 @@ TEST(AccelCrossCheck, RopesLeadAcrossTheirFaces) {
 // touches, which the walk must pass over without searching it (a crossing on the edge would be
 // counted twice) and without skipping the leaf beyond.
 template <class Plane>
-std::vector<Query> edge_rays(const std::vector<RopedLeaf<Plane>>& leaves, const Vec3& base, int count,
+std::vector<Query> edge_rays(const LargeArray<RopedLeaf<Plane>>& leaves, const Vec3& base, int count,
                              std::uint64_t seed) {
   Random rng(seed);
   std::vector<Query> rays;

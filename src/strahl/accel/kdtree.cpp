@@ -58,7 +58,7 @@ bool operator<(const Event& a, const Event& b) {
   return a.prim < b.prim;
 }
 
-using Events = std::array<std::vector<Event>, 3>;
+using Events = std::array<LargeArray<Event>, 3>;
 
 // Half the surface area of a box: SAH only compares ratios.
 Real half_area(const Vec3& d) { return d.x * d.y + d.y * d.z + d.z * d.x; }
@@ -75,7 +75,7 @@ void set_component(Vec3& v, int axis, Real x) { (axis == 0 ? v.x : axis == 1 ? v
 
 void add_events(Events& events, std::uint32_t prim, const Bounds& b) {
   for (int axis = 0; axis < 3; ++axis) {
-    std::vector<Event>& e = events[std::size_t(axis)];
+    LargeArray<Event>& e = events[std::size_t(axis)];
     if (b.lo[axis] == b.hi[axis]) {
       e.push_back({b.lo[axis], prim, EventType::Planar});
     } else {
@@ -91,7 +91,7 @@ Split best_split(const Bounds& box, const Events& events, std::uint32_t count) {
   const Vec3 d = box.hi - box.lo;
   const Real inv_area = Real(1) / half_area(d);
   for (int axis = 0; axis < 3; ++axis) {
-    const std::vector<Event>& e = events[std::size_t(axis)];
+    const LargeArray<Event>& e = events[std::size_t(axis)];
     const int b = (axis + 1) % 3, c = (axis + 2) % 3;
     const Real cap = d[b] * d[c], girth = d[b] + d[c];
     const Real lo = box.lo[axis], hi = box.hi[axis];
@@ -122,7 +122,7 @@ Split best_split(const Bounds& box, const Events& events, std::uint32_t count) {
 
 // A subtree, its nodes numbered from 0 (so that subtrees built in parallel can be joined).
 struct Subtree {
-  std::vector<KdNode> nodes;
+  LargeArray<KdNode> nodes;
   std::vector<std::uint32_t> refs;
   std::size_t leaves = 0, max_depth = 0, references = 0;
 };
@@ -241,8 +241,8 @@ struct Builder {
       if (!a.empty()) add_events(s.new_above, p, a), ++n_above;
     }
     Events below, above;
-    const auto merge = [&](std::vector<Event>& to, const std::vector<Event>& old, Side keep,
-                           std::vector<Event>& added) {
+    const auto merge = [&](LargeArray<Event>& to, const LargeArray<Event>& old, Side keep,
+                           LargeArray<Event>& added) {
       std::sort(added.begin(), added.end());
       to.reserve(added.size() + old.size() / 2);
       std::size_t j = 0;
@@ -283,8 +283,8 @@ struct Builder {
 // Fills in every leaf's box and ropes (KdLeaf), walking down from the root with the box of the
 // node at hand and the ropes of its faces.
 struct Linker {
-  const std::vector<KdNode>& nodes;
-  std::vector<KdLeaf>& leaves;
+  const LargeArray<KdNode>& nodes;
+  LargeArray<KdLeaf>& leaves;
 
   // The deepest node below `target` (beyond face f of a leaf with box `face`) whose box still
   // holds the whole face (rope_side, spatial.h).
@@ -336,14 +336,14 @@ KdTree build_kdtree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
   stats.primitives = n;
   if (n > 0) {
     PaddedBounds padded_bounds = padded_primitive_bounds(prims);
-    std::vector<Bounds>& bounds = padded_bounds.prims;
+    LargeArray<Bounds>& bounds = padded_bounds.prims;
     const Real pad = padded_bounds.pad;
     kd.bounds = padded_bounds.scene;
     kd.base = kd.bounds.lo;
 
     Events events;
     tbb::parallel_for(0, 3, [&](int axis) {
-      std::vector<Event>& e = events[std::size_t(axis)];
+      LargeArray<Event>& e = events[std::size_t(axis)];
       e.reserve(2 * std::size_t(n));
       for (std::uint32_t i = 0; i < n; ++i) {
         const Real lo = bounds[i].lo[axis], hi = bounds[i].hi[axis];

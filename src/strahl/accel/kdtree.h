@@ -53,9 +53,9 @@ struct KdTreeView {
 };
 
 struct KdTree {
-  std::vector<KdNode> nodes;
-  std::vector<KdLeaf> leaves;
-  std::vector<SpatialLeaf> blocks;
+  LargeArray<KdNode> nodes;
+  LargeArray<KdLeaf> leaves;
+  LargeArray<SpatialLeaf> blocks;
   Bounds bounds;
   Vec3 base;
   KdTreeView view() const { return {nodes.data(), leaves.data(), blocks.data(), bounds, base}; }

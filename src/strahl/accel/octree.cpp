@@ -43,11 +43,11 @@ constexpr std::size_t kMaxIndex = (std::size_t(1) << 31) - 1;
 
 struct Builder {
   const PrimitiveSet& set;
-  const std::vector<Bounds>& bounds;  // padded
+  const LargeArray<Bounds>& bounds;  // padded
   Real pad;
   Vec3 base;
-  std::vector<OctreeNode> nodes;
-  std::vector<OctreeCenter> centers;
+  LargeArray<OctreeNode> nodes;
+  LargeArray<OctreeCenter> centers;
   std::vector<std::uint32_t> refs;
   AccelBuildStats stats;
 
@@ -118,9 +118,9 @@ struct Builder {
 // Fills in every leaf's box and ropes (OctreeLeaf, spatial.h), walking down from the root with the
 // box of the node at hand and the ropes of its faces.
 struct Linker {
-  const std::vector<OctreeNode>& nodes;
-  const std::vector<OctreeCenter>& centers;
-  std::vector<OctreeLeaf>& leaves;
+  const LargeArray<OctreeNode>& nodes;
+  const LargeArray<OctreeCenter>& centers;
+  LargeArray<OctreeLeaf>& leaves;
 
   // The deepest node below `target` (beyond face f of a leaf with box `face`) whose cube still
   // holds the whole face, octant by octant (rope_side, spatial.h).
@@ -176,7 +176,7 @@ Octree build_octree(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
   stats.primitives = n;
   if (n > 0) {
     PaddedBounds padded_bounds = padded_primitive_bounds(prims);
-    std::vector<Bounds>& bounds = padded_bounds.prims;
+    LargeArray<Bounds>& bounds = padded_bounds.prims;
     const Real pad = padded_bounds.pad;
     const Bounds box = padded_bounds.scene;
     oct.center = (box.lo + box.hi) * Real(0.5);

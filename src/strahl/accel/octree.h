@@ -56,10 +56,10 @@ struct OctreeView {
 };
 
 struct Octree {
-  std::vector<OctreeNode> nodes;
-  std::vector<OctreeCenter> centers;
-  std::vector<OctreeLeaf> leaves;
-  std::vector<SpatialLeaf> blocks;
+  LargeArray<OctreeNode> nodes;
+  LargeArray<OctreeCenter> centers;
+  LargeArray<OctreeLeaf> leaves;
+  LargeArray<SpatialLeaf> blocks;
   Vec3 center;    // of the root cube
   Real half = 0;  // half its side
   Bounds cube;    // [center − half, center + half]

@@ -55,7 +55,7 @@ bool inside(const Bounds& a, const Bounds& b) {
 }  // namespace
 
 std::uint32_t append_leaf(const PrimitiveSet& prims, const std::uint32_t* list, std::uint32_t count,
-                          std::vector<SpatialLeaf>& out) {
+                          LargeArray<SpatialLeaf>& out) {
   const std::uint32_t blocks = (count + kernel::kTriangleBlockWidth - 1) / kernel::kTriangleBlockWidth;
   const std::size_t first = out.size();
   out.resize(first + blocks);

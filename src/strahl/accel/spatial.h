@@ -25,6 +25,7 @@
 #include "strahl/accel/primitive.h"
 #include "strahl/accel/traversal.h"
 #include "strahl/accel/triangle_block.h"
+#include "strahl/util/large_array.h"
 
 namespace strahl {
 
@@ -212,7 +213,7 @@ void unbounded_faces(float (&face)[6], std::uint32_t (&rope)[6]);
 
 // Appends the blocks of a leaf listing prims[0..count), filled in that order; returns how many.
 std::uint32_t append_leaf(const PrimitiveSet& prims, const std::uint32_t* list, std::uint32_t count,
-                          std::vector<SpatialLeaf>& out);
+                          LargeArray<SpatialLeaf>& out);
 
 // Primitives' bounds are grown by this fraction of the scene's largest coordinate magnitude:
 // far above the rounding of hit points (~1e-16 relative), far below any feature worth splitting.
@@ -225,7 +226,7 @@ Bounds padded(const Bounds& b, Real pad);
 
 // The padded bounds of every primitive (in parallel) and of the whole scene, and the padding used.
 struct PaddedBounds {
-  std::vector<Bounds> prims;
+  LargeArray<Bounds> prims;
   Bounds scene;
   Real pad = 0;
 };
