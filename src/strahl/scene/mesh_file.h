@@ -5,11 +5,17 @@
 #include <filesystem>
 
 #include "strahl/scene/mesh_data.h"
+#include "strahl/util/large_array.h"
 
 namespace strahl {
 
 // Throws strahl::Error naming the file (and line/column where the reader knows them), also for
 // an extension that is neither .obj nor .ply.
 MeshData load_mesh(const std::filesystem::path& path);
+
+// The whole file in memory, in one read (a LargeArray: 2 MiB pages from 1 MiB on, not zeroed
+// first); its size is what was actually read (the file may have shrunk since its size was asked).
+// Throws strahl::Error "cannot open mesh file: …", "cannot read mesh file: …" or "too large".
+LargeArray<char> read_mesh_file(const std::filesystem::path& path);
 
 }  // namespace strahl

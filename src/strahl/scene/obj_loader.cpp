@@ -1,17 +1,15 @@
 #include "strahl/scene/obj_loader.h"
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <system_error>
 
+#include "strahl/scene/mesh_file.h"
 #include "strahl/scene/polygon.h"
 #include "strahl/util/cancel.h"
 #include "strahl/util/error.h"
 #include "strahl/util/large_array.h"
-#include "strahl/util/system_error.h"
 
 namespace strahl {
 
@@ -288,23 +286,8 @@ MeshData load_obj(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path, ec)) throw Error(FileLoc{path.string()}, "is a directory, not a mesh file");
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error(FileLoc{path.string()}, "is not a regular file (a FIFO, device or socket), not a mesh file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(FileLoc{path.string()}, "cannot open mesh file: " + system_reason(errno));
-  // The whole file in one read into an array of its size and a byte more (reaching the end shows
-  // the file ended; should it have grown, the array doubles): a stream grown by doubling and then
-  // copied into a string took a third of the dragon's load. A LargeArray: a large file's text in
-  // 2 MiB pages, not zeroed first.
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  LargeArray<char> text(!ec && size < (std::uintmax_t(1) << 40) ? std::size_t(size) + 1 : std::size_t(1) << 16);
-  std::size_t n = 0;
-  for (;;) {
-    in.read(text.data() + n, std::streamsize(text.size() - n));
-    n += std::size_t(in.gcount());
-    if (in.bad()) throw Error(FileLoc{path.string()}, "cannot read mesh file: " + system_reason(errno));
-    if (n < text.size()) break;
-    text.resize(2 * text.size());
-  }
-  return parse_obj(std::string_view(text.data(), n), path.string());
+  const LargeArray<char> text = read_mesh_file(path);
+  return parse_obj(std::string_view(text.data(), text.size()), path.string());
 }
 
 }  // namespace strahl

@@ -7,28 +7,20 @@
 
 #include <algorithm>
 #include <bit>
-#include <cerrno>
 #include <charconv>
 #include <climits>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
-#include <memory>
-#include <new>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <type_traits>
 #include <vector>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
+#include "strahl/scene/mesh_file.h"
 #include "strahl/util/cancel.h"
 #include "strahl/util/error.h"
-#include "strahl/util/system_error.h"
 
 namespace strahl {
 namespace {
@@ -147,48 +139,6 @@ std::vector<std::string_view> split(std::string_view line) {
     if (i > start) tokens.push_back(line.substr(start, i - start));
   }
   return tokens;
-}
-
-// Large buffers here are written once, front to back. On Linux, transparent huge pages save most
-// of their page faults (a 10-million-triangle file fills about 750 MB), which in a virtual
-// machine cost more than the parsing. Only advice: nothing changes where it is not taken.
-void advise_huge_pages([[maybe_unused]] const void* data, [[maybe_unused]] std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
-  const auto first = reinterpret_cast<std::uintptr_t>(data);
-  const std::uintptr_t begin = (first + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t end = (first + bytes) & ~(kHuge - 1);
-  if (end > begin) static_cast<void>(madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE));
-#endif
-}
-
-// The whole file in memory; its size is what was actually read.
-struct Bytes {
-  std::unique_ptr<char[]> data;
-  std::size_t size = 0;
-  std::string_view view() const { return {data.get(), size}; }
-};
-
-Bytes read_file(const fs::path& path) {
-  const std::string file = path.string();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    throw Error(FileLoc{file}, "cannot open mesh file: " + (ec ? ec.message() : std::string("not a regular file")));
-  const std::uintmax_t expected = fs::file_size(path, ec);
-  if (ec) throw Error(FileLoc{file}, "cannot open mesh file: " + ec.message());
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-  if (!f) throw Error(FileLoc{file}, "cannot open mesh file: " + system_reason(errno));
-  Bytes bytes;
-  try {
-    bytes.data = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(expected) + 1);
-  } catch (const std::bad_alloc&) {
-    throw Error(FileLoc{file}, "the file is too large to read into memory (" + std::to_string(expected) + " bytes)");
-  }
-  advise_huge_pages(bytes.data.get(), static_cast<std::size_t>(expected));
-  // The file may have shrunk since file_size(); what was read is what counts.
-  bytes.size = std::fread(bytes.data.get(), 1, static_cast<std::size_t>(expected), f.get());
-  if (std::ferror(f.get())) throw Error(FileLoc{file}, "cannot read mesh file: " + system_reason(errno));
-  return bytes;
 }
 
 class Parser {
@@ -793,8 +743,8 @@ void read_body(Source& src, const Header& h, MeshData& mesh) {
 }  // namespace
 
 MeshData load_ply(const std::filesystem::path& path) {
-  const Bytes bytes = read_file(path);
-  return parse_ply(bytes.view(), path.string());
+  const LargeArray<char> bytes = read_mesh_file(path);
+  return parse_ply(std::string_view(bytes.data(), bytes.size()), path.string());
 }
 
 MeshData parse_ply(std::string_view bytes, const std::string& name) {
@@ -806,13 +756,10 @@ MeshData parse_ply(std::string_view bytes, const std::string& name) {
   const auto vertex_count = static_cast<std::size_t>(h.elements[std::size_t(h.vertex)].count);
   const auto face_count = static_cast<std::size_t>(h.elements[std::size_t(h.face)].count);
   mesh.positions.reserve(vertex_count);
-  advise_huge_pages(mesh.positions.data(), vertex_count * sizeof(Vec3));
   if (h.normals) {
     mesh.normals.reserve(vertex_count);
-    advise_huge_pages(mesh.normals.data(), vertex_count * sizeof(Vec3));
   }
   mesh.faces.reserve(face_count);
-  advise_huge_pages(mesh.faces.data(), face_count * sizeof(MeshData::Face));
   if (h.format == Format::Ascii) {
     AsciiSource src(parser, bytes.substr(h.body_offset), h.body_line);
     read_body(src, h, mesh);
