@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -138,6 +139,66 @@ TEST(MotionBvh, SegmentTreesFindTheNearestShapeAtEveryTime) {
     EXPECT_EQ(wrong_shadow, 0) << segments << " segments";
   }
   EXPECT_GT(scene.bvh.segments, 1u);  // the build cut the shutter: the triangles turn far
+}
+
+// A few shapes make one leaf: no nodes, no box test, every shape tested; the answers the same.
+TEST(MotionBvh, FewShapesAreOneLeafWithoutNodes) {
+  MovingScene scene(5);
+  scene.spheres.resize(3);
+  scene.triangles.resize(2);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<Real> uniform(-1, 1), time(0, 1);
+  for (std::uint32_t segments : {1u, 4u}) {
+    scene.build(segments);
+    EXPECT_EQ(scene.bvh.root_leaf_count, 5u);
+    EXPECT_TRUE(scene.bvh.nodes.empty());
+    const SceneView v = scene.view();
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+      // Aimed near a shape, so that many rays meet one.
+      const Vec3 near = i % 2 == 0 ? scene.spheres[i % 3].center0 : scene.triangles[i % 2].p0[i % 3];
+      const Vec3 origin(uniform(rng) * 4, uniform(rng) * 4, 8);
+      const Vec3 jitter(uniform(rng), uniform(rng), uniform(rng));
+      const Ray ray{origin, normalize(near + jitter * Real(0.3) - origin), time(rng)};
+      Hit hit;
+      closest_moving_hit(v, ray, 0, hit);
+      const Real expected = scene.nearest(ray);
+      ASSERT_EQ(hit.t, expected) << i;
+      hits += expected < kInfinity;
+    }
+    EXPECT_GT(hits, 500);
+  }
+}
+
+// The trees are 8-wide: their nodes hold far fewer than the binary tree's 2·leaves − 1, and
+// every shape sits in exactly one leaf of each segment's tree.
+TEST(MotionBvh, SegmentTreesAreWideAndHoldEveryShapeOnce) {
+  MovingScene scene(9);
+  scene.build(4);
+  const MotionBvhView v = scene.bvh.view();
+  const std::size_t shapes = scene.spheres.size() + scene.triangles.size();
+  for (std::uint32_t k = 0; k < 4; ++k) {
+    const MotionTreeView tree = v.segment_at((Real(k) + Real(0.5)) / 4);
+    std::vector<int> seen(shapes, 0);
+    std::size_t nodes = 0, leaves = 0;
+    std::vector<std::uint32_t> stack = {0};
+    while (!stack.empty()) {
+      const WideBvhNode& n = tree.nodes[stack.back()];
+      stack.pop_back();
+      ++nodes;
+      for (int c = 0; c < kWideBvhWidth; ++c) {
+        if (n.child[c] == kWideBvhEmpty) continue;
+        if (n.count[c] == 0) {
+          stack.push_back(n.child[c]);
+          continue;
+        }
+        ++leaves;
+        for (std::uint32_t i = 0; i < n.count[c]; ++i) ++seen[tree.leaves[n.child[c] + i]];
+      }
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(shapes)) << k;
+    EXPECT_LT(nodes * 3, 2 * leaves - 1) << k;
+  }
 }
 
 // Where shapes barely move, one tree: more would cost memory and time for nothing.

@@ -1,15 +1,19 @@
 #include "strahl/accel/motion_bvh.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace strahl {
 
 MotionBvhView MotionBvh::view() const {
   MotionBvhView v;
   if (segments == 0) return v;
-  v.nodes = nodes.data();
+  v.nodes = nodes.empty() ? nullptr : nodes.data();
   v.prims = prims.data();
   v.segments = segments;
+  v.root_leaf_count = root_leaf_count;
+  for (int a = 0; a < 3; ++a) v.extent[a] = extent[a];
   for (std::uint32_t k = 0; k < segments; ++k) v.first_node[k] = first_node[k];
   return v;
 }
@@ -53,29 +57,33 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
     }
   }
   out.segments = k_chosen;
-  // One tree over the shapes where they are at mid-shutter; each segment gets its nodes with the
-  // boxes refitted to what the shapes sweep in it. Children follow their parent in the array
-  // (bvh.cpp), so a pass from the back sees a node's children before the node.
+  // One binary tree over the shapes where they are at mid-shutter; each segment gets a copy with
+  // the boxes refitted to what the shapes sweep in it, collapsed into its wide tree. Children
+  // follow their parent in the binary array (bvh.cpp), so a pass from the back sees a node's
+  // children before the node. A tree of one leaf (a few shapes) stays one: no box test.
   std::vector<Bounds> boxes(count);
   for (std::uint32_t i = 0; i < count; ++i) boxes[i] = box(i, Real(0.5), Real(0.5));
   const Bvh tree = build_bvh(boxes);
   out.prims.assign(tree.prims.begin(), tree.prims.end());
-  out.nodes.reserve(std::size_t(k_chosen) * tree.nodes.size());
+  if (tree.nodes[0].count > 0) out.root_leaf_count = tree.nodes[0].count;
+  LargeArray<BvhNode> refit;
   for (std::uint32_t k = 0; k < k_chosen; ++k) {
     segment_boxes(count, box, k, k_chosen, boxes);
-    out.first_node[k] = static_cast<std::uint32_t>(out.nodes.size());
-    out.nodes.insert(out.nodes.end(), tree.nodes.begin(), tree.nodes.end());
-    BvhNode* nodes = out.nodes.data() + out.first_node[k];
-    for (std::size_t i = tree.nodes.size(); i-- > 0;) {
-      BvhNode& n = nodes[i];
+    refit.assign(tree.nodes.begin(), tree.nodes.end());
+    for (std::size_t i = refit.size(); i-- > 0;) {
+      BvhNode& n = refit[i];
       Bounds b;
       if (n.count > 0) {
         for (std::uint32_t j = n.offset; j < n.offset + n.count; ++j) b = merge(b, boxes[out.prims[j]]);
       } else {
-        b = merge(nodes[n.offset].bounds, nodes[n.offset + 1].bounds);
+        b = merge(refit[n.offset].bounds, refit[n.offset + 1].bounds);
       }
       n.bounds = b;
     }
+    for (int a = 0; a < 3; ++a)
+      out.extent[a] = std::max(out.extent[a], wide_bvh_detail::round_up(std::max(std::fabs(refit[0].bounds.lo[a]),
+                                                                                 std::fabs(refit[0].bounds.hi[a]))));
+    if (out.root_leaf_count == 0) out.first_node[k] = append_wide_nodes(refit.data(), out.nodes);
   }
   return out;
 }

@@ -7,15 +7,18 @@
 // segment holding u. The hits are the same as with one tree (each tree bounds every shape at
 // every time of its segment); K is chosen by the build from how much the boxes shrink.
 //
-// The K trees lie one after another in one node array, each with offsets relative to its own
-// beginning, and share one index array: a segment is a plain BvhView, and the GPU uploads two
-// arrays.
+// The trees are 8-wide (accel/wide_bvh.h: a binary SAH tree collapsed, one SIMD box test for a
+// node's eight children, the same conservative float boxes and traversal as the scene's BVH).
+// The K trees lie one after another in one node array, each with child indices relative to its
+// own first node, and share one array of leaf entries (the shapes' indices): a segment is a
+// WideBvhViewOf<std::uint32_t>, and the GPU uploads two arrays.
 
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "strahl/accel/bvh.h"
+#include "strahl/accel/wide_bvh.h"
 #include "strahl/geometry/moving.h"
 #include "strahl/util/large_array.h"
 
@@ -25,27 +28,47 @@ inline constexpr std::uint32_t kMaxMotionSegments = 16;
 inline constexpr int kMotionSegmentCounts = 5;  // the K tried: 1, 2, 4, 8, 16
 static_assert(1u << (kMotionSegmentCounts - 1) == kMaxMotionSegments);
 
+// One segment's tree: leaves are runs of the moving shapes' indices.
+using MotionTreeView = WideBvhViewOf<std::uint32_t>;
+
 struct MotionBvhView {
-  const BvhNode* nodes = nullptr;
+  const WideBvhNode* nodes = nullptr;
   const std::uint32_t* prims = nullptr;
-  std::uint32_t segments = 0;  // K, a power of two; 0 when nothing moves
+  std::uint32_t segments = 0;         // K, a power of two; 0 when nothing moves
+  std::uint32_t root_leaf_count = 0;  // > 0: each tree is one leaf of all the shapes (no nodes)
+  float extent[3] = {0, 0, 0};        // the largest |coordinate| of any box of any segment, per axis
   std::uint32_t first_node[kMaxMotionSegments] = {};
 
   // The tree of the segment holding u ∈ [0, 1]. Segment k covers [k/K, (k + 1)/K]; K is a power
   // of two, so u·K is exact and k = ⌊u·K⌋ has k/K ≤ u ≤ (k + 1)/K in floating point too.
-  STRAHL_HOST_DEVICE BvhView segment_at(Real u) const {
+  STRAHL_HOST_DEVICE MotionTreeView segment_at(Real u) const {
     if (segments == 0) return {};
     const Real x = u * Real(segments);
     std::uint32_t k = 0;
     if (x >= 1) k = x >= Real(segments) ? segments - 1 : static_cast<std::uint32_t>(x);
-    return {nodes + first_node[k], prims};
+    return {nodes == nullptr ? nullptr : nodes + first_node[k], prims, root_leaf_count, {extent[0], extent[1], extent[2]}};
   }
 };
 
+// Calls visitor(prim, −∞, ∞, t_max) for the shapes of every leaf the ray reaches within
+// (t_min, t_max), nearer boxes first (traversal.h's contract).
+template <class Visitor>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const MotionTreeView& tree, const Ray& ray, Real t_min, Real& t_max,
+                                                     Visitor& visit) {
+  auto leaf = [&](const std::uint32_t* first, std::uint32_t count, Real& t_far) {
+    for (std::uint32_t i = 0; i < count; ++i)
+      if (visit(first[i], -kInfinity, kInfinity, t_far)) return true;
+    return false;
+  };
+  traverse_leaves(tree, ray, t_min, t_max, leaf);
+}
+
 struct MotionBvh {
-  LargeArray<BvhNode> nodes;  // K copies of one tree's nodes, each with its segment's boxes
-  std::vector<std::uint32_t> prims;
+  LargeArray<WideBvhNode> nodes;  // the K trees' nodes, each tree's boxes those swept in its segment
+  std::vector<std::uint32_t> prims;  // the leaves' entries, shared by the K trees
   std::uint32_t segments = 0;
+  std::uint32_t root_leaf_count = 0;
+  float extent[3] = {0, 0, 0};
   std::uint32_t first_node[kMaxMotionSegments] = {};
   // Σ of the primitives' surface areas over the segments' boxes, averaged over the segments, for
   // each K = 1, 2, 4, …, kMaxMotionSegments tried (the build's measure; 0 past those tried).
@@ -61,8 +84,8 @@ using SweptBox = std::function<Bounds(std::uint32_t prim, Real u0, Real u1)>;
 // mid-shutter, its boxes refitted to each segment (one SAH build, K passes over the nodes; the
 // shapes' order is shared). K doubles from 1 while that cuts the summed surface area of the boxes
 // by at least a fifth (the expected box and primitive tests of a ray fall with it), up to
-// kMaxMotionSegments and to K·count ≤ 2^20 (the K copies of the nodes: about 60 bytes for each
-// shape in each segment). `segments` > 0 forces K (a power of two ≤ kMaxMotionSegments; the tests).
+// kMaxMotionSegments and to K·count ≤ 2^20 (the K trees' nodes: about 40 bytes for each shape
+// in each segment). `segments` > 0 forces K (a power of two ≤ kMaxMotionSegments; the tests).
 MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32_t segments = 0);
 
 // The same over a scene's moving shapes: primitive i is sphere i, or triangle i − spheres.size()

@@ -15,25 +15,41 @@ namespace {
 
 // The children of a wide node: a binary node's two children, then repeatedly the inner one with
 // the largest surface area replaced by its own two children, until there are kWideBvhWidth.
-int gather_children(const Bvh& bin, std::uint32_t at, std::uint32_t out[kWideBvhWidth]) {
+int gather_children(const BvhNode* nodes, std::uint32_t at, std::uint32_t out[kWideBvhWidth]) {
   int n = 2;
-  out[0] = bin.nodes[at].offset;
-  out[1] = bin.nodes[at].offset + 1;
+  out[0] = nodes[at].offset;
+  out[1] = nodes[at].offset + 1;
   while (n < kWideBvhWidth) {
     int best = -1;
     Real best_area = -1;
     for (int i = 0; i < n; ++i) {
-      const BvhNode& c = bin.nodes[out[i]];
+      const BvhNode& c = nodes[out[i]];
       if (c.count > 0) continue;
       const Real area = surface_area(c.bounds);
       if (area > best_area) { best_area = area; best = i; }
     }
     if (best < 0) break;
-    const std::uint32_t first = bin.nodes[out[best]].offset;
+    const std::uint32_t first = nodes[out[best]].offset;
     out[best] = first;
     out[n++] = first + 1;
   }
   return n;
+}
+
+// Slot k of a wide node: the box rounded outward to float (no box shrinks), or empty.
+void set_box(WideBvhNode& w, int k, const Bounds& b) {
+  for (int a = 0; a < 3; ++a) {
+    w.lo[a][k] = wide_bvh_detail::round_down(b.lo[a]);
+    w.hi[a][k] = wide_bvh_detail::round_up(b.hi[a]);
+  }
+}
+void set_empty(WideBvhNode& w, int k) {
+  for (int a = 0; a < 3; ++a) {
+    w.lo[a][k] = std::numeric_limits<float>::infinity();
+    w.hi[a][k] = -std::numeric_limits<float>::infinity();
+  }
+  w.child[k] = kWideBvhEmpty;
+  w.count[k] = 0;
 }
 
 // Blocks of four a leaf of n primitives takes.
@@ -59,7 +75,7 @@ struct Collapser {
 
   Subtree size_of(std::uint32_t at) {
     std::uint32_t children[kWideBvhWidth];
-    const int n = gather_children(bin, at, children);
+    const int n = gather_children(bin.nodes.data(), at, children);
     Subtree s{{1, 0}};
     for (int i = 0; i < n; ++i) {
       const BvhNode& c = bin.nodes[children[i]];
@@ -99,25 +115,17 @@ struct Collapser {
   // its leaf entries from `leaf` on.
   void fill(std::uint32_t at, std::uint32_t node, std::uint32_t leaf) {
     std::uint32_t children[kWideBvhWidth];
-    const int n = gather_children(bin, at, children);
+    const int n = gather_children(bin.nodes.data(), at, children);
     WideBvhNode& w = out.nodes[node];
     std::uint32_t next_node = node + 1, next_leaf = leaf;
     std::uint32_t sub_node[kWideBvhWidth], sub_leaf[kWideBvhWidth];
     for (int k = 0; k < kWideBvhWidth; ++k) {
       if (k >= n) {
-        for (int a = 0; a < 3; ++a) {
-          w.lo[a][k] = std::numeric_limits<float>::infinity();
-          w.hi[a][k] = -std::numeric_limits<float>::infinity();
-        }
-        w.child[k] = kWideBvhEmpty;
-        w.count[k] = 0;
+        set_empty(w, k);
         continue;
       }
       const BvhNode& c = bin.nodes[children[k]];
-      for (int a = 0; a < 3; ++a) {
-        w.lo[a][k] = wide_bvh_detail::round_down(c.bounds.lo[a]);
-        w.hi[a][k] = wide_bvh_detail::round_up(c.bounds.hi[a]);
-      }
+      set_box(w, k, c.bounds);
       if (c.count > 0) {
         w.child[k] = next_leaf;
         w.count[k] = blocks(c.count);
@@ -146,6 +154,35 @@ struct Collapser {
 };
 
 }  // namespace
+
+std::uint32_t append_wide_nodes(const BvhNode* binary, LargeArray<WideBvhNode>& out) {
+  struct Appender {
+    const BvhNode* bin;
+    LargeArray<WideBvhNode>& out;
+    std::uint32_t root;
+    std::uint32_t append(std::uint32_t at) {  // the node's index, counted from the root
+      std::uint32_t children[kWideBvhWidth];
+      const int n = gather_children(bin, at, children);
+      const auto node = static_cast<std::uint32_t>(out.size());
+      out.emplace_back();  // filled below by index: the recursion may move the array
+      for (int k = 0; k < kWideBvhWidth; ++k) {
+        if (k >= n) {
+          set_empty(out[node], k);
+          continue;
+        }
+        const BvhNode& c = bin[children[k]];
+        set_box(out[node], k, c.bounds);
+        const std::uint32_t child = c.count > 0 ? c.offset : append(children[k]);
+        out[node].child[k] = child;
+        out[node].count[k] = c.count;
+      }
+      return node - root;
+    }
+  };
+  const auto root = static_cast<std::uint32_t>(out.size());
+  Appender{binary, out, root}.append(0);
+  return root;
+}
 
 WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
   const auto start = std::chrono::steady_clock::now();

@@ -54,12 +54,16 @@ static_assert(sizeof(WideBvhNode) == 256);
 // and are tested from the primitive set's arrays: they are few where speed matters.
 using WideBvhLeaf = kernel::TriangleBlock;
 
-struct WideBvhView {
+// A wide tree's arrays. A leaf is a run of `LeafEntry`s: triangle blocks in the scene's BVH; the
+// moving shapes' indices in their trees (accel/motion_bvh.h), which share the traversal below.
+template <class LeafEntry>
+struct WideBvhViewOf {
   const WideBvhNode* nodes = nullptr;
-  const WideBvhLeaf* leaves = nullptr;
-  std::uint32_t root_leaf_count = 0;  // > 0: the whole tree is one leaf of this many blocks (no nodes)
+  const LeafEntry* leaves = nullptr;
+  std::uint32_t root_leaf_count = 0;  // > 0: the whole tree is one leaf of this many entries (no nodes)
   float extent[3] = {0, 0, 0};        // the largest |coordinate| of any box, per axis (for the margins)
 };
+using WideBvhView = WideBvhViewOf<WideBvhLeaf>;
 
 // Owns the arrays (nodes aligned to 64 bytes, a cache line; large ones in 2 MiB pages).
 struct WideBvh {
@@ -75,6 +79,14 @@ struct WideBvh {
 
 struct AccelBuildStats;
 WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
+
+// Appends to `out` the wide nodes of a binary tree (bvh.h's layout, `binary[0]` an inner root),
+// collapsed as build_wide_bvh collapses it, its root first; returns the root's index in `out`.
+// Inner children's indices count from the root (a view of the tree starts there). A binary leaf
+// stays a leaf: child = its offset into the binary tree's primitive order, count = its number
+// of primitives.
+struct BvhNode;
+std::uint32_t append_wide_nodes(const BvhNode* binary, LargeArray<WideBvhNode>& out);
 
 namespace wide_bvh_detail {
 
@@ -98,7 +110,8 @@ struct RayBoxes {
   int negative[3];
 };
 
-STRAHL_HOST_DEVICE inline RayBoxes ray_boxes(const WideBvhView& bvh, const Ray& ray) {
+template <class LeafEntry>
+STRAHL_HOST_DEVICE inline RayBoxes ray_boxes(const WideBvhViewOf<LeafEntry>& bvh, const Ray& ray) {
   RayBoxes r;
   const Real o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
   const Real d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
@@ -153,9 +166,9 @@ struct StackEntry {
 // leaf may lower t_max (a waiting box beyond it is then skipped) — nearest-hit queries; else in
 // slot order, none skipped, and leaf leaves t_max as it is — queries that stop at their first hit
 // (occlusion: the distances would decide nothing; as the packets' traversal, wide_bvh_packet.h).
-template <bool kOrdered = true, class Leaf>
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const WideBvhView& bvh, const Ray& ray, Real t_min,
-                                                           Real& t_max, Leaf& leaf) {
+template <bool kOrdered = true, class LeafEntry, class Leaf>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse_leaves(const WideBvhViewOf<LeafEntry>& bvh, const Ray& ray,
+                                                           Real t_min, Real& t_max, Leaf& leaf) {
   using namespace wide_bvh_detail;
   if (bvh.root_leaf_count > 0) {
     leaf(bvh.leaves, bvh.root_leaf_count, t_max);

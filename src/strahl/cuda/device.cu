@@ -26,7 +26,7 @@ namespace strahl::cuda_detail {
 // is uploaded and mapped below — then update these sizes.
 // Instance groups are RenderScenes of their own: their arrays are uploaded and mapped the same way
 // (copy_scene_arrays, map_accel), and their views (InstanceGroupView) with device pointers.
-static_assert(sizeof(SceneView) - sizeof(AccelView) == 536 && sizeof(PrimitiveSet) == 144 &&
+static_assert(sizeof(SceneView) - sizeof(AccelView) == 552 && sizeof(PrimitiveSet) == 144 &&
 #if defined(STRAHL_HAVE_EMBREE)
                   sizeof(AccelView) == 408,
 #else
