@@ -178,7 +178,7 @@ TEST(MotionBvh, SegmentTreesAreWideAndHoldEveryShapeOnce) {
   const MotionBvhView v = scene.bvh.view();
   const std::size_t shapes = scene.spheres.size() + scene.triangles.size();
   for (std::uint32_t k = 0; k < 4; ++k) {
-    const MotionTreeView tree = v.segment_at((Real(k) + Real(0.5)) / 4);
+    const IndexTreeView tree = v.segment_at((Real(k) + Real(0.5)) / 4);
     std::vector<int> seen(shapes, 0);
     std::size_t nodes = 0, leaves = 0;
     std::vector<std::uint32_t> stack = {0};

@@ -1,8 +1,6 @@
 #include "strahl/accel/motion_bvh.h"
 
-#include <algorithm>
 #include <cassert>
-#include <cmath>
 
 namespace strahl {
 
@@ -80,9 +78,7 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
       }
       n.bounds = b;
     }
-    for (int a = 0; a < 3; ++a)
-      out.extent[a] = std::max(out.extent[a], wide_bvh_detail::round_up(std::max(std::fabs(refit[0].bounds.lo[a]),
-                                                                                 std::fabs(refit[0].bounds.hi[a]))));
+    widen_extent(out.extent, refit[0].bounds);
     if (out.root_leaf_count == 0) out.first_node[k] = append_wide_nodes(refit.data(), out.nodes);
   }
   return out;

@@ -10,8 +10,8 @@
 // The trees are 8-wide (accel/wide_bvh.h: a binary SAH tree collapsed, one SIMD box test for a
 // node's eight children, the same conservative float boxes and traversal as the scene's BVH).
 // The K trees lie one after another in one node array, each with child indices relative to its
-// own first node, and share one array of leaf entries (the shapes' indices): a segment is a
-// WideBvhViewOf<std::uint32_t>, and the GPU uploads two arrays.
+// own first node, and share one array of leaf entries (the shapes' indices): a segment is an
+// IndexTreeView, and the GPU uploads two arrays.
 
 #include <cstdint>
 #include <functional>
@@ -28,9 +28,6 @@ inline constexpr std::uint32_t kMaxMotionSegments = 16;
 inline constexpr int kMotionSegmentCounts = 5;  // the K tried: 1, 2, 4, 8, 16
 static_assert(1u << (kMotionSegmentCounts - 1) == kMaxMotionSegments);
 
-// One segment's tree: leaves are runs of the moving shapes' indices.
-using MotionTreeView = WideBvhViewOf<std::uint32_t>;
-
 struct MotionBvhView {
   const WideBvhNode* nodes = nullptr;
   const std::uint32_t* prims = nullptr;
@@ -41,7 +38,7 @@ struct MotionBvhView {
 
   // The tree of the segment holding u ∈ [0, 1]. Segment k covers [k/K, (k + 1)/K]; K is a power
   // of two, so u·K is exact and k = ⌊u·K⌋ has k/K ≤ u ≤ (k + 1)/K in floating point too.
-  STRAHL_HOST_DEVICE MotionTreeView segment_at(Real u) const {
+  STRAHL_HOST_DEVICE IndexTreeView segment_at(Real u) const {
     if (segments == 0) return {};
     const Real x = u * Real(segments);
     std::uint32_t k = 0;
@@ -49,19 +46,6 @@ struct MotionBvhView {
     return {nodes == nullptr ? nullptr : nodes + first_node[k], prims, root_leaf_count, {extent[0], extent[1], extent[2]}};
   }
 };
-
-// Calls visitor(prim, −∞, ∞, t_max) for the shapes of every leaf the ray reaches within
-// (t_min, t_max), nearer boxes first (traversal.h's contract).
-template <class Visitor>
-STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const MotionTreeView& tree, const Ray& ray, Real t_min, Real& t_max,
-                                                     Visitor& visit) {
-  auto leaf = [&](const std::uint32_t* first, std::uint32_t count, Real& t_far) {
-    for (std::uint32_t i = 0; i < count; ++i)
-      if (visit(first[i], -kInfinity, kInfinity, t_far)) return true;
-    return false;
-  };
-  traverse_leaves(tree, ray, t_min, t_max, leaf);
-}
 
 struct MotionBvh {
   LargeArray<WideBvhNode> nodes;  // the K trees' nodes, each tree's boxes those swept in its segment

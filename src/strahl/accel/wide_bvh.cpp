@@ -184,6 +184,22 @@ std::uint32_t append_wide_nodes(const BvhNode* binary, LargeArray<WideBvhNode>& 
   return root;
 }
 
+void widen_extent(float extent[3], const Bounds& box) {
+  for (int a = 0; a < 3; ++a)
+    extent[a] = std::max(extent[a], wide_bvh_detail::round_up(std::max(std::fabs(box.lo[a]), std::fabs(box.hi[a]))));
+}
+
+IndexTree build_index_tree(const std::vector<Bounds>& boxes) {
+  IndexTree out;
+  if (boxes.empty()) return out;
+  const Bvh bin = build_bvh(boxes);
+  out.prims.assign(bin.prims.begin(), bin.prims.end());
+  widen_extent(out.extent, bin.nodes[0].bounds);
+  if (bin.nodes[0].count > 0) out.root_leaf_count = bin.nodes[0].count;
+  else append_wide_nodes(bin.nodes.data(), out.nodes);
+  return out;
+}
+
 WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
   const auto start = std::chrono::steady_clock::now();
   AccelBuildStats stats;
@@ -199,9 +215,7 @@ WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats_out) {
   WideBvh out;
   stats.nodes = stats.leaves = stats.max_depth = 0;
   if (!bin.nodes.empty()) {
-    const Bounds& root = bin.nodes[0].bounds;
-    for (int a = 0; a < 3; ++a)
-      out.extent[a] = wide_bvh_detail::round_up(std::max(std::fabs(root.lo[a]), std::fabs(root.hi[a])));
+    widen_extent(out.extent, bin.nodes[0].bounds);
     Collapser c{bin, prims, out, {}};
     if (bin.nodes[0].count > 0) {
       // One leaf (the lecture's five spheres): no nodes, no box test.

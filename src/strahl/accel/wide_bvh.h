@@ -80,6 +80,29 @@ struct WideBvh {
 struct AccelBuildStats;
 WideBvh build_wide_bvh(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr);
 
+// A wide tree whose leaves are runs of indices into the caller's arrays: the instances' tree
+// (render/instance_queries.h) and the moving shapes' trees (accel/motion_bvh.h).
+using IndexTreeView = WideBvhViewOf<std::uint32_t>;
+
+struct IndexTree {
+  LargeArray<WideBvhNode> nodes;
+  std::vector<std::uint32_t> prims;  // the leaves' entries
+  std::uint32_t root_leaf_count = 0;
+  float extent[3] = {0, 0, 0};
+  IndexTreeView view() const {
+    return {nodes.empty() ? nullptr : nodes.data(), prims.empty() ? nullptr : prims.data(), root_leaf_count,
+            {extent[0], extent[1], extent[2]}};
+  }
+};
+
+// The binary SAH tree over `boxes` (bvh.h) collapsed into a wide one: its leaves' entries are
+// indices into `boxes`; one leaf (a few boxes) stays a root leaf, without nodes.
+IndexTree build_index_tree(const std::vector<Bounds>& boxes);
+
+// Raises extent (per axis, the largest |coordinate| of any box: the margins of the float box
+// test) to cover `box`.
+void widen_extent(float extent[3], const Bounds& box);
+
 // Appends to `out` the wide nodes of a binary tree (bvh.h's layout, `binary[0]` an inner root),
 // collapsed as build_wide_bvh collapses it, its root first; returns the root's index in `out`.
 // Inner children's indices count from the root (a view of the tree starts there). A binary leaf
@@ -324,6 +347,20 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const WideBvhView& bvh, con
     return false;
   };
   traverse_leaves(bvh, ray, t_min, t_max, leaf);
+}
+
+// The visitor traversal over an index tree: visitor(index, −∞, ∞, t_max) for the entries of every
+// leaf the ray reaches; kNearestFirst: nearer boxes first, and the visitor may lower t_max; else
+// in slot order (queries that stop at their first hit).
+template <bool kNearestFirst = true, class Visitor>
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void traverse(const IndexTreeView& tree, const Ray& ray, Real t_min, Real& t_max,
+                                                     Visitor& visit) {
+  auto leaf = [&](const std::uint32_t* first, std::uint32_t count, Real& t_far) {
+    for (std::uint32_t i = 0; i < count; ++i)
+      if (visit(first[i], -kInfinity, kInfinity, t_far)) return true;
+    return false;
+  };
+  traverse_leaves<kNearestFirst>(tree, ray, t_min, t_max, leaf);
 }
 
 // The nearest hit in (t_min, t_max) among the leaves' primitives: its id and hit, t = kInfinity

@@ -26,7 +26,7 @@ namespace strahl::cuda_detail {
 // is uploaded and mapped below — then update these sizes.
 // Instance groups are RenderScenes of their own: their arrays are uploaded and mapped the same way
 // (copy_scene_arrays, map_accel), and their views (InstanceGroupView) with device pointers.
-static_assert(sizeof(SceneView) - sizeof(AccelView) == 552 && sizeof(PrimitiveSet) == 144 &&
+static_assert(sizeof(SceneView) - sizeof(AccelView) == 568 && sizeof(PrimitiveSet) == 144 &&
 #if defined(STRAHL_HAVE_EMBREE)
                   sizeof(AccelView) == 408,
 #else
@@ -237,7 +237,7 @@ struct Device::Impl {
     return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) &&
            map_accel(out.accel) && map(out.moving_spheres) && map(out.moving_triangles) &&
            map(out.moving_bvh.nodes) && map(out.moving_bvh.prims) && map(out.materials) && map(out.lights) &&
-           map(out.solids) && map(out.instances) && map(out.instance_bvh.nodes) && map(out.instance_bvh.prims) &&
+           map(out.solids) && map(out.instances) && map(out.instance_bvh.nodes) && map(out.instance_bvh.leaves) &&
            map(out.groups);
   }
 };

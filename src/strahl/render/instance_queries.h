@@ -43,7 +43,7 @@ STRAHL_HOST_DEVICE inline bool instance_occluded(const SceneView& s, const Ray& 
     found = occluded(s.groups[x.group].accel, r.ray, t_min * r.scale, t_far * r.scale);
     return found;
   };
-  traverse(s.instance_bvh, ray, t_min, t_max, visit);
+  traverse<false>(s.instance_bvh, ray, t_min, t_max, visit);  // any hit will do: no sorting
   return found;
 }
 

@@ -79,7 +79,7 @@ struct RenderScene {
   std::vector<Bounds> group_bounds;  // object space
   std::vector<kernel::Instance> instances;
   std::vector<Bounds> instance_bounds;
-  Bvh instance_bvh;
+  IndexTree instance_bvh;
   std::vector<Material> materials;
   std::vector<Light> lights;
   Camera camera;

@@ -6,6 +6,7 @@
 
 #include "strahl/accel/accel.h"
 #include "strahl/accel/motion_bvh.h"
+#include "strahl/accel/wide_bvh.h"
 #include "strahl/camera/camera.h"
 #include "strahl/geometry/moving.h"
 #include "strahl/geometry/plane.h"
@@ -58,7 +59,7 @@ struct SceneView {
   // boxes, each placing one of the groups. Empty without instances.
   const kernel::Instance* instances = nullptr;
   std::uint32_t instance_count = 0;
-  BvhView instance_bvh;
+  IndexTreeView instance_bvh;
   const InstanceGroupView* groups = nullptr;
   Real shutter_open = 0, inv_shutter = 0;  // u = (time − open) · inv_shutter; 0 for no interval
   const Material* materials = nullptr;

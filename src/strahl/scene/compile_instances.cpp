@@ -101,7 +101,7 @@ void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) cons
 }
 
 void build_instance_bvh(RenderScene& out) {
-  if (!out.instances.empty()) out.instance_bvh = build_bvh(out.instance_bounds);
+  if (!out.instances.empty()) out.instance_bvh = build_index_tree(out.instance_bounds);
 }
 
 }  // namespace strahl
