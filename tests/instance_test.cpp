@@ -128,6 +128,29 @@ TEST(Instance, TransformedInstanceEqualsTheObjectsTransformedInPlace) {
   }
 }
 
+// Many instances, overlapping: their BVH (an 8-wide tree over their boxes, with nodes) finds
+// what the same objects placed one by one find.
+TEST(Instance, ManyInstancesFindWhatTheirObjectsFind) {
+  std::string objects, instances;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) {
+      const std::string t = "translate: [" + std::to_string(0.7 * (i - 2.5)) + ", " + std::to_string(0.25 * j) + ", " +
+                            std::to_string(-0.8 * (j - 2.5)) + "]";
+      objects += group_objects("  ", t);
+      instances += "  - {type: instance, of: g, " + t + "}\n";
+    }
+  const RenderScene direct_scene = compile(parse_scene(kHead + "objects:\n" + kFloor + objects, "direct.yaml", "."));
+  const RenderScene instanced_scene = compile(parse_scene(
+      kHead + "groups:\n  g:\n" + group_objects("    ", "") + "objects:\n" + kFloor + instances, "instanced.yaml", "."));
+  ASSERT_EQ(instanced_scene.instances.size(), 36u);
+  ASSERT_FALSE(instanced_scene.instance_bvh.nodes.empty());
+  const Compared c = compare(direct_scene, instanced_scene, 13);
+  EXPECT_GT(c.both, 2000);
+  EXPECT_LE(c.disagree, 4);
+  EXPECT_LT(c.max_t, 1e-9);
+  EXPECT_LT(c.max_normal, 1e-7);
+}
+
 TEST(Instance, EveryAcceleratorAgrees) {
   const std::string t = "transform: [{rotate: {axis: [0, 1, 0], angle: 25}}, {scale: 1.3}, {translate: [0.2, 0, 0]}]";
   const RenderScene reference = instanced(t, AccelKind::Bvh);
