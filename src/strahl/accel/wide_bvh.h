@@ -54,8 +54,8 @@ static_assert(sizeof(WideBvhNode) == 256);
 // and are tested from the primitive set's arrays: they are few where speed matters.
 using WideBvhLeaf = kernel::TriangleBlock;
 
-// A wide tree's arrays. A leaf is a run of `LeafEntry`s: triangle blocks in the scene's BVH; the
-// moving shapes' indices in their trees (accel/motion_bvh.h), which share the traversal below.
+// A wide tree's arrays. A leaf is a run of `LeafEntry`s: triangle blocks in the scene's BVH,
+// indices in the instances' and the moving shapes' trees (IndexTree below), all traversed alike.
 template <class LeafEntry>
 struct WideBvhViewOf {
   const WideBvhNode* nodes = nullptr;

@@ -52,21 +52,16 @@ STRAHL_HOST_DEVICE inline void for_each_moving_crossing(const SceneView& s, cons
   if (s.moving_sphere_count + s.moving_triangle_count == 0) return;
   const Real u = shutter_fraction(s, ray.time);
   Real t_max = distance;
-  auto leaf = [&](const std::uint32_t* first, std::uint32_t count, const Real& t_far) {
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const std::uint32_t prim = first[i];
-      if (prim < s.moving_sphere_count) {
-        const kernel::MovingSphere& ms = s.moving_spheres[prim];
-        const int n = kernel::crossings(kernel::at_time(ms, u), ray, 0, t_far);
-        if (n > 0 && cross(ms.material, n)) return true;
-      } else {
-        const kernel::MovingTriangle& mt = s.moving_triangles[prim - s.moving_sphere_count];
-        if (kernel::intersect(kernel::at_time(mt, u), ray, 0, t_far).t < kInfinity && cross(mt.material, 1)) return true;
-      }
+  auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
+    if (prim < s.moving_sphere_count) {
+      const kernel::MovingSphere& ms = s.moving_spheres[prim];
+      const int n = kernel::crossings(kernel::at_time(ms, u), ray, 0, t_far);
+      return n > 0 && cross(ms.material, n);
     }
-    return false;
+    const kernel::MovingTriangle& mt = s.moving_triangles[prim - s.moving_sphere_count];
+    return kernel::intersect(kernel::at_time(mt, u), ray, 0, t_far).t < kInfinity && cross(mt.material, 1);
   };
-  traverse_leaves<kNearestFirst>(s.moving_bvh.segment_at(u), ray, 0, t_max, leaf);
+  traverse<kNearestFirst>(s.moving_bvh.segment_at(u), ray, 0, t_max, visit);
 }
 
 // Does a moving shape lie on the segment (0, distance) of the shadow ray? The any-hit query of
