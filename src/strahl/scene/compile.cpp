@@ -276,8 +276,11 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   // A mirroring transform (negative determinant) would turn the faces inside out: swap two
   // vertices of each face so that front faces stay outside.
   const bool mirrored = m.determinant() < 0;
-  out.triangles.reserve(out.triangles.size() + data.faces.size());
-  if (!data.normals.empty()) out.vertex_normals.reserve(out.vertex_normals.size() + data.faces.size());
+  // A moving face is a moving triangle with two sets of vertex normals (at open and at close).
+  const std::size_t keys = motion.moving() ? 2 : 1;
+  if (motion.moving()) out.moving_triangles.reserve(out.moving_triangles.size() + data.faces.size());
+  else out.triangles.reserve(out.triangles.size() + data.faces.size());
+  if (!data.normals.empty()) out.vertex_normals.reserve(out.vertex_normals.size() + keys * data.faces.size());
   std::size_t kept = 0;
   for (MeshData::Face f : data.faces) {
     if (mirrored) {
