@@ -18,13 +18,13 @@ namespace {
 
 TEST(MotionBvh, SegmentAtHoldsTheTime) {
   MotionBvh bvh;
-  bvh.nodes.resize(1);
-  bvh.prims.resize(1);
+  bvh.trees.nodes.resize(1);
+  bvh.trees.prims.resize(1);
   for (std::uint32_t segments = 1; segments <= kMaxMotionSegments; segments *= 2) {
     bvh.segments = segments;
     for (std::uint32_t k = 0; k < segments; ++k) bvh.first_node[k] = 100 + k;
     const MotionBvhView v = bvh.view();
-    const auto segment = [&](Real u) { return std::uint32_t(v.segment_at(u).nodes - v.nodes) - 100; };
+    const auto segment = [&](Real u) { return std::uint32_t(v.segment_at(u).nodes - v.trees.nodes) - 100; };
     std::mt19937_64 rng(segments);
     std::uniform_real_distribution<Real> uniform(0, 1);
     for (int i = 0; i < 10000; ++i) {
@@ -150,8 +150,8 @@ TEST(MotionBvh, FewShapesAreOneLeafWithoutNodes) {
   std::uniform_real_distribution<Real> uniform(-1, 1), time(0, 1);
   for (std::uint32_t segments : {1u, 4u}) {
     scene.build(segments);
-    EXPECT_EQ(scene.bvh.root_leaf_count, 5u);
-    EXPECT_TRUE(scene.bvh.nodes.empty());
+    EXPECT_EQ(scene.bvh.trees.root_leaf_count, 5u);
+    EXPECT_TRUE(scene.bvh.trees.nodes.empty());
     const SceneView v = scene.view();
     int hits = 0;
     for (int i = 0; i < 4000; ++i) {

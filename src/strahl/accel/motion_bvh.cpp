@@ -7,11 +7,8 @@ namespace strahl {
 MotionBvhView MotionBvh::view() const {
   MotionBvhView v;
   if (segments == 0) return v;
-  v.nodes = nodes.empty() ? nullptr : nodes.data();
-  v.prims = prims.data();
+  v.trees = trees.view();
   v.segments = segments;
-  v.root_leaf_count = root_leaf_count;
-  for (int a = 0; a < 3; ++a) v.extent[a] = extent[a];
   for (std::uint32_t k = 0; k < segments; ++k) v.first_node[k] = first_node[k];
   return v;
 }
@@ -62,8 +59,8 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
   std::vector<Bounds> boxes(count);
   for (std::uint32_t i = 0; i < count; ++i) boxes[i] = box(i, Real(0.5), Real(0.5));
   const Bvh tree = build_bvh(boxes);
-  out.prims.assign(tree.prims.begin(), tree.prims.end());
-  if (tree.nodes[0].count > 0) out.root_leaf_count = tree.nodes[0].count;
+  out.trees.prims.assign(tree.prims.begin(), tree.prims.end());
+  if (tree.nodes[0].count > 0) out.trees.root_leaf_count = tree.nodes[0].count;
   LargeArray<BvhNode> refit;
   for (std::uint32_t k = 0; k < k_chosen; ++k) {
     segment_boxes(count, box, k, k_chosen, boxes);
@@ -72,14 +69,14 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
       BvhNode& n = refit[i];
       Bounds b;
       if (n.count > 0) {
-        for (std::uint32_t j = n.offset; j < n.offset + n.count; ++j) b = merge(b, boxes[out.prims[j]]);
+        for (std::uint32_t j = n.offset; j < n.offset + n.count; ++j) b = merge(b, boxes[out.trees.prims[j]]);
       } else {
         b = merge(refit[n.offset].bounds, refit[n.offset + 1].bounds);
       }
       n.bounds = b;
     }
-    widen_extent(out.extent, refit[0].bounds);
-    if (out.root_leaf_count == 0) out.first_node[k] = append_wide_nodes(refit.data(), out.nodes);
+    widen_extent(out.trees.extent, refit[0].bounds);
+    if (out.trees.root_leaf_count == 0) out.first_node[k] = append_wide_nodes(refit.data(), out.trees.nodes);
   }
   return out;
 }

@@ -29,12 +29,9 @@ inline constexpr int kMotionSegmentCounts = 5;  // the K tried: 1, 2, 4, 8, 16
 static_assert(1u << (kMotionSegmentCounts - 1) == kMaxMotionSegments);
 
 struct MotionBvhView {
-  const WideBvhNode* nodes = nullptr;
-  const std::uint32_t* prims = nullptr;
-  std::uint32_t segments = 0;         // K, a power of two; 0 when nothing moves
-  std::uint32_t root_leaf_count = 0;  // > 0: each tree is one leaf of all the shapes (no nodes)
-  float extent[3] = {0, 0, 0};        // the largest |coordinate| of any box of any segment, per axis
-  std::uint32_t first_node[kMaxMotionSegments] = {};
+  IndexTreeView trees;  // the K trees: their nodes one after another, their leaves' entries shared
+  std::uint32_t segments = 0;  // K, a power of two; 0 when nothing moves
+  std::uint32_t first_node[kMaxMotionSegments] = {};  // where segment k's tree begins in trees.nodes
 
   // The tree of the segment holding u ∈ [0, 1]. Segment k covers [k/K, (k + 1)/K]; K is a power
   // of two, so u·K is exact and k = ⌊u·K⌋ has k/K ≤ u ≤ (k + 1)/K in floating point too.
@@ -43,16 +40,18 @@ struct MotionBvhView {
     const Real x = u * Real(segments);
     std::uint32_t k = 0;
     if (x >= 1) k = x >= Real(segments) ? segments - 1 : static_cast<std::uint32_t>(x);
-    return {nodes == nullptr ? nullptr : nodes + first_node[k], prims, root_leaf_count, {extent[0], extent[1], extent[2]}};
+    IndexTreeView tree = trees;
+    if (tree.nodes != nullptr) tree.nodes += first_node[k];
+    return tree;
   }
 };
 
 struct MotionBvh {
-  LargeArray<WideBvhNode> nodes;  // the K trees' nodes, each tree's boxes those swept in its segment
-  std::vector<std::uint32_t> prims;  // the leaves' entries, shared by the K trees
+  // The K trees' nodes (each tree's boxes those swept in its segment) and the leaves' entries,
+  // shared; root_leaf_count > 0: each tree is one leaf of all the shapes (no nodes); extent: the
+  // largest |coordinate| of any box of any segment, per axis.
+  IndexTree trees;
   std::uint32_t segments = 0;
-  std::uint32_t root_leaf_count = 0;
-  float extent[3] = {0, 0, 0};
   std::uint32_t first_node[kMaxMotionSegments] = {};
   // Σ of the primitives' surface areas over the segments' boxes, averaged over the segments, for
   // each K = 1, 2, 4, …, kMaxMotionSegments tried (the build's measure; 0 past those tried).

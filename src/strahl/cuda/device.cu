@@ -183,8 +183,8 @@ struct Device::Impl {
            ok(copy_array(rs.accel.kdtree.blocks)) && ok(copy_array(rs.accel.octree.nodes)) &&
            ok(copy_array(rs.accel.octree.centers)) && ok(copy_array(rs.accel.octree.leaves)) &&
            ok(copy_array(rs.accel.octree.blocks)) && ok(copy_array(rs.moving_spheres)) &&
-           ok(copy_array(rs.moving_triangles)) && ok(copy_array(rs.moving_bvh.nodes)) &&
-           ok(copy_array(rs.moving_bvh.prims)) && ok(copy_array(rs.materials)) && ok(copy_array(rs.lights)) &&
+           ok(copy_array(rs.moving_triangles)) && ok(copy_array(rs.moving_bvh.trees.nodes)) &&
+           ok(copy_array(rs.moving_bvh.trees.prims)) && ok(copy_array(rs.materials)) && ok(copy_array(rs.lights)) &&
            ok(copy_array(rs.solids)) && ok(copy_array(rs.boxes)) && ok(copy_array(rs.cones)) &&
            ok(copy_array(rs.disks)) && ok(copy_array(rs.tori)) && ok(copy_array(rs.quadrics)) &&
            ok(copy_array(rs.implicits)) && ok(copy_array(rs.implicit_tallies)) &&
@@ -236,7 +236,7 @@ struct Device::Impl {
     out = host;
     return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) &&
            map_accel(out.accel) && map(out.moving_spheres) && map(out.moving_triangles) &&
-           map(out.moving_bvh.nodes) && map(out.moving_bvh.prims) && map(out.materials) && map(out.lights) &&
+           map(out.moving_bvh.trees.nodes) && map(out.moving_bvh.trees.leaves) && map(out.materials) && map(out.lights) &&
            map(out.solids) && map(out.instances) && map(out.instance_bvh.nodes) && map(out.instance_bvh.leaves) &&
            map(out.groups);
   }
