@@ -49,10 +49,12 @@ TEST(PixelSampler, PowerOfTwoSidesMatchTheDivisions) {
 
 // The lanes' paths (PixelSequence::samples, render/packet_radiance.h: strata_film_lanes,
 // sobol_film_lanes) against sample() one by one: every side, packets of 8 and 16 starting
-// anywhere in the first rounds (straddling two rounds too: each lane its round's order; a side that
-// is no power of two falls back), with and without lens and shutter, the film
-// lanes (FilmLanes) the same positions and times, padded with lane 0's; and the
-// walk-free permutation equals the walking one for every power of two n and element.
+// anywhere in the first rounds (straddling two rounds too: each lane its round's order), sides
+// that are powers of two and sides that are not, with and without lens and shutter, the film
+// lanes (FilmLanes) the same positions and times, padded with lane 0's; the walk-free
+// permutation equals the walking one for every power of two n and element, and the lanes' walks
+// (permutation_elements) the walk of each for every n up to 300 and element; divide_exactly
+// divides exactly.
 template <int N>
 void expect_lanes_match(const PixelSequence& p, std::uint32_t side) {
   for (std::uint32_t first = 0; first < 2 * side * side + 3; ++first) {
@@ -74,7 +76,7 @@ void expect_lanes_match(const PixelSequence& p, std::uint32_t side) {
 }
 
 TEST(PixelSampler, LanesMatchSampleBySample) {
-  for (std::uint32_t side : {1u, 2u, 3u, 4u, 8u, 16u}) {
+  for (std::uint32_t side : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 10u, 16u}) {
     for (SamplerKind kind : {SamplerKind::Grid, SamplerKind::Stratified, SamplerKind::Sobol}) {
       PixelSampler sampler;
       sampler.kind = kind;
@@ -92,6 +94,27 @@ TEST(PixelSampler, LanesMatchSampleBySample) {
     for (std::uint32_t seed : {0u, 1u, 0x9e3779b9u, 0xdeadbeefu, 0xffffffffu})
       for (std::uint32_t i = 0; i < n; ++i)
         ASSERT_EQ(permutation_element_pow2(i, n, seed), permutation_element(i, n, seed)) << n << " " << seed << " " << i;
+  constexpr int kLanes = 16;
+  for (std::uint32_t n = 2; n <= 300; ++n)
+    for (std::uint32_t first = 0; first < n; first += kLanes) {
+      std::uint32_t i[kLanes], seed[kLanes], out[kLanes];
+      for (int j = 0; j < kLanes; ++j)
+        i[j] = (first + std::uint32_t(j)) % n, seed[j] = 0x9e3779b9u * (first + std::uint32_t(j) + n) ^ (j % 3 == 0 ? ~0u : 0u);
+      permutation_elements<kLanes>(i, n, seed, out);
+      for (int j = 0; j < kLanes; ++j) ASSERT_EQ(out[j], permutation_element(i[j], n, seed[j])) << n << " " << i[j];
+    }
+  for (std::uint32_t d : {1u, 2u, 3u, 7u, 9u, 36u, 1000u, 1023u, 1u << 20, (1u << 20) - 1}) {
+    std::uint64_t k = d;
+    for (int trial = 0; trial < 20000; ++trial) {
+      k = k * 6364136223846793005ull + 1442695040888963407ull;
+      const std::uint32_t x = trial < 3 * 1024 ? std::uint32_t(trial / 3) * d + std::uint32_t(trial % 3) - 1  // near multiples
+                              : trial == 3 * 1024 ? ~0u : std::uint32_t(k >> 32);
+      std::uint32_t q, r;
+      divide_exactly(x, double(d), 1 / double(d), q, r);
+      ASSERT_EQ(q, x / d) << x << " / " << d;
+      ASSERT_EQ(r, x % d) << x << " % " << d;
+    }
+  }
 }
 
 // sobol_pair leaves out the bit reversals that cancel: it must equal the composition it stands for,

@@ -126,7 +126,7 @@ class SamplePackets {
   std::uint64_t key_[kLanes];
   std::uint32_t index_[kLanes];
   const bool sobol_;  // Sobol samples (film, lens, time): computed in flush()
-  const bool strata_;  // grid or stratified samples of a power-of-two side: so are these, lens and time too
+  const bool strata_;  // grid or stratified samples: so are these, lens and time too
   const bool lens_, time_;  // the camera uses the lens, the shutter
   const bool stratified_;
   const std::uint32_t side_;

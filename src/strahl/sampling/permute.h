@@ -4,6 +4,7 @@
 // permutations of [0, n) evaluated element by element (Kensler 2013, "Correlated Multi-Jittered
 // Sampling"). Pure functions of their arguments: no tables, no state.
 
+#include <cmath>
 #include <cstdint>
 
 #include "strahl/math/config.h"
@@ -84,5 +85,51 @@ STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_element_pow2(std::uint32_
   return (permutation_round(i, n - 1, seed) + seed) & (n - 1);
 }
 
+// x / d and x % d for x < 2^32 and 1 ≤ d ≤ 2^20, exactly, in doubles (which a loop over lanes
+// runs side by side, where integer division has no SIMD instruction): x·(1/d) lies within 2^-20
+// of x/d, so its integer part is off by at most one, which the remainder's range then corrects.
+// `inv` is 1/d.
+STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void divide_exactly(std::uint32_t x, double d, double inv, std::uint32_t& quotient,
+                                                           std::uint32_t& remainder) {
+  double q = std::trunc(double(x) * inv);
+  double r = double(x) - q * d;  // exact: integers below 2^53
+  if (r < 0) {
+    q -= 1, r += d;
+  } else if (r >= d) {
+    q += 1, r -= d;
+  }
+  quotient = std::uint32_t(q);
+  remainder = std::uint32_t(r);
+}
+
+// permutation_element(i[j], n, seed[j]) for N lanes and any n > 1 (n ≤ 2^20): the lanes' walks
+// side by side — while any lane's value is still ≥ n, every such lane takes one more round (the
+// others keep theirs) — then (value + seed) % n by divide_exactly.
+template <int N>
+STRAHL_HOST_DEVICE inline void permutation_elements(const std::uint32_t* __restrict i, std::uint32_t n,
+                                                    const std::uint32_t* __restrict seed, std::uint32_t* __restrict out) {
+  std::uint32_t w = n - 1;
+  w |= w >> 1;
+  w |= w >> 2;
+  w |= w >> 4;
+  w |= w >> 8;
+  w |= w >> 16;
+  std::uint32_t v[N];
+  for (int j = 0; j < N; ++j) v[j] = permutation_round(i[j], w, seed[j]);
+  for (;;) {
+    std::uint32_t walking = 0;
+    for (int j = 0; j < N; ++j) walking |= std::uint32_t(v[j] >= n);
+    if (walking == 0) break;
+    for (int j = 0; j < N; ++j) {
+      const std::uint32_t next = permutation_round(v[j], w, seed[j]);
+      v[j] = v[j] >= n ? next : v[j];
+    }
+  }
+  const double d = double(n), inv = 1 / d;
+  for (int j = 0; j < N; ++j) {
+    std::uint32_t q;
+    divide_exactly(v[j] + seed[j], d, inv, q, out[j]);
+  }
+}
 
 }  // namespace strahl

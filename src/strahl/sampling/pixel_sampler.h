@@ -130,11 +130,26 @@ STRAHL_HOST_DEVICE inline void sobol_lens_time_lanes(bool lens, bool time, const
     }
 }
 
-// Lane i: the point in [0, 1)² of sample index[i] of a grid or stratified sequence whose strata
-// side is a power of two (side = 2^side_shift) — its stratum in the order order[i] of its round
-// (PixelSequence::strata_order), jittered by dimensions dim, dim + 1 of the random numbers keyed
-// by stream[i] or at the stratum's centre (`jitter` false: the grid's film positions) — into
-// (ux[i], uy[i]): PixelSequence::stratum_2d()'s arithmetic, the lanes side by side.
+// Lane i: the stratum (of n = side² > 1, side no power of two) of sample index[i] in the order
+// order[i] of its round: permutation_element(index[i] % n, n, order[i]), the lanes side by side.
+template <int N>
+STRAHL_HOST_DEVICE inline void strata_of_lanes(std::uint32_t n, const std::uint32_t* __restrict index,
+                                               const std::uint32_t* __restrict order, std::uint32_t* __restrict s) {
+  const double d = double(n), inv = 1 / d;
+  std::uint32_t k[N];
+  for (int i = 0; i < N; ++i) {
+    std::uint32_t round;
+    divide_exactly(index[i], d, inv, round, k[i]);
+  }
+  permutation_elements<N>(k, n, order, s);
+}
+
+// Lane i: the point in [0, 1)² of sample index[i] of a grid or stratified sequence — its stratum
+// in the order order[i] of its round (PixelSequence::strata_order), jittered by dimensions dim,
+// dim + 1 of the random numbers keyed by stream[i] or at the stratum's centre (`jitter` false:
+// the grid's film positions) — into (ux[i], uy[i]): PixelSequence::stratum_2d()'s arithmetic,
+// the lanes side by side. side_shift: log2(side) for a power of two (shifts and masks, no walk),
+// else −1 (strata_of_lanes; the row and column by divide_exactly).
 template <int N>
 STRAHL_HOST_DEVICE inline void strata_lanes_2d(bool jitter, std::uint32_t side, int side_shift, std::uint32_t dim,
                                                const std::uint32_t* __restrict index,
@@ -142,9 +157,12 @@ STRAHL_HOST_DEVICE inline void strata_lanes_2d(bool jitter, std::uint32_t side, 
                                                const std::uint64_t* __restrict stream, Real* __restrict ux,
                                                Real* __restrict uy) {
   const std::uint32_t n = side * side;
-  const Real inv = Real(1) / Real(side);  // exact: a power of two (1 for one stratum: (0 + j) · 1 = j)
   std::uint32_t s[N];  // the lanes' strata (permutation_element_pow2 of [0, 1) is 0)
-  for (int i = 0; i < N; ++i) s[i] = permutation_element_pow2(index[i] & (n - 1), n, order[i]);
+  if (side_shift >= 0) {
+    for (int i = 0; i < N; ++i) s[i] = permutation_element_pow2(index[i] & (n - 1), n, order[i]);
+  } else {
+    strata_of_lanes<N>(n, index, order, s);
+  }
   Real jx[N], jy[N];
   if (jitter) {
     for (int i = 0; i < N; ++i) {
@@ -154,14 +172,24 @@ STRAHL_HOST_DEVICE inline void strata_lanes_2d(bool jitter, std::uint32_t side, 
   } else {
     for (int i = 0; i < N; ++i) jx[i] = jy[i] = Real(0.5);
   }
-  for (int i = 0; i < N; ++i) {
-    ux[i] = (Real(s[i] & (side - 1)) + jx[i]) * inv;
-    uy[i] = (Real(s[i] >> side_shift) + jy[i]) * inv;
+  if (side_shift >= 0) {
+    const Real inv = Real(1) / Real(side);  // exact: a power of two (1 for one stratum: (0 + j) · 1 = j)
+    for (int i = 0; i < N; ++i) {
+      ux[i] = (Real(s[i] & (side - 1)) + jx[i]) * inv;
+      uy[i] = (Real(s[i] >> side_shift) + jy[i]) * inv;
+    }
+  } else {
+    const double d = double(side), inv = 1 / d;
+    for (int i = 0; i < N; ++i) {
+      std::uint32_t row, column;
+      divide_exactly(s[i], d, inv, row, column);
+      ux[i] = (Real(column) + jx[i]) / Real(side);
+      uy[i] = (Real(row) + jy[i]) / Real(side);
+    }
   }
 }
 
-// The film positions of N grid or stratified samples whose strata side is a power of two, with
-// lens (0.5, 0.5) and time 0 (strata_lens_time_lanes() sets those where the camera uses them):
+// The film positions of N grid or stratified samples, with lens (0.5, 0.5) and time 0 (strata_lens_time_lanes() sets those where the camera uses them):
 // lane i is sample index[i] of the pixel at (px[i], py[i]), its film stratum in order order[i]
 // (strata_lanes_2d). `jitter`: stratified (else the strata's centres, the grid).
 template <int N>
@@ -199,10 +227,15 @@ STRAHL_HOST_DEVICE inline void strata_lens_time_lanes(bool lens, bool time, std:
   }
   if (time) {
     const std::uint32_t n = side * side;
-    const Real inv = Real(1) / Real(n);  // exact
+    std::uint32_t s[N];
+    if (side_shift >= 0) {
+      for (int i = 0; i < N; ++i) s[i] = permutation_element_pow2(index[i] & (n - 1), n, time_order[i]);
+    } else {
+      strata_of_lanes<N>(n, index, time_order, s);
+    }
     for (int i = 0; i < N; ++i) {
-      const std::uint32_t s = permutation_element_pow2(index[i] & (n - 1), n, time_order[i]);
-      film.time[i] = (Real(s) + to_unit(keyed_bits(stream[i], index[i], kDimTime))) * inv;
+      const Real t = Real(s[i]) + to_unit(keyed_bits(stream[i], index[i], kDimTime));
+      film.time[i] = side_shift >= 0 ? t * (Real(1) / Real(n)) : t / Real(n);  // 1/n exact for powers of two
       cs[i].time = film.time[i];
     }
   }
@@ -236,17 +269,24 @@ struct PixelSequence {
     return std::uint32_t(mix64(key + (std::uint64_t(purpose) + 1) * 0x9e3779b97f4a7c15ULL) >> 32);
   }
 
-  // Grid and stratified with a power-of-two side: the order in which the round of sample `index`
-  // visits the film's strata (purpose 0), the lens's (1) or the shutter's (2) — sample()'s
-  // order(purpose); 0 for one stratum, which needs no order.
+  // Grid and stratified: the round of sample `index` (each round visits the side² strata once).
+  STRAHL_HOST_DEVICE std::uint32_t strata_round(std::uint32_t index) const {
+    if (side_shift >= 0) return index >> (2 * side_shift);
+    const std::uint32_t n = side * side;
+    return index < n ? 0 : index / n;  // (most samples are in round 0: no division)
+  }
+  // Grid and stratified: the order in which the round of sample `index` visits the film's strata
+  // (purpose 0), the lens's (1) or the shutter's (2) — sample()'s order(purpose); 0 for one
+  // stratum, which needs no order.
   STRAHL_HOST_DEVICE std::uint32_t strata_order(std::uint32_t index, std::uint32_t purpose = 0) const {
-    const std::uint32_t round = index >> (2 * side_shift);
-    return side_shift == 0 ? 0u : round == 0 ? h[purpose] : hash(3 * round + purpose);
+    if (side <= 1) return 0;
+    const std::uint32_t round = strata_round(index);
+    return round == 0 ? h[purpose] : hash(3 * round + purpose);
   }
   // Whether this sequence's samples come from strata_film_lanes() and strata_lens_time_lanes()
   // (else sobol's lanes or sample() by sample).
   STRAHL_HOST_DEVICE bool strata_lanes() const {
-    return (kind == SamplerKind::Grid || kind == SamplerKind::Stratified) && side_shift >= 0;
+    return kind == SamplerKind::Grid || kind == SamplerKind::Stratified;
   }
 
   STRAHL_HOST_DEVICE Vec2 stratum_2d(std::uint32_t k, std::uint32_t order, Vec2 jitter) const {
@@ -316,9 +356,9 @@ struct PixelSequence {
   }
 
   // sample(first + i) for i < count (≤ N) into cs[0 … N), their film positions and times into
-  // `film` too (padded: FilmLanes::pad): for grid and stratified with a power-of-two side and for
-  // sobol with the lanes side by side (sample()'s arithmetic; cs[count …] get positions nobody
-  // reads); sample by sample otherwise.
+  // `film` too (padded: FilmLanes::pad): for grid, stratified and sobol with the lanes side by
+  // side (sample()'s arithmetic; cs[count …] get positions nobody reads); sample by sample
+  // otherwise.
   template <int N>
   STRAHL_HOST_DEVICE void samples(std::uint32_t first, int count, CameraSample* cs, FilmLanes<N>& film) const {
     if (strata_lanes() && count > 0) {
@@ -335,7 +375,7 @@ struct PixelSequence {
         px[i] = Real(x), py[i] = Real(y);
       }
       const std::uint32_t last = first + std::uint32_t(count) - 1;
-      if (side_shift > 0 && last >> (2 * side_shift) != first >> (2 * side_shift))  // the samples start a new round
+      if (side > 1 && strata_round(last) != strata_round(first))  // the samples start a new round
         for (int k = 0; k < purposes; ++k)
           for (int i = 1; i < count; ++i) order[k][i] = strata_order(index[i], std::uint32_t(k));
       strata_film_lanes<N>(kind == SamplerKind::Stratified, side, side_shift, index, order[0], streams, px, py, cs, film);
