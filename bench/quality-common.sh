@@ -1,4 +1,4 @@
-# What bench/time-to-quality.sh and bench/soft-shadows-pov.sh share, sourced by both: their
+# What bench/time-to-quality.sh, bench/soft-shadows-pov.sh and bench/depth-of-field-pov.sh share, sourced by them: their
 # arguments [build-dir] [width] [height] [goal] (the default size in default_width and
 # default_height), the checks for ../shared/bench/lecture.pov and POV-Ray, a work directory
 # removed at the end, and the helpers that time runs and keep the fastest setting within the goal.
