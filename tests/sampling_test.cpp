@@ -443,6 +443,28 @@ TEST(Filter, IntegralsMatchTheClosedFormsAndSupportIsHalfOpen) {
     }
 }
 
+// The film's weights of a row of pixels (filter_weights_1d, the kind chosen once, the Gaussian's
+// edge computed once) are filter_1d's, bit for bit, at every offset, inside the support and out.
+TEST(Filter, RowWeightsAreFilter1dBitForBit) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<Real> position(-2, 20);
+  for (const FilterKind kind : {FilterKind::Box, FilterKind::Tent, FilterKind::Gaussian, FilterKind::Mitchell})
+    for (const Real radius : {Real(0.5), Real(1), Real(1.5), Real(2.7), Real(4)}) {
+      const Filter f{kind, radius};
+      EXPECT_NEAR(filter_edge(f), kind == FilterKind::Gaussian ? std::exp(-Real(4.5)) : Real(0), 1e-15) << filter_name(kind);
+      for (int trial = 0; trial < 2000; ++trial) {
+        const Real c = trial == 0 ? Real(3) : trial == 1 ? Real(3.5) : position(rng);
+        const int p0 = int(std::floor(c - Real(0.5) - radius)) - trial % 2, count = 2 * int(std::ceil(radius)) + 3;
+        Real w[16];
+        filter_weights_1d(f, filter_edge(f), c, p0, count, w);
+        for (int i = 0; i < count; ++i) {
+          const Real expected = filter_1d(f, c - (Real(p0 + i) + Real(0.5)));
+          ASSERT_EQ(std::memcmp(&w[i], &expected, sizeof expected), 0) << filter_name(kind) << " r " << radius << " c " << c << " i " << i;
+        }
+      }
+    }
+}
+
 // Box 0.5 gives every sample to exactly one pixel; tent 1 and Mitchell 2 are partitions of
 // unity (their integer translates sum to 1), so a flat image stays flat.
 TEST(Filter, PartitionsOfUnity) {

@@ -21,7 +21,8 @@ FilmLayout::FilmLayout(int width, int height, const Filter& filter, bool pixel_s
       filter_(filter),
       local_(filter_is_pixel_local(filter)),
       stats_(pixel_stats),
-      margin_(int(std::ceil(filter.radius)) + 1) {}
+      margin_(int(std::ceil(filter.radius)) + 1),
+      filter_edge_(filter_edge(filter)) {}
 
 FilmParams FilmLayout::params() const {
   FilmParams p;
@@ -31,6 +32,7 @@ FilmParams FilmLayout::params() const {
   p.local = local_;
   p.stats = stats_;
   p.margin = margin_;
+  p.filter_edge = filter_edge_;
   return p;
 }
 

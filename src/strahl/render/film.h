@@ -77,6 +77,7 @@ class FilmLayout {
   Filter filter_;
   bool local_, stats_;
   int margin_;
+  Real filter_edge_;  // filter_edge(filter_): the Gaussian's exp once, not per sample
 };
 
 class Film {

@@ -39,6 +39,7 @@ struct FilmParams {
   bool local = true;  // pixel-local filter (box of radius 0.5)
   bool stats = false; // keep per-pixel luminance statistics
   int margin = 1;     // pixels a sample can reach beyond its own
+  Real filter_edge = 0;  // filter_edge(filter), computed once
 };
 
 // Adaptive sampling's statistics of the pixel's own samples.
@@ -73,8 +74,8 @@ STRAHL_HOST_DEVICE inline void film_add_wide(const FilmParams& f, int x, int row
   const int px1 = imin(imin(f.width - 1, x + f.margin), int(std::ceil(cs.film_x - Real(0.5) + r)));
   const int py0 = imax(imax(0, y - f.margin), int(std::floor(cs.film_y - Real(0.5) - r)));
   const int py1 = imin(imin(f.height - 1, y + f.margin), int(std::ceil(cs.film_y - Real(0.5) + r)));
-  for (int px = px0; px <= px1; ++px) wx[px - px0] = filter_1d(f.filter, cs.film_x - (Real(px) + Real(0.5)));
-  for (int py = py0; py <= py1; ++py) wy[py - py0] = filter_1d(f.filter, cs.film_y - (Real(py) + Real(0.5)));
+  filter_weights_1d(f.filter, f.filter_edge, cs.film_x, px0, px1 - px0 + 1, wx);
+  filter_weights_1d(f.filter, f.filter_edge, cs.film_y, py0, py1 - py0 + 1, wy);
   for (int py = py0; py <= py1; ++py) {
     if (wy[py - py0] == 0) continue;
     const int prow = f.height - 1 - py;

@@ -33,20 +33,53 @@ STRAHL_HOST_DEVICE inline Real mitchell_1d(Real t) {
   return 0;
 }
 
-// f(x) for one axis; 0 outside −r ≤ x < r.
-STRAHL_HOST_DEVICE inline Real filter_1d(const Filter& f, Real x) {
+// The Gaussian's value at the radius, which it is shifted down by; 0 for the other filters.
+STRAHL_HOST_DEVICE inline Real filter_edge(const Filter& f) {
+  if (f.kind != FilterKind::Gaussian) return 0;
+  const Real a = gaussian_alpha(f.radius);
+  return std::exp(-a * f.radius * f.radius);
+}
+
+// f(x) for one axis; 0 outside −r ≤ x < r. `edge`: filter_edge(f) (computed once, not per weight).
+STRAHL_HOST_DEVICE inline Real filter_1d(const Filter& f, Real x, Real edge) {
   const Real r = f.radius;
   if (!(x >= -r && x < r)) return 0;
   switch (f.kind) {
     case FilterKind::Box: return 1;
     case FilterKind::Tent: return 1 - std::fabs(x) / r;
-    case FilterKind::Gaussian: {
-      const Real a = gaussian_alpha(r);
-      return std::fmax(Real(0), std::exp(-a * x * x) - std::exp(-a * r * r));
-    }
+    case FilterKind::Gaussian: return std::fmax(Real(0), std::exp(-gaussian_alpha(r) * x * x) - edge);
     case FilterKind::Mitchell: return mitchell_1d(2 * x / r);
   }
   return 0;
+}
+STRAHL_HOST_DEVICE inline Real filter_1d(const Filter& f, Real x) { return filter_1d(f, x, filter_edge(f)); }
+
+// w[i] = filter_1d(f, c − (Real(p0 + i) + 0.5), edge) for i < count: the weights of a sample at
+// film coordinate c for the pixels p0 … p0 + count − 1 along one axis, the filter's kind chosen once.
+STRAHL_HOST_DEVICE inline void filter_weights_1d(const Filter& f, Real edge, Real c, int p0, int count, Real* w) {
+  const Real r = f.radius;
+  const auto d = [&](int i) { return c - (Real(p0 + i) + Real(0.5)); };
+  const auto inside = [&](Real x) { return x >= -r && x < r; };
+  switch (f.kind) {
+    case FilterKind::Box:
+      for (int i = 0; i < count; ++i) w[i] = inside(d(i)) ? Real(1) : Real(0);
+      return;
+    case FilterKind::Tent:
+      for (int i = 0; i < count; ++i) w[i] = inside(d(i)) ? 1 - std::fabs(d(i)) / r : Real(0);
+      return;
+    case FilterKind::Gaussian: {
+      const Real a = gaussian_alpha(r);
+      for (int i = 0; i < count; ++i) {
+        const Real x = d(i);
+        w[i] = inside(x) ? std::fmax(Real(0), std::exp(-a * x * x) - edge) : Real(0);
+      }
+      return;
+    }
+    case FilterKind::Mitchell:
+      for (int i = 0; i < count; ++i) w[i] = inside(d(i)) ? mitchell_1d(2 * d(i) / r) : Real(0);
+      return;
+  }
+  for (int i = 0; i < count; ++i) w[i] = 0;
 }
 
 STRAHL_HOST_DEVICE inline Real filter_weight(const Filter& f, Real dx, Real dy) {
