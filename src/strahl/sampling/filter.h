@@ -40,46 +40,47 @@ STRAHL_HOST_DEVICE inline Real filter_edge(const Filter& f) {
   return std::exp(-a * f.radius * f.radius);
 }
 
-// f(x) for one axis; 0 outside −r ≤ x < r. `edge`: filter_edge(f) (computed once, not per weight).
-STRAHL_HOST_DEVICE inline Real filter_1d(const Filter& f, Real x, Real edge) {
+// f(x) of a filter of kind K and radius r for −r ≤ x < r; `edge`: filter_edge(f).
+template <FilterKind K>
+STRAHL_HOST_DEVICE inline Real filter_of_kind([[maybe_unused]] Real x, [[maybe_unused]] Real r, [[maybe_unused]] Real edge) {
+  if constexpr (K == FilterKind::Box) return 1;
+  else if constexpr (K == FilterKind::Tent) return 1 - std::fabs(x) / r;
+  else if constexpr (K == FilterKind::Gaussian) return std::fmax(Real(0), std::exp(-gaussian_alpha(r) * x * x) - edge);
+  else return mitchell_1d(2 * x / r);
+}
+
+// filter_of_kind<K>(c − (Real(p0 + i) + 0.5)) into w[i] for i < count, 0 outside the support:
+// the weights of a sample at film coordinate c for the pixels p0 … p0 + count − 1 along one axis.
+template <FilterKind K>
+STRAHL_HOST_DEVICE inline void filter_weights_of_kind(Real r, Real edge, Real c, int p0, int count, Real* w) {
+  for (int i = 0; i < count; ++i) {
+    const Real x = c - (Real(p0 + i) + Real(0.5));
+    w[i] = x >= -r && x < r ? filter_of_kind<K>(x, r, edge) : Real(0);
+  }
+}
+
+// The same for any filter, its kind chosen once for the row.
+STRAHL_HOST_DEVICE inline void filter_weights_1d(const Filter& f, Real edge, Real c, int p0, int count, Real* w) {
+  switch (f.kind) {
+    case FilterKind::Box: return filter_weights_of_kind<FilterKind::Box>(f.radius, edge, c, p0, count, w);
+    case FilterKind::Tent: return filter_weights_of_kind<FilterKind::Tent>(f.radius, edge, c, p0, count, w);
+    case FilterKind::Gaussian: return filter_weights_of_kind<FilterKind::Gaussian>(f.radius, edge, c, p0, count, w);
+    case FilterKind::Mitchell: return filter_weights_of_kind<FilterKind::Mitchell>(f.radius, edge, c, p0, count, w);
+  }
+  for (int i = 0; i < count; ++i) w[i] = 0;
+}
+
+// f(x) for one axis; 0 outside −r ≤ x < r.
+STRAHL_HOST_DEVICE inline Real filter_1d(const Filter& f, Real x) {
   const Real r = f.radius;
   if (!(x >= -r && x < r)) return 0;
   switch (f.kind) {
-    case FilterKind::Box: return 1;
-    case FilterKind::Tent: return 1 - std::fabs(x) / r;
-    case FilterKind::Gaussian: return std::fmax(Real(0), std::exp(-gaussian_alpha(r) * x * x) - edge);
-    case FilterKind::Mitchell: return mitchell_1d(2 * x / r);
+    case FilterKind::Box: return filter_of_kind<FilterKind::Box>(x, r, 0);
+    case FilterKind::Tent: return filter_of_kind<FilterKind::Tent>(x, r, 0);
+    case FilterKind::Gaussian: return filter_of_kind<FilterKind::Gaussian>(x, r, filter_edge(f));
+    case FilterKind::Mitchell: return filter_of_kind<FilterKind::Mitchell>(x, r, 0);
   }
   return 0;
-}
-STRAHL_HOST_DEVICE inline Real filter_1d(const Filter& f, Real x) { return filter_1d(f, x, filter_edge(f)); }
-
-// w[i] = filter_1d(f, c − (Real(p0 + i) + 0.5), edge) for i < count: the weights of a sample at
-// film coordinate c for the pixels p0 … p0 + count − 1 along one axis, the filter's kind chosen once.
-STRAHL_HOST_DEVICE inline void filter_weights_1d(const Filter& f, Real edge, Real c, int p0, int count, Real* w) {
-  const Real r = f.radius;
-  const auto d = [&](int i) { return c - (Real(p0 + i) + Real(0.5)); };
-  const auto inside = [&](Real x) { return x >= -r && x < r; };
-  switch (f.kind) {
-    case FilterKind::Box:
-      for (int i = 0; i < count; ++i) w[i] = inside(d(i)) ? Real(1) : Real(0);
-      return;
-    case FilterKind::Tent:
-      for (int i = 0; i < count; ++i) w[i] = inside(d(i)) ? 1 - std::fabs(d(i)) / r : Real(0);
-      return;
-    case FilterKind::Gaussian: {
-      const Real a = gaussian_alpha(r);
-      for (int i = 0; i < count; ++i) {
-        const Real x = d(i);
-        w[i] = inside(x) ? std::fmax(Real(0), std::exp(-a * x * x) - edge) : Real(0);
-      }
-      return;
-    }
-    case FilterKind::Mitchell:
-      for (int i = 0; i < count; ++i) w[i] = inside(d(i)) ? mitchell_1d(2 * d(i) / r) : Real(0);
-      return;
-  }
-  for (int i = 0; i < count; ++i) w[i] = 0;
 }
 
 STRAHL_HOST_DEVICE inline Real filter_weight(const Filter& f, Real dx, Real dy) {

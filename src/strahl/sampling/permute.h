@@ -62,15 +62,21 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE constexpr std::uint32_t permutation_round
   return i;
 }
 
-// Element i of a random permutation of [0, n) chosen by `seed` (Kensler's cycle-walking hash).
-STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_element(std::uint32_t i, std::uint32_t n, std::uint32_t seed) {
-  if (n <= 1) return 0;
+// The mask 2^k − 1 ≥ n − 1 of the hash's rounds (n ≥ 1).
+STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_mask(std::uint32_t n) {
   std::uint32_t w = n - 1;
   w |= w >> 1;
   w |= w >> 2;
   w |= w >> 4;
   w |= w >> 8;
   w |= w >> 16;
+  return w;
+}
+
+// Element i of a random permutation of [0, n) chosen by `seed` (Kensler's cycle-walking hash).
+STRAHL_HOST_DEVICE constexpr std::uint32_t permutation_element(std::uint32_t i, std::uint32_t n, std::uint32_t seed) {
+  if (n <= 1) return 0;
+  const std::uint32_t w = permutation_mask(n);
   do {
     i = permutation_round(i, w, seed);
   } while (i >= n);
@@ -108,12 +114,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void divide_exactly(std::uint32_t x, doub
 template <int N>
 STRAHL_HOST_DEVICE inline void permutation_elements(const std::uint32_t* __restrict i, std::uint32_t n,
                                                     const std::uint32_t* __restrict seed, std::uint32_t* __restrict out) {
-  std::uint32_t w = n - 1;
-  w |= w >> 1;
-  w |= w >> 2;
-  w |= w >> 4;
-  w |= w >> 8;
-  w |= w >> 16;
+  const std::uint32_t w = permutation_mask(n);
   std::uint32_t v[N];
   for (int j = 0; j < N; ++j) v[j] = permutation_round(i[j], w, seed[j]);
   for (;;) {
