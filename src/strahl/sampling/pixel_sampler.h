@@ -189,9 +189,10 @@ STRAHL_HOST_DEVICE inline void strata_lanes_2d(bool jitter, std::uint32_t side, 
   }
 }
 
-// The film positions of N grid or stratified samples, with lens (0.5, 0.5) and time 0 (strata_lens_time_lanes() sets those where the camera uses them):
-// lane i is sample index[i] of the pixel at (px[i], py[i]), its film stratum in order order[i]
-// (strata_lanes_2d). `jitter`: stratified (else the strata's centres, the grid).
+// The film positions of N grid or stratified samples, with lens (0.5, 0.5) and time 0
+// (strata_lens_time_lanes() sets those where the camera uses them): lane i is sample index[i] of
+// the pixel at (px[i], py[i]), its film stratum in order order[i] (strata_lanes_2d). `jitter`:
+// stratified (else the strata's centres, the grid).
 template <int N>
 STRAHL_HOST_DEVICE inline void strata_film_lanes(bool jitter, std::uint32_t side, int side_shift,
                                                  const std::uint32_t* __restrict index,
@@ -314,16 +315,13 @@ struct PixelSequence {
         const std::uint32_t count = side * side;
         const bool pow2 = side_shift >= 0;
         const std::uint32_t k = count == 1 ? 0 : pow2 ? index & (count - 1) : index % count;
-        const std::uint32_t round = count == 1 ? index : pow2 ? index >> (2 * side_shift) : index / count;
         const bool jitter = kind == SamplerKind::Stratified;
         const auto u = [&](std::uint32_t dim) { return to_unit(keyed_bits(stream, index, dim)); };
-        // Each round visits the strata in new orders (purposes 3·round + {0, 1, 2}); one stratum
-        // needs no order (and pixel() computed no hashes for it). The grid's film positions are
-        // the strata's centres; lens and time are jittered for both (centres would bias the
-        // lens's and the shutter's averages).
-        const auto order = [&](std::uint32_t purpose) {
-          return count <= 1 ? 0u : round == 0 ? h[purpose] : hash(3 * round + purpose);
-        };
+        // Each round visits the strata in new orders (strata_order: purposes 3·round + {0, 1, 2});
+        // one stratum needs no order (and pixel() computed no hashes for it). The grid's film
+        // positions are the strata's centres; lens and time are jittered for both (centres would
+        // bias the lens's and the shutter's averages).
+        const auto order = [&](std::uint32_t purpose) { return strata_order(index, purpose); };
         film = stratum_2d(k, order(0), jitter ? Vec2{u(kDimPixel), u(kDimPixel + 1)} : Vec2{Real(0.5), Real(0.5)});
         if (uses_lens) lens = stratum_2d(k, order(1), {u(kDimLens), u(kDimLens + 1)});
         if (uses_time) {
