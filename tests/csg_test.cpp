@@ -4,13 +4,15 @@
 // equals difference(A, inverse(B)) and inverse(inverse(A)) equals A ray for ray; inside() equals
 // the operator applied to the operands' membership at random points; every crossing's side agrees
 // with inside() between crossings; merge drops inner surfaces that union keeps; lists that
-// overflow are evaluated again from where they stopped; and the scene file's errors.
+// overflow are evaluated again from where they stopped; an intersection's Skip changes no
+// crossing; and the scene file's errors.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "strahl/geometry/solid.h"
@@ -224,6 +226,64 @@ TEST(Csg, DeMorganCrossChecksRayForRay) {
     }
     EXPECT_GT(crossings, 200) << a << " ∩ " << b;
   }
+}
+
+// An intersection's Skip (geometry/csg_program.h) leaves out its other operand where the first
+// is nowhere on the ray: the same trees run with and without the Skip instructions give the same
+// crossings, bit for bit.
+TEST(Csg, SkippingAnIntersectionsOtherOperandChangesNoCrossing) {
+  const std::string a = kOperands[0], b = kOperands[1], c = kOperands[2], d = kOperands[3], e = kOperands[4],
+                    f = kOperands[5];
+  const std::string objects =
+      "  - {type: difference, objects: [" + a + ", " + b + ", " + c + "]}\n" +
+      "  - {type: intersection, objects: [" + b + ", {type: inverse, objects: [" + c + "]}, " + d + "]}\n" +
+      "  - {type: difference, objects: [{type: merge, objects: [" + a + ", " + d + "]}, {type: intersection, objects: [" +
+      b + ", " + c + "]}]}\n" + "  - {type: intersection, objects: [{type: union, objects: [" + e + ", " + a +
+      "]}, {type: difference, objects: [" + f + ", " + c + "]}]}\n" +
+      "  - {type: intersection, objects: [" + c + ", " + e + "]}\n" +
+      "  - {type: intersection, objects: [{type: inverse, objects: [" + c + "]}, " + a + "]}\n";
+  const RenderScene with = scene_of(objects);
+  RenderScene without = scene_of(objects);
+  // The programs without their Skip instructions.
+  std::vector<kernel::CsgInstruction> code;
+  int skips = 0;
+  for (kernel::Csg& g : without.csgs) {
+    const std::uint32_t first = std::uint32_t(code.size());
+    for (std::uint32_t i = g.first_instruction; i < g.first_instruction + g.instruction_count; ++i) {
+      if (without.csg_code[i].op == kernel::CsgOp::Skip) ++skips;
+      else code.push_back(without.csg_code[i]);
+    }
+    g.first_instruction = first;
+    g.instruction_count = std::uint32_t(code.size()) - first;
+  }
+  without.csg_code = code;
+  ASSERT_EQ(with.solids.size(), 6u);
+  EXPECT_EQ(skips, 2 + 2 + 2 + 2 + 1 + 1);
+  // Whole rays, and pieces of them that may start inside an operand (whose list is then empty
+  // but not outside: no skip).
+  test::Random rng(37);
+  int crossings = 0, empty = 0, inside_pieces = 0;
+  for (std::size_t s = 0; s < with.solids.size(); ++s)
+    for (const Ray& ray : random_rays(31 + s, 3000)) {
+      const Real t0 = rng.uniform(0, 6), t1 = rng.coin() ? kInfinity : t0 + rng.uniform(0, 0.5);
+      for (const auto& [lo, hi] : {std::pair<Real, Real>(0, kInfinity), std::pair<Real, Real>(t0, t1)}) {
+        const std::vector<SolidCrossing> x = crossings_of(with, s, ray, lo, hi), y = crossings_of(without, s, ray, lo, hi);
+        ASSERT_EQ(x.size(), y.size()) << s;
+        for (std::size_t k = 0; k < x.size(); ++k) {
+          ASSERT_EQ(x[k].t, y[k].t) << s;
+          ASSERT_EQ(x[k].part, y[k].part) << s;
+          ASSERT_EQ(x[k].entering, y[k].entering) << s;
+        }
+        ASSERT_EQ(kernel::intersect(with.shapes(), with.solids[s], ray, lo, hi).t,
+                  kernel::intersect(without.shapes(), without.solids[s], ray, lo, hi).t);
+        crossings += int(x.size());
+        empty += x.empty();
+        inside_pieces += x.empty() && kernel::inside(with.shapes(), with.solids[s], ray.at(lo));
+      }
+    }
+  EXPECT_GT(crossings, 10000);
+  EXPECT_GT(empty, 1000);         // rays the shortcut can skip for
+  EXPECT_GT(inside_pieces, 100);  // pieces wholly inside a tree
 }
 
 TEST(Csg, InsideIsTheOperatorOverTheOperands) {

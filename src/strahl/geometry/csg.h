@@ -148,40 +148,48 @@ STRAHL_HOST_DEVICE inline void csg_combine(CsgOp op, const CsgList& a, const Csg
   }
 }
 
-STRAHL_HOST_DEVICE inline void csg_copy(const CsgList& from, CsgList& to) {
-  to.n = from.n;
-  to.start_inside = from.start_inside;
-  to.valid_until = from.valid_until;
-  for (int k = 0; k < from.n; ++k) to.c[k] = from.c[k];
-}
-
-// Runs the tree's program over (t_min, t_max); the result is stack[0].
+// The lists of the tree's program: kMaxCsgStack on the stack and one for the combining step's
+// result. Left uninitialised (4.7 KB: clearing them cost more than the whole CSG query); every
+// list's header is written before its crossings, and only crossings below n are read.
 struct CsgStack {
-  CsgList list[kMaxCsgStack + 1];  // the last one is the combining step's scratch
+  union {
+    CsgList list[kMaxCsgStack + 1];
+  };
+  int slot[kMaxCsgStack + 1];  // stack position → list: a combined list takes its operand's slot, no copy
+  STRAHL_HOST_DEVICE CsgStack() {}  // NOLINT(modernize-use-equals-default): = default would clear the lists
 };
 
-STRAHL_HOST_DEVICE inline void csg_evaluate(const SolidArrays& a, const Csg& g, const Ray& ray, Real t_min, Real t_max,
-                                            CsgStack& st) {
+// Runs the tree's program over (t_min, t_max); returns the result (the bottom of the stack).
+STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, const Csg& g, const Ray& ray, Real t_min,
+                                                      Real t_max, CsgStack& st) {
+  for (int k = 0; k <= kMaxCsgStack; ++k) st.slot[k] = k;
   int sp = 0;
   for (std::uint32_t i = 0; i < g.instruction_count; ++i) {
     const CsgInstruction& in = a.csg_code[g.first_instruction + i];
     switch (in.op) {
       case CsgOp::Leaf:
-        if (sp < kMaxCsgStack) csg_leaf_list(a, a.csg_leaves[g.first_leaf + in.leaf], in.leaf, ray, t_min, t_max, st.list[sp++]);
+        if (sp < kMaxCsgStack)
+          csg_leaf_list(a, a.csg_leaves[g.first_leaf + in.arg], in.arg, ray, t_min, t_max, st.list[st.slot[sp++]]);
         break;
       case CsgOp::Inverse:
-        if (sp >= 1) csg_invert(st.list[sp - 1]);
+        if (sp >= 1) csg_invert(st.list[st.slot[sp - 1]]);
+        break;
+      case CsgOp::Skip:  // an intersection's first operand is nowhere on this ray: so is the intersection
+        if (sp >= 1 && st.list[st.slot[sp - 1]].n == 0 && !st.list[st.slot[sp - 1]].start_inside) i += in.arg;
         break;
       default:
         if (sp >= 2) {
-          csg_combine(in.op, st.list[sp - 2], st.list[sp - 1], st.list[kMaxCsgStack]);
-          csg_copy(st.list[kMaxCsgStack], st.list[sp - 2]);
+          csg_combine(in.op, st.list[st.slot[sp - 2]], st.list[st.slot[sp - 1]], st.list[st.slot[kMaxCsgStack]]);
+          const int result = st.slot[kMaxCsgStack];
+          st.slot[kMaxCsgStack] = st.slot[sp - 2];
+          st.slot[sp - 2] = result;
           --sp;
         }
         break;
     }
   }
-  if (sp == 0) st.list[0] = CsgList{};  // (the compiler never emits such a program)
+  if (sp == 0) st.list[st.slot[0]] = CsgList{};  // (the compiler never emits such a program)
+  return st.list[st.slot[0]];
 }
 
 // Every crossing of the tree's surface in (t_min, t_max), front to back: calls visit(const
@@ -192,8 +200,7 @@ STRAHL_HOST_DEVICE inline void for_each_csg_crossing(const SolidArrays& a, const
   CsgStack st;
   Real lo = t_min;
   for (int round = 0; round < kMaxCsgRounds; ++round) {
-    csg_evaluate(a, g, ray, lo, t_max, st);
-    const CsgList& r = st.list[0];
+    const CsgList& r = csg_evaluate(a, g, ray, lo, t_max, st);
     for (int k = 0; k < r.n; ++k)
       if (r.c[k].t > lo && r.c[k].t < t_max && visit(r.c[k])) return;
     if (!(r.valid_until < t_max)) return;
@@ -212,11 +219,12 @@ STRAHL_HOST_DEVICE inline bool csg_inside(const SolidArrays& a, const Csg& g, co
     const CsgInstruction& in = a.csg_code[g.first_instruction + i];
     switch (in.op) {
       case CsgOp::Leaf:
-        if (sp < kMaxCsgStack) st[sp++] = leaf_inside(a, a.csg_leaves[g.first_leaf + in.leaf], p);
+        if (sp < kMaxCsgStack) st[sp++] = leaf_inside(a, a.csg_leaves[g.first_leaf + in.arg], p);
         break;
       case CsgOp::Inverse:
         if (sp >= 1) st[sp - 1] = !st[sp - 1];
         break;
+      case CsgOp::Skip: break;  // (a shortcut for crossing lists; every operand is cheap here)
       default:
         if (sp >= 2) {
           st[sp - 2] = csg_apply(in.op, st[sp - 2], st[sp - 1]);

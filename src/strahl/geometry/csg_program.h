@@ -1,7 +1,11 @@
 #pragma once
 // A CSG tree as kernel data: a postfix program over its leaves (geometry/csg.h runs it).
 // The scene's union, intersection, difference, merge and inverse nodes become binary steps:
-// union(A, B, C) is A B Union C Union; difference(A, B) is A B Inverse Intersection.
+// union(A, B, C) is A B Union C Union; difference(A, B) is A Skip(3) B Inverse Intersection.
+// Skip(n) before the second operand of an intersection (a difference's too): where the first
+// operand's list is empty and starts outside, the next n instructions — the other operand and the
+// step — cannot change it (nothing ∩ anything is nothing), so they are not run. POV-Ray stops an
+// intersection's children likewise at the first one the ray misses.
 
 #include <cstdint>
 
@@ -9,19 +13,19 @@
 
 namespace strahl::kernel {
 
-enum class CsgOp : std::uint8_t { Leaf, Inverse, Union, Intersection, Merge };
+enum class CsgOp : std::uint8_t { Leaf, Inverse, Union, Intersection, Merge, Skip };
 
 struct CsgInstruction {
   CsgOp op = CsgOp::Leaf;
   std::uint8_t pad = 0;
-  std::uint16_t leaf = 0;  // Leaf: which of the tree's leaves
+  std::uint16_t arg = 0;  // Leaf: which of the tree's leaves; Skip: how many instructions
 };
 
 // Limits (docs/scene-format.md, "CSG"): the program's evaluation stack (one crossing list per
 // entry) and the leaves one tree may have (a leaf's index is kept in 16 bits of a crossing's part).
 inline constexpr int kMaxCsgStack = 8;
 inline constexpr int kMaxCsgLeaves = 256;
-inline constexpr int kMaxCsgInstructions = 2 * kMaxCsgLeaves + kMaxCsgLeaves;  // leaves, steps, inverses
+inline constexpr int kMaxCsgInstructions = 4 * kMaxCsgLeaves;  // leaves, steps, inverses, skips
 
 struct Csg {
   std::uint32_t first_instruction = 0, instruction_count = 0;

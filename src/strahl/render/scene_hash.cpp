@@ -244,7 +244,7 @@ void hash(Hasher& h, const kernel::Instance& x) {
 }
 void hash(Hasher& h, const kernel::CsgInstruction& x) {
   h.add(x.op);
-  h.add(x.leaf);
+  h.add(x.arg);
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ struct TreeBuilder {
   std::uint32_t material;
   std::uint32_t object_id;
 
-  void emit(kernel::CsgOp op, std::uint16_t leaf = 0) { out.csg_code.push_back({op, 0, leaf}); }
+  void emit(kernel::CsgOp op, std::uint16_t arg = 0) { out.csg_code.push_back({op, 0, arg}); }
 
   // A solid operand: compiled alone, its handle taken out of the scene's solids.
   Bounds leaf(const SceneObject& o, const Csg& parent, const Affine* to_world) {
@@ -120,6 +120,11 @@ struct TreeBuilder {
       return infinite_bounds();
     }
     for (std::size_t i = 1; i < c.children.size(); ++i) {
+      // Before an intersection's other operand: Skip over it and the step where the list so far
+      // is empty (geometry/csg_program.h); its length is known once both are emitted.
+      const bool intersects = c.operation == CsgOperation::Intersection || c.operation == CsgOperation::Difference;
+      const std::size_t skip = out.csg_code.size();
+      if (intersects) emit(kernel::CsgOp::Skip);
       const Bounds k = operand(*c.children[i], c, depth, to_world);
       switch (c.operation) {
         case CsgOperation::Union:
@@ -139,6 +144,7 @@ struct TreeBuilder {
           break;
         case CsgOperation::Inverse: break;
       }
+      if (intersects) out.csg_code[skip].arg = static_cast<std::uint16_t>(out.csg_code.size() - skip - 1);
     }
     return b;
   }
