@@ -29,6 +29,14 @@ fuzz_one() {
   } > "$build/fuzz-logs/$kind.log"
 }
 
+# Waits for the running batch and prints its targets' summaries.
+finish_batch() {
+  wait
+  for k in $batch; do cat "$build/fuzz-logs/$k.log"; done
+  batch=""
+  running=0
+}
+
 kinds="scene obj ply expression"
 batch=""
 running=0
@@ -36,15 +44,9 @@ for kind in $kinds; do
   fuzz_one "$kind" &
   batch="$batch $kind"
   running=$((running + 1))
-  if [ "$running" -ge "$jobs" ]; then
-    wait
-    for k in $batch; do cat "$build/fuzz-logs/$k.log"; done
-    batch=""
-    running=0
-  fi
+  if [ "$running" -ge "$jobs" ]; then finish_batch; fi
 done
-wait
-for k in $batch; do cat "$build/fuzz-logs/$k.log"; done
+finish_batch
 
 for kind in $kinds; do
   if ls "$build/fuzz-artifacts/$kind-"* >/dev/null 2>&1; then

@@ -175,7 +175,10 @@ STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, cons
         if (sp >= 1) csg_invert(st.list[st.slot[sp - 1]]);
         break;
       case CsgOp::Skip:  // an intersection's first operand is nowhere on this ray: so is the intersection
-        if (sp >= 1 && st.list[st.slot[sp - 1]].n == 0 && !st.list[st.slot[sp - 1]].start_inside) i += in.arg;
+        if (sp >= 1) {
+          const CsgList& first = st.list[st.slot[sp - 1]];
+          if (first.n == 0 && !first.start_inside) i += in.arg;
+        }
         break;
       default:
         if (sp >= 2) {

@@ -25,7 +25,6 @@ struct CsgInstruction {
 // entry) and the leaves one tree may have (a leaf's index is kept in 16 bits of a crossing's part).
 inline constexpr int kMaxCsgStack = 8;
 inline constexpr int kMaxCsgLeaves = 256;
-inline constexpr int kMaxCsgInstructions = 4 * kMaxCsgLeaves;  // leaves, steps, inverses, skips
 
 struct Csg {
   std::uint32_t first_instruction = 0, instruction_count = 0;
