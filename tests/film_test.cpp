@@ -9,11 +9,14 @@
 #include <atomic>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <random>
 
 #include "strahl/image/metrics.h"
 #include "strahl/render/adaptive.h"
 #include "strahl/render/aov.h"
 #include "strahl/render/cpu_backend.h"
+#include "strahl/render/film_sample.h"
 #include "strahl/render/render_job.h"
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
@@ -107,6 +110,38 @@ TEST(Film, FiltersKeepAFlatImageFlat) {
       for (const Rgb& p : img.pixels())
         ASSERT_TRUE(test::vec_near(test::to_vec(p), colour, 1e-6)) << filter_name(kind) << " r " << radius;
     }
+}
+
+// film_to_fixed4 (four values in one AVX vector where the build has AVX2) is film_to_fixed
+// (llround) value for value: halves away from zero at every scale, the doubles either side of a
+// half, the largest double below 1/2 (where adding 1/2 would round up), the clamps, NaN.
+TEST(Film, FixedPointOfFourIsTheScalarConversion) {
+  std::vector<double> v = {0.0, -0.0, 1e6, -1e6, 2e6, -2e6, kInfinity, -kInfinity,
+                           std::numeric_limits<double>::quiet_NaN(), 0.49999999999999994 / kFilmFixedScale,
+                           -0.49999999999999994 / kFilmFixedScale, 1e-300, -1e-300};
+  for (double scale = 1; scale < 1e15; scale *= 3.7)
+    for (const double half : {0.5, 1.5, 2.5, 7.5}) {
+      const double x = (std::floor(scale) + half) / kFilmFixedScale;  // exactly a half on the grid
+      for (const double y : {x, std::nextafter(x, 0.0), std::nextafter(x, 1e300)}) {
+        v.push_back(y);
+        v.push_back(-y);
+      }
+    }
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 20000; ++i) v.push_back(u(rng) * std::pow(10.0, 7 * u(rng)));
+  while (v.size() % 4 != 0) v.push_back(0.5);
+  int halves = 0;
+  for (std::size_t i = 0; i < v.size(); i += 4) {
+    std::int64_t q[4];
+    film_to_fixed4(&v[i], q);
+    for (int k = 0; k < 4; ++k) {
+      const double x = v[i + std::size_t(k)];
+      ASSERT_EQ(q[k], film_to_fixed(x)) << std::hexfloat << x;
+      if (std::fabs(x) * kFilmFixedScale - std::floor(std::fabs(x) * kFilmFixedScale) == 0.5) ++halves;
+    }
+  }
+  EXPECT_GT(halves, 100);  // the halves above are really halves
 }
 
 // A white emitting sphere on black: its silhouette is the only edge.

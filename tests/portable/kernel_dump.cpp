@@ -1,6 +1,6 @@
 // Prints what the kernel code answers, bit for bit, on the cross-check scenes: every ray's nearest
-// hit (primitive, t, barycentrics), occlusion and surface crossings through the wide BVH, and
-// every pixel of small renders of the scene files. Compiled twice (tests/CMakeLists.txt): as the
+// hit (primitive, t, barycentrics), occlusion and surface crossings through the wide BVH, every
+// pixel of small renders of the scene files, and the film's wide-filter sums. Compiled twice (tests/CMakeLists.txt): as the
 // CPU builds it (the AVX paths of accel/wide_bvh.h and accel/triangle_block.h where the host has
 // AVX2) and with STRAHL_PORTABLE_KERNELS (their portable scalar paths, which the GPU runs). The
 // test portable_kernels_match runs both and demands identical output.
@@ -13,6 +13,8 @@
 
 #include <bit>
 #include <cinttypes>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -21,6 +23,8 @@
 #include "strahl/accel/accel.h"
 #include "strahl/accel/packet.h"
 #include "../shape_soup.h"
+#include "strahl/render/film.h"
+#include "strahl/render/film_sample.h"
 #include "strahl/render/pixel.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/scene.h"
@@ -150,6 +154,34 @@ void dump_render(const std::string& path, int width, int height, AccelKind kind 
   std::printf("# rays %" PRIu64 "\n", counters.total());
 }
 
+// The film's wide-filter arithmetic (render/film_sample.h: film_to_fixed4 in AVX or scalar, as the
+// GPU runs it): every filter at several radii, random samples near and at the image's edges with
+// radiance in and far beyond the fixed-point clamp, negative, zero and NaN; every pixel's sums.
+void dump_film() {
+  constexpr int width = 24, height = 16;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (const FilterKind kind : {FilterKind::Box, FilterKind::Tent, FilterKind::Gaussian, FilterKind::Mitchell})
+    for (const Real radius : {Real(0.5), Real(1), Real(1.5), Real(2.7), Real(4)}) {
+      const FilmParams f = FilmLayout(width, height, Filter{kind, radius}, false).params();
+      std::vector<std::int64_t> fixed(std::size_t(width) * height * 4, 0);
+      for (int i = 0; i < 3000; ++i) {
+        const int x = int(u(rng) * width), row = int(u(rng) * height);
+        CameraSample cs;
+        cs.film_x = x + u(rng);
+        cs.film_y = (height - 1 - row) + u(rng);
+        const double big = i % 50 == 0 ? 1e7 : 1.0;
+        Vec3 L{(u(rng) - 0.1) * big, u(rng), i % 7 == 0 ? 0.0 : u(rng) * 3};
+        if (i == 1234) L.y = std::numeric_limits<double>::quiet_NaN();
+        film_add_wide(f, x, row, cs, L, fixed.data(), 0, 0, width, [](std::int64_t* p, std::int64_t v) { *p += v; });
+      }
+      std::printf("# film %s r %g\n", std::string(filter_name(kind)).c_str(), radius);
+      for (std::size_t p = 0; p < fixed.size(); p += 4)
+        std::printf("%zu %" PRId64 " %" PRId64 " %" PRId64 " %" PRId64 "\n", p / 4, fixed[p], fixed[p + 1], fixed[p + 2],
+                    fixed[p + 3]);
+    }
+}
+
 }  // namespace
 }  // namespace strahl
 
@@ -159,9 +191,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s <strahl source dir>\n", argv[0]);
     return 1;
   }
-#if defined(STRAHL_WIDE_BVH_AVX) && defined(STRAHL_TRIANGLE_BLOCK_AVX) && defined(STRAHL_SPHERE_QUAD_AVX)
+#if defined(STRAHL_WIDE_BVH_AVX) && defined(STRAHL_TRIANGLE_BLOCK_AVX) && defined(STRAHL_SPHERE_QUAD_AVX) && \
+    defined(STRAHL_FILM_AVX)
   std::fprintf(stderr, "kernel path: avx\n");
-#elif !defined(STRAHL_WIDE_BVH_AVX) && !defined(STRAHL_TRIANGLE_BLOCK_AVX) && !defined(STRAHL_SPHERE_QUAD_AVX)
+#elif !defined(STRAHL_WIDE_BVH_AVX) && !defined(STRAHL_TRIANGLE_BLOCK_AVX) && !defined(STRAHL_SPHERE_QUAD_AVX) && \
+    !defined(STRAHL_FILM_AVX)
   std::fprintf(stderr, "kernel path: portable\n");
 #else
   std::fprintf(stderr, "kernel path: mixed\n");
@@ -199,6 +233,7 @@ int main(int argc, char** argv) {
       dump_render(dir + "/scenes/" + scene, 40, 30);
     for (const AccelKind kind : {AccelKind::KdTree, AccelKind::Octree}) dump_render(dir + "/scenes/mesh.yaml", 40, 30, kind);
     dump_render(dir + "/scenes/instances.yaml", 40, 30);  // the two-level hierarchy the GPU walks too
+    dump_film();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -45,7 +45,11 @@ template <FilterKind K>
 STRAHL_HOST_DEVICE inline Real filter_of_kind([[maybe_unused]] Real x, [[maybe_unused]] Real r, [[maybe_unused]] Real edge) {
   if constexpr (K == FilterKind::Box) return 1;
   else if constexpr (K == FilterKind::Tent) return 1 - std::fabs(x) / r;
-  else if constexpr (K == FilterKind::Gaussian) return std::fmax(Real(0), std::exp(-gaussian_alpha(r) * x * x) - edge);
+  else if constexpr (K == FilterKind::Gaussian) {
+    // fmax(0, g) without the library call (g is never −0, a NaN gives 0 as fmax does).
+    const Real g = std::exp(-gaussian_alpha(r) * x * x) - edge;
+    return g > 0 ? g : Real(0);
+  }
   else return mitchell_1d(2 * x / r);
 }
 
