@@ -2,17 +2,19 @@
 # The solids against POV-Ray 3.7 (issue 13): bench/shapes.pov and scenes/shapes-pov.yaml — a torus,
 # a box, a cylinder, a cone and an isosurface under the lecture's camera, light and finish; with
 # NAME csg, bench/csg.pov and scenes/csg-pov.yaml — CSG (difference, intersection, merge, union,
-# inverse) of those solids and spheres under the same camera, light and finish.
+# inverse) of those solids and spheres under the same camera, light and finish; with NAME plate,
+# bench/plate.pov and scenes/plate-pov.yaml — a plate minus a grid of 54 cylinders (CSG of many
+# small operands).
 # Agreement (RMSE on 0..1 values, linear output, no anti-aliasing) and wall time of the whole
 # process at 1920x1080 with 4x4 regular supersampling on THREADS threads (default 2), median of
 # RUNS runs (default 3).
-#   bench/povray-shapes.sh [build-dir] [NAME]        NAME: shapes (default) or csg  (needs: apt-get install povray)
+#   bench/povray-shapes.sh [build-dir] [NAME]        NAME: shapes (default), csg or plate  (needs: apt-get install povray)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 name=${2:-shapes}
 if [ ! -f "$root/bench/$name.pov" ] || [ ! -f "$root/scenes/$name-pov.yaml" ]; then
-  echo "no bench/$name.pov and scenes/$name-pov.yaml (NAME: shapes or csg)" >&2
+  echo "no bench/$name.pov and scenes/$name-pov.yaml (NAME: shapes, csg or plate)" >&2
   exit 1
 fi
 threads=${THREADS:-2}

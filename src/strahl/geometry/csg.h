@@ -148,6 +148,40 @@ STRAHL_HOST_DEVICE inline void csg_combine(CsgOp op, const CsgList& a, const Csg
   }
 }
 
+// A list whose crossings are at increasing t and alternate sides from its start (every leaf's,
+// and most combined lists): combined with an operand that has no crossing and is the operation's
+// identity (outside for a union or merge, inside for an intersection), csg_combine would copy it
+// unchanged.
+STRAHL_HOST_DEVICE inline bool csg_simple(const CsgList& l) {
+  bool side = l.start_inside;
+  for (int k = 0; k < l.n; ++k) {
+    if (l.c[k].entering == side || (k > 0 && !(l.c[k].t > l.c[k - 1].t))) return false;
+    side = l.c[k].entering;
+  }
+  return true;
+}
+
+// What csg_combine(op, a, b) gives without running it, where that is known from an operand with
+// no crossing (most operands of a tree with many small ones miss the ray): First (a itself),
+// Second (b), Empty (no crossing; the side the crossing-free operand has all along: an
+// intersection with an operand outside everywhere, a merge with one inside everywhere), or None.
+// Each is what csg_combine computes, bit for bit (tests/csg_test.cpp compares them).
+enum class CsgShortcut : std::uint8_t { None, First, Second, Empty };
+STRAHL_HOST_DEVICE inline CsgShortcut csg_shortcut(CsgOp op, const CsgList& a, const CsgList& b) {
+  const bool intersection = op == CsgOp::Intersection;
+  const bool b_plain = b.n == 0, a_plain = a.n == 0;
+  if (!b_plain && !a_plain) return CsgShortcut::None;
+  const CsgList& plain = b_plain ? b : a;
+  // Outside everywhere for an intersection, inside everywhere for a merge: nothing can change.
+  if ((intersection && !plain.start_inside) || (op == CsgOp::Merge && plain.start_inside)) return CsgShortcut::Empty;
+  // The identity of the operation: the other list stays as it is, where it is simple and complete
+  // at least as far as the plain one (else the combination would end where the plain one does).
+  if (intersection != plain.start_inside) return CsgShortcut::None;  // a union with all inside
+  const CsgList& other = b_plain ? a : b;
+  if (plain.valid_until < other.valid_until || !csg_simple(other)) return CsgShortcut::None;
+  return b_plain ? CsgShortcut::First : CsgShortcut::Second;
+}
+
 // The lists of the tree's program: kMaxCsgStack on the stack and one for the combining step's
 // result. Left uninitialised (4.7 KB: clearing them cost more than the whole CSG query); every
 // list's header is written before its crossings, and only crossings below n are read.
@@ -159,17 +193,48 @@ struct CsgStack {
   STRAHL_HOST_DEVICE CsgStack() {}  // NOLINT(modernize-use-equals-default): = default would clear the lists
 };
 
+// Does the ray's range (t_min, t_max) meet the box [lo, hi]? (1/direction given; a NaN says yes.)
+STRAHL_HOST_DEVICE inline bool range_meets_box(const Ray& ray, const Vec3& inverse_direction, const Vec3& lo,
+                                               const Vec3& hi, Real t_min, Real t_max) {
+  Real near = t_min, far = t_max;
+  for (int k = 0; k < 3; ++k) {
+    if (ray.direction[k] == 0) {
+      if (ray.origin[k] < lo[k] || ray.origin[k] > hi[k]) return false;
+      continue;
+    }
+    Real t0 = (lo[k] - ray.origin[k]) * inverse_direction[k], t1 = (hi[k] - ray.origin[k]) * inverse_direction[k];
+    if (t0 > t1) {
+      const Real t = t0;
+      t0 = t1;
+      t1 = t;
+    }
+    near = t0 > near ? t0 : near;
+    far = t1 < far ? t1 : far;
+  }
+  return !(near > far);
+}
+
 // Runs the tree's program over (t_min, t_max); returns the result (the bottom of the stack).
 STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, const Csg& g, const Ray& ray, Real t_min,
                                                       Real t_max, CsgStack& st) {
   for (int k = 0; k <= kMaxCsgStack; ++k) st.slot[k] = k;
+  const Vec3 inverse_direction(Real(1) / ray.direction.x, Real(1) / ray.direction.y, Real(1) / ray.direction.z);
   int sp = 0;
   for (std::uint32_t i = 0; i < g.instruction_count; ++i) {
     const CsgInstruction& in = a.csg_code[g.first_instruction + i];
     switch (in.op) {
       case CsgOp::Leaf:
-        if (sp < kMaxCsgStack)
-          csg_leaf_list(a, a.csg_leaves[g.first_leaf + in.arg], in.arg, ray, t_min, t_max, st.list[st.slot[sp++]]);
+        if (sp < kMaxCsgStack) {
+          const CsgLeaf& leaf = a.csg_leaves[g.first_leaf + in.arg];
+          CsgList& list = st.list[st.slot[sp++]];
+          if (leaf.boxed && !range_meets_box(ray, inverse_direction, leaf.lo, leaf.hi, t_min, t_max)) {
+            list.n = 0;  // what csg_leaf_list finds there: no crossing, outside
+            list.start_inside = false;
+            list.valid_until = kInfinity;
+          } else {
+            csg_leaf_list(a, leaf.solid, in.arg, ray, t_min, t_max, list);
+          }
+        }
         break;
       case CsgOp::Inverse:
         if (sp >= 1) csg_invert(st.list[st.slot[sp - 1]]);
@@ -182,10 +247,31 @@ STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, cons
         break;
       default:
         if (sp >= 2) {
-          csg_combine(in.op, st.list[st.slot[sp - 2]], st.list[st.slot[sp - 1]], st.list[st.slot[kMaxCsgStack]]);
-          const int result = st.slot[kMaxCsgStack];
-          st.slot[kMaxCsgStack] = st.slot[sp - 2];
-          st.slot[sp - 2] = result;
+          CsgList& first = st.list[st.slot[sp - 2]];
+          const CsgList& second = st.list[st.slot[sp - 1]];
+          switch (csg_shortcut(in.op, first, second)) {
+            case CsgShortcut::First: break;  // the result is the first list, where it is
+            case CsgShortcut::Second: {
+              const int second_slot = st.slot[sp - 1];
+              st.slot[sp - 1] = st.slot[sp - 2];
+              st.slot[sp - 2] = second_slot;
+              break;
+            }
+            case CsgShortcut::Empty: {
+              const Real until = first.valid_until < second.valid_until ? first.valid_until : second.valid_until;
+              first.start_inside = second.n == 0 ? second.start_inside : first.start_inside;
+              first.n = 0;
+              first.valid_until = until;
+              break;
+            }
+            case CsgShortcut::None: {
+              csg_combine(in.op, first, second, st.list[st.slot[kMaxCsgStack]]);
+              const int result = st.slot[kMaxCsgStack];
+              st.slot[kMaxCsgStack] = st.slot[sp - 2];
+              st.slot[sp - 2] = result;
+              break;
+            }
+          }
           --sp;
         }
         break;
@@ -222,7 +308,7 @@ STRAHL_HOST_DEVICE inline bool csg_inside(const SolidArrays& a, const Csg& g, co
     const CsgInstruction& in = a.csg_code[g.first_instruction + i];
     switch (in.op) {
       case CsgOp::Leaf:
-        if (sp < kMaxCsgStack) st[sp++] = leaf_inside(a, a.csg_leaves[g.first_leaf + in.arg], p);
+        if (sp < kMaxCsgStack) st[sp++] = leaf_inside(a, a.csg_leaves[g.first_leaf + in.arg].solid, p);
         break;
       case CsgOp::Inverse:
         if (sp >= 1) st[sp - 1] = !st[sp - 1];
@@ -242,7 +328,7 @@ STRAHL_HOST_DEVICE inline bool csg_inside(const SolidArrays& a, const Csg& g, co
 // The outward normal of the tree at a crossing's part: its leaf's, flipped where the leaf is
 // subtracted or inverted.
 STRAHL_HOST_DEVICE inline Vec3 csg_normal_at(const SolidArrays& a, const Csg& g, std::uint32_t part, const Vec3& p) {
-  const Solid& leaf = a.csg_leaves[g.first_leaf + (part >> 16)];
+  const Solid& leaf = a.csg_leaves[g.first_leaf + (part >> 16)].solid;
   const Vec3 n = leaf_normal_at(a, leaf, int(part & 0x7fff), p);
   return (part & kCsgFlip) ? -n : n;
 }

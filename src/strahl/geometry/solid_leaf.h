@@ -37,6 +37,15 @@ struct Solid {
   std::uint32_t material = 0;
 };
 
+// A CSG tree's leaf (geometry/csg.h): its handle and, where a box test is cheaper than the leaf's
+// own crossings (cones, tori, quadrics, placed shapes), a box around it, enlarged by a millionth
+// of its size: a ray range that misses the box has no crossing of the leaf and is outside it.
+struct CsgLeaf {
+  Solid solid;
+  std::uint32_t boxed = 0;  // lo and hi hold the box
+  Vec3 lo, hi;
+};
+
 // What the root finding of one implicit surface met over a whole render (all threads).
 struct ImplicitTally {
   std::uint64_t max_gradient_bits = 0;  // a non-negative double's bits: ordered as integers
@@ -85,7 +94,7 @@ struct SolidArrays {
   const Sphere* spheres = nullptr;   // CSG operands only
   const Csg* csgs = nullptr;
   const CsgInstruction* csg_code = nullptr;  // every tree's program, one after the other
-  const Solid* csg_leaves = nullptr;         // every tree's leaves, one after the other
+  const CsgLeaf* csg_leaves = nullptr;       // every tree's leaves, one after the other
   const PlacedSolid* placed = nullptr;
 };
 

@@ -66,7 +66,7 @@ struct RenderScene {
   std::vector<kernel::Sphere> solid_spheres;
   std::vector<kernel::Csg> csgs;
   std::vector<kernel::CsgInstruction> csg_code;
-  std::vector<kernel::Solid> csg_leaves;
+  std::vector<kernel::CsgLeaf> csg_leaves;
   std::vector<kernel::PlacedSolid> placed;  // solids with a transform (geometry/placement.h)
   Accel accel;  // built by compile() over spheres, triangles and the bounded solids
   std::vector<kernel::MovingSphere> moving_spheres;

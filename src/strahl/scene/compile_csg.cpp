@@ -2,6 +2,7 @@
 // values are checked as at the top level), its handle moved from the scene's solids into the
 // tree's leaves, and the tree written as a postfix program (geometry/csg_program.h).
 
+#include <algorithm>
 #include <cmath>
 
 #include "strahl/render/render_scene.h"
@@ -30,6 +31,27 @@ Bounds infinite_bounds() {
   b.extend(Vec3(-kInfinity));
   b.extend(Vec3(kInfinity));
   return b;
+}
+
+// The leaf with its box (geometry/solid_leaf.h, CsgLeaf) where a box test is cheaper than the
+// leaf's own crossings and the box is finite: enlarged by a millionth of its coordinates' size, so
+// that a crossing a leaf computes a little outside its exact box (a grazing ray's root) still
+// lies inside it, and no ray's result changes.
+kernel::CsgLeaf leaf_with_box(const kernel::Solid& handle, const Bounds& b) {
+  kernel::CsgLeaf leaf;
+  leaf.solid = handle;
+  using kernel::SolidKind;
+  const SolidKind kind = handle.kind;
+  const bool costly = kind == SolidKind::Cone || kind == SolidKind::Torus || kind == SolidKind::Quadric ||
+                      kind == SolidKind::Placed;
+  const Real size = std::max(max_abs_component(b.lo), max_abs_component(b.hi));
+  if (costly && std::isfinite(size)) {
+    const Vec3 pad(Real(1e-6) * size);
+    leaf.boxed = 1;
+    leaf.lo = b.lo - pad;
+    leaf.hi = b.hi + pad;
+  }
+  return leaf;
 }
 
 struct TreeBuilder {
@@ -88,9 +110,10 @@ struct TreeBuilder {
       handle = out.solids.back();
       out.solids.pop_back();
     }
-    out.csg_leaves.push_back(handle);
+    const Bounds b = kernel::bounds(out.shapes(), handle);
+    out.csg_leaves.push_back(leaf_with_box(handle, b));
     emit(kernel::CsgOp::Leaf, std::uint16_t(tree.leaf_count++));
-    return kernel::bounds(out.shapes(), handle);
+    return b;
   }
 
   Bounds operand(const SceneObject& o, const Csg& parent, int depth, const Affine* to_world) {
