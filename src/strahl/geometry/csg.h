@@ -239,10 +239,30 @@ STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, cons
       case CsgOp::Inverse:
         if (sp >= 1) csg_invert(st.list[st.slot[sp - 1]]);
         break;
-      case CsgOp::Skip:  // an intersection's first operand is nowhere on this ray: so is the intersection
+      case CsgOp::Skip:
         if (sp >= 1) {
-          const CsgList& first = st.list[st.slot[sp - 1]];
-          if (first.n == 0 && !first.start_inside) i += in.arg;
+          CsgList& first = st.list[st.slot[sp - 1]];
+          // An intersection's first operand is nowhere on this ray: so is the intersection.
+          if (first.n == 0 && !first.start_inside) {
+            i += in.arg;
+            break;
+          }
+          // The other operand a single leaf whose box the ray's range misses (a hole the ray does
+          // not pass): its list would be plain outside, so the step's result is known (what
+          // csg_shortcut says: an intersection with it is empty; with its inverse, a difference,
+          // the first list itself where that is simple) without running the leaf and the step.
+          const std::uint32_t next = g.first_instruction + i + 1;
+          if (in.arg < 2 || i + in.arg >= g.instruction_count || a.csg_code[next].op != CsgOp::Leaf) break;
+          const CsgLeaf& leaf = a.csg_leaves[g.first_leaf + a.csg_code[next].arg];
+          if (!leaf.boxed || range_meets_box(ray, inverse_direction, leaf.lo, leaf.hi, t_min, t_max)) break;
+          if (in.arg == 2 && a.csg_code[next + 1].op == CsgOp::Intersection) {
+            first.n = 0;  // valid_until: the smaller of first's and ∞
+            first.start_inside = false;
+            i += in.arg;
+          } else if (in.arg == 3 && a.csg_code[next + 1].op == CsgOp::Inverse &&
+                     a.csg_code[next + 2].op == CsgOp::Intersection && csg_simple(first)) {
+            i += in.arg;
+          }
         }
         break;
       default:
