@@ -5,7 +5,9 @@
 // Skip(n) before the second operand of an intersection (a difference's too): where the first
 // operand's list is empty and starts outside, the next n instructions — the other operand and the
 // step — cannot change it (nothing ∩ anything is nothing), so they are not run. POV-Ray stops an
-// intersection's children likewise at the first one the ray misses.
+// intersection's children likewise at the first one the ray misses. Where the other operand is a
+// single leaf with a box (CsgLeaf) that the ray misses, the step's result is known as well and
+// the n instructions are not run either (geometry/csg.h, csg_evaluate).
 
 #include <cstdint>
 
