@@ -303,7 +303,7 @@ TEST(Csg, SkippingAnIntersectionsOtherOperandChangesNoCrossing) {
   EXPECT_GT(n.inside_pieces, 100);  // pieces wholly inside a tree
 }
 
-// A leaf's box (CsgLeaf: cones, tori, placed shapes) stands for its crossings where the
+// A leaf's box (CsgLeaf: cones, cylinders, tori, placed shapes) stands for its crossings where the
 // ray's range misses it: the same trees with and without the boxes give the same crossings, bit
 // for bit, also for rays along the axes (a direction component 0) and grazing the boxes' faces.
 TEST(Csg, LeafBoxesChangeNoCrossing) {
@@ -339,7 +339,7 @@ TEST(Csg, LeafBoxesChangeNoCrossing) {
     extra.emplace_back(o - axis * 3, axis);
     for (const kernel::CsgLeaf& leaf : with.csg_leaves)
       if (leaf.boxed && i % 20 == 0) {
-        const Vec3 on_face(leaf.hi.x, o.y, o.z);
+        const Vec3 on_face(leaf.box.hi.x, o.y, o.z);
         extra.emplace_back(on_face - Vec3(0, 0, 3), Vec3(0, 0, 1));
         extra.emplace_back(on_face - Vec3(0, 3, 0), normalize(Vec3(0, 1, 0.3)));
       }
@@ -352,7 +352,7 @@ TEST(Csg, LeafBoxesChangeNoCrossing) {
   for (const Ray& ray : random_rays(5, 3000)) {
     const Vec3 inverse(1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z);
     for (const kernel::CsgLeaf& leaf : with.csg_leaves)
-      missed += leaf.boxed && !kernel::range_meets_box(ray, inverse, leaf.lo, leaf.hi, 0, kInfinity);
+      missed += leaf.boxed && !hits(leaf.box, ray.origin, inverse, 0, kInfinity);
   }
   EXPECT_GT(missed, 5000);
 }

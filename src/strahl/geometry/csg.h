@@ -193,27 +193,6 @@ struct CsgStack {
   STRAHL_HOST_DEVICE CsgStack() {}  // NOLINT(modernize-use-equals-default): = default would clear the lists
 };
 
-// Does the ray's range (t_min, t_max) meet the box [lo, hi]? (1/direction given; a NaN says yes.)
-STRAHL_HOST_DEVICE inline bool range_meets_box(const Ray& ray, const Vec3& inverse_direction, const Vec3& lo,
-                                               const Vec3& hi, Real t_min, Real t_max) {
-  Real near = t_min, far = t_max;
-  for (int k = 0; k < 3; ++k) {
-    if (ray.direction[k] == 0) {
-      if (ray.origin[k] < lo[k] || ray.origin[k] > hi[k]) return false;
-      continue;
-    }
-    Real t0 = (lo[k] - ray.origin[k]) * inverse_direction[k], t1 = (hi[k] - ray.origin[k]) * inverse_direction[k];
-    if (t0 > t1) {
-      const Real t = t0;
-      t0 = t1;
-      t1 = t;
-    }
-    near = t0 > near ? t0 : near;
-    far = t1 < far ? t1 : far;
-  }
-  return !(near > far);
-}
-
 // Runs the tree's program over (t_min, t_max); returns the result (the bottom of the stack).
 STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, const Csg& g, const Ray& ray, Real t_min,
                                                       Real t_max, CsgStack& st) {
@@ -227,7 +206,7 @@ STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, cons
         if (sp < kMaxCsgStack) {
           const CsgLeaf& leaf = a.csg_leaves[g.first_leaf + in.arg];
           CsgList& list = st.list[st.slot[sp++]];
-          if (leaf.boxed && !range_meets_box(ray, inverse_direction, leaf.lo, leaf.hi, t_min, t_max)) {
+          if (leaf.boxed && !hits(leaf.box, ray.origin, inverse_direction, t_min, t_max)) {
             list.n = 0;  // what csg_leaf_list finds there: no crossing, outside
             list.start_inside = false;
             list.valid_until = kInfinity;
@@ -254,7 +233,7 @@ STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, cons
           const std::uint32_t next = g.first_instruction + i + 1;
           if (in.arg < 2 || i + in.arg >= g.instruction_count || a.csg_code[next].op != CsgOp::Leaf) break;
           const CsgLeaf& leaf = a.csg_leaves[g.first_leaf + a.csg_code[next].arg];
-          if (!leaf.boxed || range_meets_box(ray, inverse_direction, leaf.lo, leaf.hi, t_min, t_max)) break;
+          if (!leaf.boxed || hits(leaf.box, ray.origin, inverse_direction, t_min, t_max)) break;
           if (in.arg == 2 && a.csg_code[next + 1].op == CsgOp::Intersection) {
             first.n = 0;  // valid_until: the smaller of first's and ∞
             first.start_inside = false;

@@ -38,12 +38,12 @@ struct Solid {
 };
 
 // A CSG tree's leaf (geometry/csg.h): its handle and, where a box test is cheaper than the leaf's
-// own crossings (cones, tori, quadrics, placed shapes), a box around it, enlarged by a millionth
-// of its size: a ray range that misses the box has no crossing of the leaf and is outside it.
+// own crossings (cones, tori, placed shapes), a box around it, enlarged by a millionth of its
+// size: a ray range that misses the box has no crossing of the leaf and is outside it.
 struct CsgLeaf {
   Solid solid;
-  std::uint32_t boxed = 0;  // lo and hi hold the box
-  Vec3 lo, hi;
+  std::uint32_t boxed = 0;  // `box` holds the box
+  Bounds box;
 };
 
 // What the root finding of one implicit surface met over a whole render (all threads).

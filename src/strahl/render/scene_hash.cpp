@@ -246,8 +246,8 @@ void hash(Hasher& h, const kernel::Instance& x) {
 void hash(Hasher& h, const kernel::CsgLeaf& x) {
   hash(h, x.solid);
   h.add(x.boxed);
-  h.add(x.lo);
-  h.add(x.hi);
+  h.add(x.box.lo);
+  h.add(x.box.hi);
 }
 void hash(Hasher& h, const kernel::CsgInstruction& x) {
   h.add(x.op);

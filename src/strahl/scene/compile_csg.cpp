@@ -42,14 +42,13 @@ kernel::CsgLeaf leaf_with_box(const kernel::Solid& handle, const Bounds& b) {
   leaf.solid = handle;
   using kernel::SolidKind;
   const SolidKind kind = handle.kind;
-  const bool costly = kind == SolidKind::Cone || kind == SolidKind::Torus || kind == SolidKind::Quadric ||
-                      kind == SolidKind::Placed;
+  const bool costly = kind == SolidKind::Cone || kind == SolidKind::Torus || kind == SolidKind::Placed;
   const Real size = std::max(max_abs_component(b.lo), max_abs_component(b.hi));
   if (costly && std::isfinite(size)) {
     const Vec3 pad(Real(1e-6) * size);
     leaf.boxed = 1;
-    leaf.lo = b.lo - pad;
-    leaf.hi = b.hi + pad;
+    leaf.box.lo = b.lo - pad;
+    leaf.box.hi = b.hi + pad;
   }
   return leaf;
 }
