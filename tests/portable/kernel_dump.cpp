@@ -173,7 +173,11 @@ void dump_film() {
         const double big = i % 50 == 0 ? 1e7 : 1.0;
         Vec3 L{(u(rng) - 0.1) * big, u(rng), i % 7 == 0 ? 0.0 : u(rng) * 3};
         if (i == 1234) L.y = std::numeric_limits<double>::quiet_NaN();
-        film_add_wide(f, x, row, cs, L, fixed.data(), 0, 0, width, [](std::int64_t* p, std::int64_t v) { *p += v; });
+        // Added modulo 2^64: the NaN sample's INT64_MIN would overflow a signed sum (the renderer
+        // never passes a NaN to the film: bad samples are black, tests/invalid_sample_test.cpp).
+        film_add_wide(f, x, row, cs, L, fixed.data(), 0, 0, width, [](std::int64_t* p, std::int64_t v) {
+          *p = std::int64_t(std::uint64_t(*p) + std::uint64_t(v));
+        });
       }
       std::printf("# film %s r %g\n", std::string(filter_name(kind)).c_str(), radius);
       for (std::size_t p = 0; p < fixed.size(); p += 4)
