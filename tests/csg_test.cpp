@@ -303,6 +303,28 @@ TEST(Csg, SkippingAnIntersectionsOtherOperandChangesNoCrossing) {
   EXPECT_GT(n.inside_pieces, 100);  // pieces wholly inside a tree
 }
 
+// The trees' programs without their boxes: every one (the leaves' and the groups') or only the
+// groups' (entries past a tree's leaves). Returns how many were dropped.
+enum class BoxesToDrop { All, Groups };
+int drop_boxes(RenderScene& rs, BoxesToDrop which) {
+  int dropped = 0;
+  for (const kernel::Csg& g : rs.csgs) {
+    for (std::uint32_t i = g.first_instruction; i < g.first_instruction + g.instruction_count; ++i) {
+      kernel::CsgInstruction& in = rs.csg_code[i];
+      if (in.op != kernel::CsgOp::Skip || in.box == kernel::kNoCsgBox) continue;
+      if (which == BoxesToDrop::Groups && in.box < g.leaf_count) continue;
+      in.box = kernel::kNoCsgBox;
+      dropped += which == BoxesToDrop::Groups;
+    }
+    if (which == BoxesToDrop::All)
+      for (std::uint32_t k = 0; k < g.leaf_count; ++k) {
+        dropped += int(rs.csg_leaves[g.first_leaf + k].boxed);
+        rs.csg_leaves[g.first_leaf + k].boxed = 0;
+      }
+  }
+  return dropped;
+}
+
 // A leaf's box (CsgLeaf: cones, cylinders, tori, placed shapes) stands for its crossings where the
 // ray's range misses it: the same trees with and without the boxes give the same crossings, bit
 // for bit, also for rays along the axes (a direction component 0) and grazing the boxes' faces.
@@ -323,11 +345,7 @@ TEST(Csg, LeafBoxesChangeNoCrossing) {
       "  - {type: intersection, objects: [" + b + ", " + small_cylinder + "]}\n";
   const RenderScene with = scene_of(objects);
   RenderScene without = scene_of(objects);
-  int boxed = 0;
-  for (kernel::CsgLeaf& leaf : without.csg_leaves) {
-    boxed += int(leaf.boxed);
-    leaf.boxed = 0;
-  }
+  const int boxed = drop_boxes(without, BoxesToDrop::All);
   ASSERT_EQ(with.solids.size(), 6u);
   EXPECT_GE(boxed, 11);
   // Rays along each axis, and rays in the planes of the small leaves' boxes' faces.
@@ -355,6 +373,100 @@ TEST(Csg, LeafBoxesChangeNoCrossing) {
       missed += leaf.boxed && !hits(leaf.box, ray.origin, inverse, 0, kInfinity);
   }
   EXPECT_GT(missed, 5000);
+}
+
+// Groups of many small operands (geometry/csg_program.h): a Skip whose box holds several steps'
+// operands stands for all of them where the ray's range misses it. The same trees with and without
+// the groups' boxes give the same crossings, bit for bit: differences, unions, merges and
+// intersections of spheres, boxes, cylinders and tori, placed and not, runs of them broken by an
+// operand that cannot join a group; rays along the axes (through the holes' axes) and in the
+// planes of the groups' boxes' faces.
+TEST(Csg, OperandGroupsChangeNoCrossing) {
+  auto num = [](Real v) { return std::to_string(v); };
+  // A plate with a 6×6 grid of holes: cylinders, every fifth a sphere or a box, one a torus. The
+  // plate is a box united with itself: its list has coincident crossings (it is not simple), which
+  // a difference folds into one where it runs.
+  const std::string slab = "{type: box, corners: [[-1, -0.15, -1], [1, 0.15, 1]]}";
+  std::string plate = "{type: difference, objects: [{type: union, objects: [" + slab + ", " + slab + "]}";
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) {
+      const Real x = -0.85 + 0.34 * i, z = -0.85 + 0.34 * j;
+      const int k = 6 * i + j;
+      if (k == 17) plate += ", {type: torus, center: [" + num(x) + ", 0.15, " + num(z) + "], major_radius: 0.1, minor_radius: 0.04}";
+      else if (k % 5 == 1) plate += ", {type: sphere, center: [" + num(x) + ", 0.1, " + num(z) + "], radius: 0.12}";
+      else if (k % 5 == 3)
+        plate += ", {type: box, corners: [[" + num(x - 0.1) + ", -0.2, " + num(z - 0.1) + "], [" + num(x + 0.1) + ", 0.2, " +
+                 num(z + 0.1) + "]]}";
+      else
+        plate += ", {type: cylinder, base: [" + num(x) + ", -0.3, " + num(z) + "], cap: [" + num(x) + ", 0.3, " + num(z) +
+                 "], radius: 0.1}";
+    }
+  // A ring of small spheres and tori (a union's steps), and overlapping boxes (a merge's).
+  std::string ring = "{type: union, objects: [{type: sphere, center: [0, 0, 0], radius: 0.3}";
+  std::string stack = "{type: merge, objects: [{type: box, corners: [[-0.9, -0.9, -0.2], [-0.6, -0.6, 0.2]]}";
+  for (int k = 0; k < 14; ++k) {
+    const Real a = 0.45 * k, x = 0.8 * std::cos(a), y = 0.8 * std::sin(a);
+    ring += k % 4 == 3 ? ", {type: torus, center: [" + num(x) + ", " + num(y) + ", 0], major_radius: 0.1, minor_radius: 0.04}"
+                       : ", {type: sphere, center: [" + num(x) + ", " + num(y) + ", 0.05], radius: 0.14}";
+    stack += ", {type: box, corners: [[" + num(-0.9 + 0.12 * k) + ", " + num(-0.9 + 0.1 * k) + ", -0.2], [" +
+             num(-0.6 + 0.12 * k) + ", " + num(-0.6 + 0.1 * k) + ", 0.2]]}";
+  }
+  // A ball cut by a cluster of small spheres (an intersection's steps: where the ray misses them,
+  // the ball's list becomes empty), and a placed difference whose run of holes an implicit operand
+  // (no group) breaks in two.
+  std::string cut = "{type: intersection, objects: [" + std::string(kBall);
+  for (int k = 0; k < 5; ++k)
+    cut += ", {type: sphere, center: [" + num(0.3 + 0.05 * k) + ", " + num(0.2 - 0.04 * k) + ", 0], radius: 0.4}";
+  cut += "]}";
+  std::string placed = "{type: difference, rotate: [10, 30, 0], translate: [0.1, 0, 0], objects: [" + std::string(kBox);
+  for (int k = 0; k < 12; ++k) {
+    if (k == 6) placed += ", " + kOperands[5];
+    placed += ", {type: cylinder, base: [" + num(-0.8 + 0.14 * k) + ", -2, 0.3], cap: [" + num(-0.8 + 0.14 * k) +
+              ", 2, 0.3], radius: 0.05}";
+  }
+  const std::string objects = "  - " + plate + "]}\n  - " + ring + "]}\n  - " + stack + "]}\n  - " + cut + "\n  - " +
+                              placed + "]}\n";
+  const RenderScene with = scene_of(objects);
+  RenderScene without = scene_of(objects);
+  const int groups = drop_boxes(without, BoxesToDrop::Groups);
+  ASSERT_EQ(with.solids.size(), 5u);
+  EXPECT_GE(groups, 12 + 4 + 4 + 1 + 2);  // 36, 14, 14, 5 and 2 × 6 steps
+  // Rays along each axis (through the holes' axes, along the plate's faces), and rays in the
+  // planes of the groups' boxes' faces.
+  std::vector<Ray> extra;
+  test::Random rng(13);
+  for (int i = 0; i < 36; ++i) {
+    const Vec3 hole(-0.85 + 0.34 * (i / 6), 0, -0.85 + 0.34 * (i % 6));
+    extra.emplace_back(hole - Vec3(0, 3, 0), Vec3(0, 1, 0));
+    extra.emplace_back(hole + Vec3(0.1, 3, 0), Vec3(0, -1, 0));
+  }
+  for (int i = 0; i < 900; ++i) {
+    const Vec3 o = rng.point(-1.2, 1.2);
+    const Vec3 axis = i % 3 == 0 ? Vec3(1, 0, 0) : i % 3 == 1 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+    extra.emplace_back(o - axis * 3, axis);
+    if (i % 10 == 0)
+      for (const kernel::Csg& g : with.csgs)
+        for (std::uint32_t k = g.leaf_count; k < with.csg_leaves.size() - g.first_leaf && k < g.leaf_count + 8; ++k) {
+          const Bounds& box = with.csg_leaves[g.first_leaf + k].box;
+          extra.emplace_back(Vec3(o.x, box.hi.y, o.z) - Vec3(3, 0, 0), Vec3(1, 0, 0));
+          extra.emplace_back(Vec3(box.lo.x, o.y, o.z) - Vec3(0, 0, 3), normalize(Vec3(0, 0.2, 1)));
+        }
+  }
+  const TreeComparison n = expect_same_trees(with, without, 71, extra);
+  EXPECT_GT(n.crossings, 20000);
+  EXPECT_GT(n.inside_pieces, 100);
+  // The groups' boxes are missed often, or the comparison above would say little.
+  int missed = 0;
+  for (const Ray& ray : random_rays(7, 3000)) {
+    const Vec3 inverse(1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z);
+    for (const kernel::Csg& g : with.csgs)
+      for (std::uint32_t i = g.first_instruction; i < g.first_instruction + g.instruction_count; ++i) {
+        const kernel::CsgInstruction& in = with.csg_code[i];
+        missed += in.op == kernel::CsgOp::Skip && in.box != kernel::kNoCsgBox && in.box >= g.leaf_count &&
+                  !hits(with.csg_leaves[g.first_leaf + in.box].box, ray.origin, inverse, 0, kInfinity);
+      }
+  }
+  EXPECT_GT(missed, 20000);
 }
 
 // csg_shortcut's answers (a combination with an operand without crossings, taken without

@@ -221,25 +221,23 @@ STRAHL_HOST_DEVICE inline const CsgList& csg_evaluate(const SolidArrays& a, cons
       case CsgOp::Skip:
         if (sp >= 1) {
           CsgList& first = st.list[st.slot[sp - 1]];
-          // An intersection's first operand is nowhere on this ray: so is the intersection.
-          if (first.n == 0 && !first.start_inside) {
+          // An intersection's (a difference's) list so far is nowhere on this ray: so is its result.
+          if (in.run != CsgRun::Union && first.n == 0 && !first.start_inside) {
             i += in.arg;
             break;
           }
-          // The other operand a single leaf whose box the ray's range misses (a hole the ray does
-          // not pass): its list would be plain outside, so the step's result is known (what
-          // csg_shortcut says: an intersection with it is empty; with its inverse, a difference,
-          // the first list itself where that is simple) without running the leaf and the step.
-          const std::uint32_t next = g.first_instruction + i + 1;
-          if (in.arg < 2 || i + in.arg >= g.instruction_count || a.csg_code[next].op != CsgOp::Leaf) break;
-          const CsgLeaf& leaf = a.csg_leaves[g.first_leaf + a.csg_code[next].arg];
-          if (!leaf.boxed || hits(leaf.box, ray.origin, inverse_direction, t_min, t_max)) break;
-          if (in.arg == 2 && a.csg_code[next + 1].op == CsgOp::Intersection) {
+          // The steps' operands lie in a box that the ray's range misses (holes the ray does not
+          // pass): each would be plain outside, so the steps' result is known (what csg_shortcut
+          // says: an intersection with them is empty; a difference, a union or a merge with them
+          // is the list so far itself where that is simple) without running them.
+          if (in.box == kNoCsgBox || hits(a.csg_leaves[g.first_leaf + in.box].box, ray.origin, inverse_direction,
+                                          t_min, t_max))
+            break;
+          if (in.run == CsgRun::Intersection) {
             first.n = 0;  // valid_until: the smaller of first's and ∞
             first.start_inside = false;
             i += in.arg;
-          } else if (in.arg == 3 && a.csg_code[next + 1].op == CsgOp::Inverse &&
-                     a.csg_code[next + 2].op == CsgOp::Intersection && csg_simple(first)) {
+          } else if (csg_simple(first)) {
             i += in.arg;
           }
         }

@@ -2,12 +2,21 @@
 // A CSG tree as kernel data: a postfix program over its leaves (geometry/csg.h runs it).
 // The scene's union, intersection, difference, merge and inverse nodes become binary steps:
 // union(A, B, C) is A B Union C Union; difference(A, B) is A Skip(3) B Inverse Intersection.
-// Skip(n) before the second operand of an intersection (a difference's too): where the first
-// operand's list is empty and starts outside, the next n instructions — the other operand and the
-// step — cannot change it (nothing ∩ anything is nothing), so they are not run. POV-Ray stops an
-// intersection's children likewise at the first one the ray misses. Where the other operand is a
-// single leaf with a box (CsgLeaf) that the ray misses, the step's result is known as well and
-// the n instructions are not run either (geometry/csg.h, csg_evaluate).
+//
+// Skip(n) stands before steps of one node — one step (its other operand and the operation), or a
+// group of consecutive steps — and may leave the next n instructions out where their result is
+// known without them:
+//   * before an intersection's or a difference's steps, where the list so far is empty and starts
+//     outside (nothing ∩ anything is nothing; POV-Ray stops an intersection's children likewise
+//     at the first one the ray misses);
+//   * where it names a box (`box`) that the ray's range misses: the box holds every operand of the
+//     n instructions (single leaves, geometry/solid_leaf.h's CsgLeaf), so each of them has no
+//     crossing there and is outside. An intersection with such operands is empty; a difference
+//     with them, a union or merge with them, is the list so far itself where that is simple
+//     (csg_simple).
+// A node with many small operands (a plate with a grid of holes) gets nested groups: a Skip over
+// all its steps, Skips over halves of them within, and so on down to the steps' own, so a ray
+// tests O(log n) boxes for the operands it does not meet instead of one box per operand.
 
 #include <cstdint>
 
@@ -17,10 +26,16 @@ namespace strahl::kernel {
 
 enum class CsgOp : std::uint8_t { Leaf, Inverse, Union, Intersection, Merge, Skip };
 
+// Which steps a Skip stands before (what their operands missing the ray's range leaves).
+enum class CsgRun : std::uint8_t { Intersection, Difference, Union };  // Union: union or merge steps
+
+inline constexpr std::uint32_t kNoCsgBox = 0xffffffffu;
+
 struct CsgInstruction {
   CsgOp op = CsgOp::Leaf;
-  std::uint8_t pad = 0;
-  std::uint16_t arg = 0;  // Leaf: which of the tree's leaves; Skip: how many instructions
+  CsgRun run = CsgRun::Intersection;  // Skip: the node's steps
+  std::uint16_t arg = 0;              // Leaf: which of the tree's leaves; Skip: how many instructions
+  std::uint32_t box = kNoCsgBox;      // Skip: the tree's CsgLeaf entry whose box holds the operands
 };
 
 // Limits (docs/scene-format.md, "CSG"): the program's evaluation stack (one crossing list per

@@ -39,7 +39,9 @@ struct Solid {
 
 // A CSG tree's leaf (geometry/csg.h): its handle and, where a box test is cheaper than the leaf's
 // own crossings (cones, tori, placed shapes), a box around it, enlarged by a millionth of its
-// size: a ray range that misses the box has no crossing of the leaf and is outside it.
+// size: a ray range that misses the box has no crossing of the leaf and is outside it. A tree's
+// entries after its leaves (Csg::leaf_count) hold only the boxes of groups of operands, which the
+// program's Skips name (geometry/csg_program.h).
 struct CsgLeaf {
   Solid solid;
   std::uint32_t boxed = 0;  // `box` holds the box

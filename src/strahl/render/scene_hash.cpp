@@ -49,7 +49,7 @@ static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && siz
 static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof(kernel::Cone) == 80 &&
                   sizeof(kernel::Disk) == 56 && sizeof(kernel::Torus) == 64 && sizeof(kernel::Quadric) == 136 &&
                   sizeof(kernel::Implicit) == 1680 && sizeof(kernel::Csg) == 64 &&
-                  sizeof(kernel::CsgInstruction) == 4 && sizeof(kernel::CsgLeaf) == 64 &&
+                  sizeof(kernel::CsgInstruction) == 8 && sizeof(kernel::CsgLeaf) == 64 &&
                   sizeof(kernel::PlacedSolid) == 160,
               "a solid's struct changed: hash its new fields in scene_hash.cpp and update the size here");
 // A new array in the render-ready scene must be hashed too (with Embree: its scene handle).
@@ -251,7 +251,9 @@ void hash(Hasher& h, const kernel::CsgLeaf& x) {
 }
 void hash(Hasher& h, const kernel::CsgInstruction& x) {
   h.add(x.op);
+  h.add(x.run);
   h.add(x.arg);
+  h.add(x.box);
 }
 
 }  // namespace

@@ -33,25 +33,32 @@ Bounds infinite_bounds() {
   return b;
 }
 
+// A leaf's bounds enlarged by a millionth of its coordinates' size, so that a crossing a leaf
+// computes a little outside its exact box (a grazing ray's root) still lies inside it, and no
+// ray's result changes; false where the bounds are not finite.
+bool padded(const Bounds& b, Bounds& box) {
+  const Real size = std::max(max_abs_component(b.lo), max_abs_component(b.hi));
+  if (!std::isfinite(size)) return false;
+  const Vec3 pad(Real(1e-6) * size);
+  box.lo = b.lo - pad;
+  box.hi = b.hi + pad;
+  return true;
+}
+
 // The leaf with its box (geometry/solid_leaf.h, CsgLeaf) where a box test is cheaper than the
-// leaf's own crossings and the box is finite: enlarged by a millionth of its coordinates' size, so
-// that a crossing a leaf computes a little outside its exact box (a grazing ray's root) still
-// lies inside it, and no ray's result changes.
+// leaf's own crossings and the box is finite.
 kernel::CsgLeaf leaf_with_box(const kernel::Solid& handle, const Bounds& b) {
   kernel::CsgLeaf leaf;
   leaf.solid = handle;
   using kernel::SolidKind;
   const SolidKind kind = handle.kind;
   const bool costly = kind == SolidKind::Cone || kind == SolidKind::Torus || kind == SolidKind::Placed;
-  const Real size = std::max(max_abs_component(b.lo), max_abs_component(b.hi));
-  if (costly && std::isfinite(size)) {
-    const Vec3 pad(Real(1e-6) * size);
-    leaf.boxed = 1;
-    leaf.box.lo = b.lo - pad;
-    leaf.box.hi = b.hi + pad;
-  }
+  if (costly && padded(b, leaf.box)) leaf.boxed = 1;
   return leaf;
 }
+
+// Groups of a node's steps (geometry/csg_program.h): at least this many steps to a group.
+constexpr std::size_t kMinCsgGroup = 4;
 
 struct TreeBuilder {
   RenderScene& out;
@@ -59,7 +66,52 @@ struct TreeBuilder {
   std::uint32_t material;
   std::uint32_t object_id;
 
-  void emit(kernel::CsgOp op, std::uint16_t arg = 0) { out.csg_code.push_back({op, 0, arg}); }
+  // The boxes of groups of steps, numbered from kMaxCsgLeaves in the Skips until compile_into
+  // appends them to the tree's leaves (a leaf's index is its position among the leaves).
+  std::vector<Bounds> group_boxes;
+
+  void emit(kernel::CsgOp op, std::uint16_t arg = 0, kernel::CsgRun run = kernel::CsgRun::Intersection,
+            std::uint32_t box = kernel::kNoCsgBox) {
+    out.csg_code.push_back({op, run, arg, box});
+  }
+
+  // One step of a node, its code in csg_code[begin, end); `grouped`: its operand is a single leaf
+  // with a finite box (`box`), so it may join a group.
+  struct Step {
+    std::vector<kernel::CsgInstruction> code;
+    bool grouped = false;
+    Bounds box;
+  };
+
+  // Emits steps [lo, hi) of a node, under nested group Skips where there are enough of them: each
+  // group's box holds its steps' boxes, split where the two halves' boxes have the least surface
+  // area for their steps (as a BVH's SAH does; the steps keep their order).
+  void emit_steps(const std::vector<Step>& steps, std::size_t lo, std::size_t hi, kernel::CsgRun run) {
+    if (hi - lo < kMinCsgGroup) {
+      for (std::size_t k = lo; k < hi; ++k) out.csg_code.insert(out.csg_code.end(), steps[k].code.begin(), steps[k].code.end());
+      return;
+    }
+    Bounds all;
+    for (std::size_t k = lo; k < hi; ++k) all = merge(all, steps[k].box);
+    std::size_t split = lo + 1;
+    Real best = kInfinity;
+    for (std::size_t s = lo + 1; s < hi; ++s) {
+      Bounds left, right;
+      for (std::size_t k = lo; k < s; ++k) left = merge(left, steps[k].box);
+      for (std::size_t k = s; k < hi; ++k) right = merge(right, steps[k].box);
+      const Real cost = surface_area(left) * Real(s - lo) + surface_area(right) * Real(hi - s);
+      if (cost < best) {
+        best = cost;
+        split = s;
+      }
+    }
+    const std::size_t skip = out.csg_code.size();
+    emit(kernel::CsgOp::Skip, 0, run, std::uint32_t(kernel::kMaxCsgLeaves + group_boxes.size()));
+    group_boxes.push_back(all);
+    emit_steps(steps, lo, split, run);
+    emit_steps(steps, split, hi, run);
+    out.csg_code[skip].arg = static_cast<std::uint16_t>(out.csg_code.size() - skip - 1);
+  }
 
   // A solid operand: compiled alone, its handle taken out of the scene's solids.
   Bounds leaf(const SceneObject& o, const Csg& parent, const Affine* to_world) {
@@ -141,13 +193,28 @@ struct TreeBuilder {
       emit(kernel::CsgOp::Inverse);
       return infinite_bounds();
     }
+    const bool intersects = c.operation == CsgOperation::Intersection || c.operation == CsgOperation::Difference;
+    const kernel::CsgRun run = c.operation == CsgOperation::Intersection ? kernel::CsgRun::Intersection
+                               : c.operation == CsgOperation::Difference ? kernel::CsgRun::Difference
+                                                                          : kernel::CsgRun::Union;
+    std::vector<Step> steps;
+    const std::size_t steps_begin = out.csg_code.size();
     for (std::size_t i = 1; i < c.children.size(); ++i) {
       // Before an intersection's other operand: Skip over it and the step where the list so far
-      // is empty (geometry/csg_program.h); its length is known once both are emitted.
-      const bool intersects = c.operation == CsgOperation::Intersection || c.operation == CsgOperation::Difference;
-      const std::size_t skip = out.csg_code.size();
-      if (intersects) emit(kernel::CsgOp::Skip);
+      // is empty or where the operand is a leaf whose box the ray misses (geometry/csg_program.h);
+      // its length is known once both are emitted.
+      const std::size_t begin = out.csg_code.size();
+      if (intersects) emit(kernel::CsgOp::Skip, 0, run);
       const Bounds k = operand(*c.children[i], c, depth, to_world);
+      Step step;
+      if (!dynamic_cast<const Csg*>(c.children[i].get())) {
+        const kernel::CsgLeaf& leaf = out.csg_leaves.back();
+        const kernel::SolidKind kind = leaf.solid.kind;
+        if (intersects && leaf.boxed) out.csg_code[begin].box = tree.leaf_count - 1;
+        step.box = leaf.box;
+        step.grouped = leaf.boxed || ((kind == kernel::SolidKind::Sphere || kind == kernel::SolidKind::Box) &&
+                                      padded(k, step.box));
+      }
       switch (c.operation) {
         case CsgOperation::Union:
         case CsgOperation::Merge:
@@ -166,7 +233,18 @@ struct TreeBuilder {
           break;
         case CsgOperation::Inverse: break;
       }
-      if (intersects) out.csg_code[skip].arg = static_cast<std::uint16_t>(out.csg_code.size() - skip - 1);
+      if (intersects) out.csg_code[begin].arg = static_cast<std::uint16_t>(out.csg_code.size() - begin - 1);
+      step.code.assign(out.csg_code.begin() + std::ptrdiff_t(begin), out.csg_code.end());
+      steps.push_back(std::move(step));
+    }
+    // The steps again, runs of enough grouped ones under group Skips.
+    out.csg_code.resize(steps_begin);
+    for (std::size_t lo = 0; lo < steps.size();) {
+      std::size_t hi = lo + 1;
+      if (steps[lo].grouped)
+        while (hi < steps.size() && steps[hi].grouped) ++hi;
+      emit_steps(steps, lo, hi, run);
+      lo = hi;
     }
     return b;
   }
@@ -178,9 +256,21 @@ void Csg::compile_into(RenderScene& out, std::uint32_t material_index, std::uint
   kernel::Csg tree;
   tree.first_instruction = static_cast<std::uint32_t>(out.csg_code.size());
   tree.first_leaf = static_cast<std::uint32_t>(out.csg_leaves.size());
-  TreeBuilder builder{out, tree, material_index, object_id};
+  TreeBuilder builder{out, tree, material_index, object_id, {}};
   const Bounds b = builder.node(*this, 1, nullptr);
   tree.instruction_count = static_cast<std::uint32_t>(out.csg_code.size()) - tree.first_instruction;
+  // The groups' boxes after the leaves (entries that no Leaf instruction runs).
+  for (std::uint32_t i = tree.first_instruction; i < out.csg_code.size(); ++i) {
+    std::uint32_t& box = out.csg_code[i].box;
+    if (out.csg_code[i].op == kernel::CsgOp::Skip && box != kernel::kNoCsgBox && box >= std::uint32_t(kernel::kMaxCsgLeaves))
+      box = box - std::uint32_t(kernel::kMaxCsgLeaves) + tree.leaf_count;
+  }
+  for (const Bounds& group : builder.group_boxes) {
+    kernel::CsgLeaf entry;
+    entry.boxed = 1;
+    entry.box = group;
+    out.csg_leaves.push_back(entry);
+  }
   if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) {
     // An intersection of operands whose bounds do not overlap: nothing to render.
     out.warnings.push_back(loc.str() + (loc.file.empty() ? "" : ": ") + csg_operation_name(operation) +
