@@ -377,10 +377,10 @@ TEST(Csg, LeafBoxesChangeNoCrossing) {
 
 // Groups of many small operands (geometry/csg_program.h): a Skip whose box holds several steps'
 // operands stands for all of them where the ray's range misses it. The same trees with and without
-// the groups' boxes give the same crossings, bit for bit: differences, unions, merges and
-// intersections of spheres, boxes, cylinders and tori, placed and not, runs of them broken by an
-// operand that cannot join a group; rays along the axes (through the holes' axes) and in the
-// planes of the groups' boxes' faces.
+// the groups' boxes (and the nodes' own) give the same crossings, bit for bit: differences,
+// unions, merges and intersections of spheres, boxes, cylinders, cones, tori and nodes of them,
+// placed and not, runs of them broken by an operand that cannot join a group; rays along the axes
+// (through the holes' axes) and in the planes of the groups' boxes' faces.
 TEST(Csg, OperandGroupsChangeNoCrossing) {
   auto num = [](Real v) { return std::to_string(v); };
   // A plate with a 6×6 grid of holes: cylinders, every fifth a sphere or a box, one a torus. The
@@ -424,13 +424,26 @@ TEST(Csg, OperandGroupsChangeNoCrossing) {
     placed += ", {type: cylinder, base: [" + num(-0.8 + 0.14 * k) + ", -2, 0.3], cap: [" + num(-0.8 + 0.14 * k) +
               ", 2, 0.3], radius: 0.05}";
   }
+  // A bar with countersunk holes (each a node: a cylinder and a cone), one a sphere minus a box,
+  // one holding an implicit surface and an inverse box that trims the bar's ends (no box: inside
+  // everywhere outside the box; both break the run).
+  std::string sunk = "{type: difference, objects: [{type: box, corners: [[-1, -0.1, -0.2], [1, 0.1, 0.2]]}";
+  for (int k = 0; k < 10; ++k) {
+    const std::string x = num(-0.9 + 0.2 * k);
+    if (k == 3) sunk += ", {type: difference, objects: [{type: sphere, center: [" + x + ", 0.1, 0], radius: 0.08}, {type: box, corners: [[-2, 0.12, -2], [2, 2, 2]]}]}";
+    else if (k == 9) sunk += ", {type: inverse, objects: [{type: box, corners: [[-0.95, -0.3, -0.3], [0.95, 0.3, 0.3]]}]}";
+    else if (k == 7) sunk += ", {type: intersection, objects: [" + kOperands[5] + ", {type: box, corners: [[" + x + ", -2, -0.05], [" + num(-0.8 + 0.2 * k) + ", 2, 0.05]]}]}";
+    else
+      sunk += ", {type: union, objects: [{type: cylinder, base: [" + x + ", -0.2, 0], cap: [" + x + ", 0.2, 0], radius: 0.04}, "
+              "{type: cone, base: [" + x + ", 0.02, 0], base_radius: 0.04, cap: [" + x + ", 0.11, 0], cap_radius: 0.08}]}";
+  }
   const std::string objects = "  - " + plate + "]}\n  - " + ring + "]}\n  - " + stack + "]}\n  - " + cut + "\n  - " +
-                              placed + "]}\n";
+                              placed + "]}\n  - " + sunk + "]}\n";
   const RenderScene with = scene_of(objects);
   RenderScene without = scene_of(objects);
   const int groups = drop_boxes(without, BoxesToDrop::Groups);
-  ASSERT_EQ(with.solids.size(), 5u);
-  EXPECT_GE(groups, 12 + 4 + 4 + 1 + 2);  // 36, 14, 14, 5 and 2 × 6 steps
+  ASSERT_EQ(with.solids.size(), 6u);
+  EXPECT_GE(groups, 12 + 4 + 4 + 1 + 2 + 8 + 1);  // 36, 14, 14, 5 and 2 × 6 steps; 8 nodes, 7 steps
   // Rays along each axis (through the holes' axes, along the plate's faces), and rays in the
   // planes of the groups' boxes' faces.
   std::vector<Ray> extra;

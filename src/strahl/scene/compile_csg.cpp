@@ -60,6 +60,17 @@ kernel::CsgLeaf leaf_with_box(const kernel::Solid& handle, const Bounds& b) {
 // Groups of a node's steps (geometry/csg_program.h): at least this many steps to a group.
 constexpr std::size_t kMinCsgGroup = 4;
 
+// What an operand's compilation gives: the bounds of its set (for the tree's bounds) and, where a
+// ray's range that misses a box finds the operand's list plain outside (no crossing, outside all
+// along), that box: a leaf with a finite box that is a sphere, a box or boxed (CsgLeaf), or a
+// node whose operands all have one and that is no `inverse` (union, merge, intersection and
+// difference of operands outside everywhere are outside everywhere).
+struct Operand {
+  Bounds bounds;
+  bool boxed = false;
+  Bounds box;
+};
+
 struct TreeBuilder {
   RenderScene& out;
   kernel::Csg& tree;
@@ -75,13 +86,16 @@ struct TreeBuilder {
     out.csg_code.push_back({op, run, arg, box});
   }
 
-  // One step of a node, its code in csg_code[begin, end); `grouped`: its operand is a single leaf
-  // with a finite box (`box`), so it may join a group.
+  // One step of a node: its code and its operand (with a box, it may join a group).
   struct Step {
     std::vector<kernel::CsgInstruction> code;
-    bool grouped = false;
-    Bounds box;
+    Operand operand;
   };
+
+  std::uint32_t group_box(const Bounds& box) {
+    group_boxes.push_back(box);
+    return std::uint32_t(kernel::kMaxCsgLeaves + group_boxes.size() - 1);
+  }
 
   // Emits steps [lo, hi) of a node, under nested group Skips where there are enough of them: each
   // group's box holds its steps' boxes, split where the two halves' boxes have the least surface
@@ -92,13 +106,13 @@ struct TreeBuilder {
       return;
     }
     Bounds all;
-    for (std::size_t k = lo; k < hi; ++k) all = merge(all, steps[k].box);
+    for (std::size_t k = lo; k < hi; ++k) all = merge(all, steps[k].operand.box);
     std::size_t split = lo + 1;
     Real best = kInfinity;
     for (std::size_t s = lo + 1; s < hi; ++s) {
       Bounds left, right;
-      for (std::size_t k = lo; k < s; ++k) left = merge(left, steps[k].box);
-      for (std::size_t k = s; k < hi; ++k) right = merge(right, steps[k].box);
+      for (std::size_t k = lo; k < s; ++k) left = merge(left, steps[k].operand.box);
+      for (std::size_t k = s; k < hi; ++k) right = merge(right, steps[k].operand.box);
       const Real cost = surface_area(left) * Real(s - lo) + surface_area(right) * Real(hi - s);
       if (cost < best) {
         best = cost;
@@ -106,15 +120,14 @@ struct TreeBuilder {
       }
     }
     const std::size_t skip = out.csg_code.size();
-    emit(kernel::CsgOp::Skip, 0, run, std::uint32_t(kernel::kMaxCsgLeaves + group_boxes.size()));
-    group_boxes.push_back(all);
+    emit(kernel::CsgOp::Skip, 0, run, group_box(all));
     emit_steps(steps, lo, split, run);
     emit_steps(steps, split, hi, run);
     out.csg_code[skip].arg = static_cast<std::uint16_t>(out.csg_code.size() - skip - 1);
   }
 
   // A solid operand: compiled alone, its handle taken out of the scene's solids.
-  Bounds leaf(const SceneObject& o, const Csg& parent, const Affine* to_world) {
+  Operand leaf(const SceneObject& o, const Csg& parent, const Affine* to_world) {
     const char* refusal = nullptr;
     if (dynamic_cast<const Plane*>(&o)) refusal = "a plane";
     else if (dynamic_cast<const Triangle*>(&o)) refusal = "a triangle";
@@ -161,19 +174,25 @@ struct TreeBuilder {
       handle = out.solids.back();
       out.solids.pop_back();
     }
-    const Bounds b = kernel::bounds(out.shapes(), handle);
-    out.csg_leaves.push_back(leaf_with_box(handle, b));
+    Operand result;
+    result.bounds = kernel::bounds(out.shapes(), handle);
+    const kernel::CsgLeaf leaf = leaf_with_box(handle, result.bounds);
+    out.csg_leaves.push_back(leaf);
     emit(kernel::CsgOp::Leaf, std::uint16_t(tree.leaf_count++));
-    return b;
+    const kernel::SolidKind kind = handle.kind;
+    result.box = leaf.box;
+    result.boxed = leaf.boxed || ((kind == kernel::SolidKind::Sphere || kind == kernel::SolidKind::Box) &&
+                                  padded(result.bounds, result.box));
+    return result;
   }
 
-  Bounds operand(const SceneObject& o, const Csg& parent, int depth, const Affine* to_world) {
+  Operand operand(const SceneObject& o, const Csg& parent, int depth, const Affine* to_world) {
     if (const auto* c = dynamic_cast<const Csg*>(&o)) return node(*c, depth + 1, to_world);
     return leaf(o, parent, to_world);
   }
 
   // `outer`: the transforms of the nodes around this one (nullptr: none).
-  Bounds node(const Csg& c, int depth, const Affine* outer) {
+  Operand node(const Csg& c, int depth, const Affine* outer) {
     const char* name = csg_operation_name(c.operation);
     if (depth > kMaxCsgDepth)
       throw Error(c.loc, std::string(name) + " is nested too deeply: CSG nodes may be nested at most " +
@@ -188,10 +207,11 @@ struct TreeBuilder {
       placed = outer ? compose(*outer, affine_of(c.placement)) : affine_of(c.placement);
       to_world = &placed;
     }
-    Bounds b = operand(*c.children[0], c, depth, to_world);
+    Operand result = operand(*c.children[0], c, depth, to_world);
+    Bounds& b = result.bounds;
     if (c.operation == CsgOperation::Inverse) {
       emit(kernel::CsgOp::Inverse);
-      return infinite_bounds();
+      return {infinite_bounds(), false, {}};
     }
     const bool intersects = c.operation == CsgOperation::Intersection || c.operation == CsgOperation::Difference;
     const kernel::CsgRun run = c.operation == CsgOperation::Intersection ? kernel::CsgRun::Intersection
@@ -201,20 +221,20 @@ struct TreeBuilder {
     const std::size_t steps_begin = out.csg_code.size();
     for (std::size_t i = 1; i < c.children.size(); ++i) {
       // Before an intersection's other operand: Skip over it and the step where the list so far
-      // is empty or where the operand is a leaf whose box the ray misses (geometry/csg_program.h);
-      // its length is known once both are emitted.
+      // is empty or where the ray misses the operand's box (geometry/csg_program.h): a boxed
+      // leaf's own, a node's in an entry of its own; its length is known once both are emitted.
       const std::size_t begin = out.csg_code.size();
       if (intersects) emit(kernel::CsgOp::Skip, 0, run);
-      const Bounds k = operand(*c.children[i], c, depth, to_world);
       Step step;
-      if (!dynamic_cast<const Csg*>(c.children[i].get())) {
-        const kernel::CsgLeaf& leaf = out.csg_leaves.back();
-        const kernel::SolidKind kind = leaf.solid.kind;
-        if (intersects && leaf.boxed) out.csg_code[begin].box = tree.leaf_count - 1;
-        step.box = leaf.box;
-        step.grouped = leaf.boxed || ((kind == kernel::SolidKind::Sphere || kind == kernel::SolidKind::Box) &&
-                                      padded(k, step.box));
+      step.operand = operand(*c.children[i], c, depth, to_world);
+      const Bounds& k = step.operand.bounds;
+      if (intersects && dynamic_cast<const Csg*>(c.children[i].get())) {
+        if (step.operand.boxed) out.csg_code[begin].box = group_box(step.operand.box);
+      } else if (intersects && out.csg_leaves.back().boxed) {
+        out.csg_code[begin].box = tree.leaf_count - 1;
       }
+      result.boxed = result.boxed && step.operand.boxed;
+      result.box = merge(result.box, step.operand.box);
       switch (c.operation) {
         case CsgOperation::Union:
         case CsgOperation::Merge:
@@ -241,12 +261,12 @@ struct TreeBuilder {
     out.csg_code.resize(steps_begin);
     for (std::size_t lo = 0; lo < steps.size();) {
       std::size_t hi = lo + 1;
-      if (steps[lo].grouped)
-        while (hi < steps.size() && steps[hi].grouped) ++hi;
+      if (steps[lo].operand.boxed)
+        while (hi < steps.size() && steps[hi].operand.boxed) ++hi;
       emit_steps(steps, lo, hi, run);
       lo = hi;
     }
-    return b;
+    return result;
   }
 };
 
@@ -257,7 +277,7 @@ void Csg::compile_into(RenderScene& out, std::uint32_t material_index, std::uint
   tree.first_instruction = static_cast<std::uint32_t>(out.csg_code.size());
   tree.first_leaf = static_cast<std::uint32_t>(out.csg_leaves.size());
   TreeBuilder builder{out, tree, material_index, object_id, {}};
-  const Bounds b = builder.node(*this, 1, nullptr);
+  const Bounds b = builder.node(*this, 1, nullptr).bounds;
   tree.instruction_count = static_cast<std::uint32_t>(out.csg_code.size()) - tree.first_instruction;
   // The groups' boxes after the leaves (entries that no Leaf instruction runs).
   for (std::uint32_t i = tree.first_instruction; i < out.csg_code.size(); ++i) {
