@@ -9,9 +9,10 @@
 //   * before an intersection's or a difference's steps, where the list so far is empty and starts
 //     outside (nothing ∩ anything is nothing; POV-Ray stops an intersection's children likewise
 //     at the first one the ray misses);
-//   * where it names a box (`box`) that the ray's range misses: the box holds every operand of the
-//     n instructions (single leaves, geometry/solid_leaf.h's CsgLeaf), so each of them has no
-//     crossing there and is outside. An intersection with such operands is empty; a difference
+//   * where it names a box (`box`, an entry of the tree's CsgLeaf array: a leaf's own, or one
+//     after the leaves) that the ray's range misses: the box holds every operand of the n
+//     instructions (leaves with boxes, and nodes of them without an inverse), so each of them has
+//     no crossing there and is outside. An intersection with such operands is empty; a difference
 //     with them, a union or merge with them, is the list so far itself where that is simple
 //     (csg_simple).
 // A node with many small operands (a plate with a grid of holes) gets nested groups: a Skip over

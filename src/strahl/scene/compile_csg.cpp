@@ -77,8 +77,9 @@ struct TreeBuilder {
   std::uint32_t material;
   std::uint32_t object_id;
 
-  // The boxes of groups of steps, numbered from kMaxCsgLeaves in the Skips until compile_into
-  // appends them to the tree's leaves (a leaf's index is its position among the leaves).
+  // The boxes of groups of steps and of node operands, numbered from kMaxCsgLeaves in the Skips
+  // until compile_into appends them to the tree's leaves (a leaf's index is its position among
+  // the leaves, known only as they are compiled).
   std::vector<Bounds> group_boxes;
 
   void emit(kernel::CsgOp op, std::uint16_t arg = 0, kernel::CsgRun run = kernel::CsgRun::Intersection,
