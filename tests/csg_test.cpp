@@ -4,8 +4,9 @@
 // equals difference(A, inverse(B)) and inverse(inverse(A)) equals A ray for ray; inside() equals
 // the operator applied to the operands' membership at random points; every crossing's side agrees
 // with inside() between crossings; merge drops inner surfaces that union keeps; lists that
-// overflow are evaluated again from where they stopped; an intersection's Skip changes no
-// crossing; and the scene file's errors.
+// overflow are evaluated again from where they stopped; an intersection's Skip, the leaves' boxes
+// and the groups of operands under boxes change no crossing (chosen trees and random ones); and
+// the scene file's errors.
 
 #include <gtest/gtest.h>
 
@@ -480,6 +481,66 @@ TEST(Csg, OperandGroupsChangeNoCrossing) {
       }
   }
   EXPECT_GT(missed, 20000);
+}
+
+// Random trees — every operation, inverses, nodes within nodes, transforms, small and large
+// operands of every kind — with every box (the leaves', the groups', the nodes') and without any:
+// the same crossings, bit for bit.
+std::string random_operand(test::Random& rng, int depth) {
+  auto num = [](Real v) { return std::to_string(v); };
+  auto vec = [&](const Vec3& p) { return "[" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) + "]"; };
+  const Vec3 c = rng.point(-0.8, 0.8);
+  const Real r = rng.coin() ? rng.uniform(0.03, 0.15) : rng.uniform(0.15, 0.7);
+  const std::string turn = rng.below(5) == 0 ? ", rotate: " + vec(rng.point(-90, 90)) : "";
+  const int kind = rng.below(depth < 3 ? 8 : 6);
+  switch (kind) {
+    case 0: return "{type: sphere, center: " + vec(c) + ", radius: " + num(r) + turn + "}";
+    case 1: return "{type: box, corners: [" + vec(c - rng.point(0.2, 1) * r) + ", " + vec(c + rng.point(0.2, 1) * r) + "]" + turn + "}";
+    case 2: return "{type: cylinder, base: " + vec(c) + ", cap: " + vec(c + rng.direction() * (3 * r)) + ", radius: " + num(r / 2) + "}";
+    case 3:
+      return "{type: cone, base: " + vec(c) + ", base_radius: " + num(r / 2) + ", cap: " + vec(c + rng.direction() * (2 * r)) +
+             ", cap_radius: " + num(r / 5) + "}";
+    case 4:
+      return "{type: torus, center: " + vec(c) + ", major_radius: " + num(r) + ", minor_radius: " + num(r / 3) +
+             ", axis: " + vec(rng.direction()) + "}";
+    case 5:
+      return "{type: implicit, expression: 'sqrt(x^2 + y^2 + z^2) - " + num(r) + "', contained_by: {type: sphere, center: [0, 0, 0], radius: " +
+             num(1.2 * r) + "}, method: distance, max_gradient: 1, accuracy: 2e-6, translate: " + vec(c) + "}";
+    default: {
+      const char* ops[] = {"union", "intersection", "difference", "merge", "inverse"};
+      const int op = rng.below(10) == 0 ? 4 : rng.below(4);
+      const int n = op == 4 ? 1 : 2 + rng.below(depth == 1 ? 9 : 4);
+      std::string node = std::string("{type: ") + ops[op] + turn + ", objects: [";
+      for (int k = 0; k < n; ++k) node += (k ? ", " : "") + random_operand(rng, depth + 1);
+      return node + "]}";
+    }
+  }
+}
+
+TEST(Csg, RandomTreesGiveTheSameCrossingsWithAndWithoutBoxes) {
+  test::Random rng(2026);
+  std::string objects;
+  for (int tree = 0; tree < 32; ++tree) {
+    std::string node = random_operand(rng, 1);
+    if (node.rfind("{type: union", 0) != 0 && node.rfind("{type: intersection", 0) != 0 &&
+        node.rfind("{type: difference", 0) != 0 && node.rfind("{type: merge", 0) != 0)
+      node = "{type: difference, objects: [" + std::string(kBox) + ", " + node + "]}";  // a leaf: as an operand
+    objects += "  - " + node + "\n";
+  }
+  const RenderScene with = scene_of(objects);
+  RenderScene without = scene_of(objects);
+  const int dropped = drop_boxes(without, BoxesToDrop::All);
+  int groups = 0;
+  for (const kernel::Csg& g : with.csgs)
+    for (std::uint32_t i = g.first_instruction; i < g.first_instruction + g.instruction_count; ++i)
+      groups += with.csg_code[i].op == kernel::CsgOp::Skip && with.csg_code[i].box != kernel::kNoCsgBox &&
+                with.csg_code[i].box >= g.leaf_count;
+  ASSERT_GE(with.solids.size(), 24u);
+  EXPECT_GT(dropped, 20);
+  EXPECT_GT(groups, 10);
+  const TreeComparison n = expect_same_trees(with, without, 83);
+  EXPECT_GT(n.crossings, 20000);
+  EXPECT_GT(n.inside_pieces, 100);
 }
 
 // csg_shortcut's answers (a combination with an operand without crossings, taken without
