@@ -326,6 +326,18 @@ int drop_boxes(RenderScene& rs, BoxesToDrop which) {
   return dropped;
 }
 
+// The boxes that the trees' Skips name past their leaves: groups of operands, node operands.
+std::vector<Bounds> group_boxes_of(const RenderScene& rs) {
+  std::vector<Bounds> boxes;
+  for (const kernel::Csg& g : rs.csgs)
+    for (std::uint32_t i = g.first_instruction; i < g.first_instruction + g.instruction_count; ++i) {
+      const kernel::CsgInstruction& in = rs.csg_code[i];
+      if (in.op == kernel::CsgOp::Skip && in.box != kernel::kNoCsgBox && in.box >= g.leaf_count)
+        boxes.push_back(rs.csg_leaves[g.first_leaf + in.box].box);
+    }
+  return boxes;
+}
+
 // A leaf's box (CsgLeaf: cones, cylinders, tori, placed shapes) stands for its crossings where the
 // ray's range misses it: the same trees with and without the boxes give the same crossings, bit
 // for bit, also for rays along the axes (a direction component 0) and grazing the boxes' faces.
@@ -459,12 +471,10 @@ TEST(Csg, OperandGroupsChangeNoCrossing) {
     const Vec3 axis = i % 3 == 0 ? Vec3(1, 0, 0) : i % 3 == 1 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
     extra.emplace_back(o - axis * 3, axis);
     if (i % 10 == 0)
-      for (const kernel::Csg& g : with.csgs)
-        for (std::uint32_t k = g.leaf_count; k < with.csg_leaves.size() - g.first_leaf && k < g.leaf_count + 8; ++k) {
-          const Bounds& box = with.csg_leaves[g.first_leaf + k].box;
-          extra.emplace_back(Vec3(o.x, box.hi.y, o.z) - Vec3(3, 0, 0), Vec3(1, 0, 0));
-          extra.emplace_back(Vec3(box.lo.x, o.y, o.z) - Vec3(0, 0, 3), normalize(Vec3(0, 0.2, 1)));
-        }
+      for (const Bounds& box : group_boxes_of(with)) {
+        extra.emplace_back(Vec3(o.x, box.hi.y, o.z) - Vec3(3, 0, 0), Vec3(1, 0, 0));
+        extra.emplace_back(Vec3(box.lo.x, o.y, o.z) - Vec3(0, 0, 3), normalize(Vec3(0, 0.2, 1)));
+      }
   }
   const TreeComparison n = expect_same_trees(with, without, 71, extra);
   EXPECT_GT(n.crossings, 20000);
@@ -473,12 +483,7 @@ TEST(Csg, OperandGroupsChangeNoCrossing) {
   int missed = 0;
   for (const Ray& ray : random_rays(7, 3000)) {
     const Vec3 inverse(1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z);
-    for (const kernel::Csg& g : with.csgs)
-      for (std::uint32_t i = g.first_instruction; i < g.first_instruction + g.instruction_count; ++i) {
-        const kernel::CsgInstruction& in = with.csg_code[i];
-        missed += in.op == kernel::CsgOp::Skip && in.box != kernel::kNoCsgBox && in.box >= g.leaf_count &&
-                  !hits(with.csg_leaves[g.first_leaf + in.box].box, ray.origin, inverse, 0, kInfinity);
-      }
+    for (const Bounds& box : group_boxes_of(with)) missed += !hits(box, ray.origin, inverse, 0, kInfinity);
   }
   EXPECT_GT(missed, 20000);
 }
@@ -530,14 +535,10 @@ TEST(Csg, RandomTreesGiveTheSameCrossingsWithAndWithoutBoxes) {
   const RenderScene with = scene_of(objects);
   RenderScene without = scene_of(objects);
   const int dropped = drop_boxes(without, BoxesToDrop::All);
-  int groups = 0;
-  for (const kernel::Csg& g : with.csgs)
-    for (std::uint32_t i = g.first_instruction; i < g.first_instruction + g.instruction_count; ++i)
-      groups += with.csg_code[i].op == kernel::CsgOp::Skip && with.csg_code[i].box != kernel::kNoCsgBox &&
-                with.csg_code[i].box >= g.leaf_count;
+  const std::size_t groups = group_boxes_of(with).size();
   ASSERT_GE(with.solids.size(), 24u);
   EXPECT_GT(dropped, 20);
-  EXPECT_GT(groups, 10);
+  EXPECT_GT(groups, 10u);
   const TreeComparison n = expect_same_trees(with, without, 83);
   EXPECT_GT(n.crossings, 20000);
   EXPECT_GT(n.inside_pieces, 100);
