@@ -338,6 +338,17 @@ std::vector<Bounds> group_boxes_of(const RenderScene& rs) {
   return boxes;
 }
 
+// How often random rays miss the boxes (tests that compare trees with and without boxes say
+// little unless that is often).
+int missed_by_random_rays(const std::vector<Bounds>& boxes, std::uint64_t seed) {
+  int missed = 0;
+  for (const Ray& ray : random_rays(seed, 3000)) {
+    const Vec3 inverse(1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z);
+    for (const Bounds& box : boxes) missed += !hits(box, ray.origin, inverse, 0, kInfinity);
+  }
+  return missed;
+}
+
 // A leaf's box (CsgLeaf: cones, cylinders, tori, placed shapes) stands for its crossings where the
 // ray's range misses it: the same trees with and without the boxes give the same crossings, bit
 // for bit, also for rays along the axes (a direction component 0) and grazing the boxes' faces.
@@ -378,14 +389,10 @@ TEST(Csg, LeafBoxesChangeNoCrossing) {
   const TreeComparison n = expect_same_trees(with, without, 57, extra);
   EXPECT_GT(n.crossings, 10000);
   EXPECT_GT(n.inside_pieces, 100);
-  // The boxes are missed often, or the comparison above would say little.
-  int missed = 0;
-  for (const Ray& ray : random_rays(5, 3000)) {
-    const Vec3 inverse(1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z);
-    for (const kernel::CsgLeaf& leaf : with.csg_leaves)
-      missed += leaf.boxed && !hits(leaf.box, ray.origin, inverse, 0, kInfinity);
-  }
-  EXPECT_GT(missed, 5000);
+  std::vector<Bounds> boxes;
+  for (const kernel::CsgLeaf& leaf : with.csg_leaves)
+    if (leaf.boxed) boxes.push_back(leaf.box);
+  EXPECT_GT(missed_by_random_rays(boxes, 5), 5000);
 }
 
 // Groups of many small operands (geometry/csg_program.h): a Skip whose box holds several steps'
@@ -479,13 +486,7 @@ TEST(Csg, OperandGroupsChangeNoCrossing) {
   const TreeComparison n = expect_same_trees(with, without, 71, extra);
   EXPECT_GT(n.crossings, 20000);
   EXPECT_GT(n.inside_pieces, 100);
-  // The groups' boxes are missed often, or the comparison above would say little.
-  int missed = 0;
-  for (const Ray& ray : random_rays(7, 3000)) {
-    const Vec3 inverse(1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z);
-    for (const Bounds& box : group_boxes_of(with)) missed += !hits(box, ray.origin, inverse, 0, kInfinity);
-  }
-  EXPECT_GT(missed, 20000);
+  EXPECT_GT(missed_by_random_rays(group_boxes_of(with), 7), 20000);
 }
 
 // Random trees — every operation, inverses, nodes within nodes, transforms, small and large
