@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "strahl/geometry/solid.h"
@@ -222,6 +223,50 @@ TEST(Box, FacesAndNormals) {
 }
 
 // ---- torus ----
+
+// The torus's root finder (geometry/polynomial.h) on quartics and cubics with known real roots
+// (x − r1)(x − r2)… — spread, or with a pair 1e-6 to 1e-4 apart —: every root is found, in order,
+// as near the true one as the rounded coefficients allow, and each is bracketed to the last bit:
+// f is 0 there or changes sign between it and a neighbouring double.
+TEST(Polynomial, RootsAreFoundToAdjacentDoubles) {
+  test::Random rng(11);
+  auto changes_sign_at = [](const Real* c, int degree, Real x) {
+    const Real f = kernel::polynomial(c, degree, x);
+    if (f == 0) return true;
+    const Real below = kernel::polynomial(c, degree, std::nextafter(x, -kInfinity));
+    const Real above = kernel::polynomial(c, degree, std::nextafter(x, kInfinity));
+    return (below < 0) != (f < 0) || (above < 0) != (f < 0);
+  };
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const int degree = 3 + i % 2;
+    Real r[4];
+    for (int k = 0; k < degree; ++k) r[k] = rng.uniform(-1, 1);
+    if (i % 3 == 1) r[1] = r[0] + rng.uniform(1e-6, 1e-4);  // a tight pair
+    for (int k = 1; k < degree; ++k)
+      for (int j = k; j > 0 && r[j] < r[j - 1]; --j) std::swap(r[j], r[j - 1]);
+    // c = ∏ (x − r_k), expanded.
+    Real c[5] = {1, 0, 0, 0, 0};
+    for (int k = 0; k < degree; ++k)
+      for (int j = k + 1; j >= 0; --j) c[j] = (j > 0 ? c[j - 1] : 0) - r[k] * c[j];
+    Real roots[4];
+    const int n = degree == 3 ? kernel::polynomial_roots<3>(c, -2, 2, roots) : kernel::polynomial_roots<4>(c, -2, 2, roots);
+    ASSERT_EQ(n, degree) << i;
+    for (int k = 0; k < n; ++k) {
+      // Within the conditioning of the rounded coefficients: ~1e-16 / |f'(r_k)|.
+      Real slope = 1;
+      for (int j = 0; j < degree; ++j)
+        if (j != k) slope *= r[k] - r[j];
+      EXPECT_NEAR(roots[k], r[k], 1e-14 / std::fabs(slope)) << i << " root " << k;
+      EXPECT_TRUE(changes_sign_at(c, degree, roots[k])) << i << " root " << k << " = " << roots[k];
+      if (k > 0) {
+        EXPECT_LT(roots[k - 1], roots[k]) << i;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 70000);
+}
 
 // R = 1, r = 0.25 around y, scaled by `scale` and moved to `offset`: a ray along the x axis
 // through the centre crosses at x = ±(R + r), ±(R − r); one parallel to the axis at distance R

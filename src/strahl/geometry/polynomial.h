@@ -2,7 +2,7 @@
 // Real roots of polynomials up to degree four within an interval, by bracketing alone: the roots
 // of the derivative split [lo, hi] into pieces on which the polynomial is monotone, and each
 // piece whose ends differ in sign holds exactly one root, found by Newton steps kept inside the
-// bracket (bisection where a step would leave it or shrink it too little). The derivative's
+// bracket (the bracket's secant where a step would leave it). The derivative's
 // roots come the same way from its derivative, down to the quadratic's closed form. Unlike
 // Ferrari's closed form this cannot lose a root to cancellation between its resolvent's terms:
 // every root comes out of a bracket of f itself, to the last bits of double.
@@ -20,19 +20,35 @@ STRAHL_HOST_DEVICE inline Real polynomial(const Real* c, int degree, Real x) {
   return v;
 }
 
-// The one root of a polynomial monotone on [a, b] with f(a), f(b) of opposite signs.
-STRAHL_HOST_DEVICE inline Real monotone_root(const Real* c, int degree, Real a, Real b, Real fa) {
+// The one root of a polynomial monotone on [a, b] with f(a) = fa, f(b) = fb of opposite signs.
+// Newton steps from the middle, the bracket shrinking around them. Where a step would leave the
+// bracket — at the root's rounding level, where Newton has converged from one side and the other
+// end is still far, or where the polynomial's curvature throws it out — the bracket's secant
+// (regula falsi) takes its place, a double inside either end where it falls on one: so the far
+// end comes to the root's other side in a step or two, not by bisection.
+STRAHL_HOST_DEVICE inline Real monotone_root(const Real* c, int degree, Real a, Real b, Real fa, Real fb) {
   Real d[4];
   for (int i = 1; i <= degree; ++i) d[i - 1] = Real(i) * c[i];
   Real x = Real(0.5) * (a + b);
   for (int iter = 0; iter < 200; ++iter) {
     const Real f = polynomial(c, degree, x);
     if (f == 0) return x;
-    if ((f < 0) == (fa < 0)) a = x; else b = x;
+    if ((f < 0) == (fa < 0)) {
+      a = x;
+      fa = f;
+    } else {
+      b = x;
+      fb = f;
+    }
     const Real mid = a + Real(0.5) * (b - a);
     if (!(mid > a && mid < b)) return x;  // the bracket is down to adjacent doubles
     Real next = x - f / polynomial(d, degree - 1, x);
-    if (!(next > a && next < b)) next = mid;  // Newton would leave the bracket: bisect
+    if (!(next > a && next < b)) {
+      next = a + fa / (fa - fb) * (b - a);
+      if (next >= b) next = std::nextafter(b, a);
+      else if (next <= a) next = std::nextafter(a, b);
+      if (!(next > a && next < b)) next = mid;  // (NaN)
+    }
     if (next == x) return x;
     x = next;
   }
@@ -66,7 +82,7 @@ STRAHL_HOST_DEVICE inline int polynomial_roots(const Real* c, Real lo, Real hi, 
       if (fb == 0) {
         if (n == 0 || roots[n - 1] != b) roots[n++] = b;
       } else if (fa != 0 && (fa < 0) != (fb < 0)) {
-        roots[n++] = monotone_root(c, Degree, a, b, fa);
+        roots[n++] = monotone_root(c, Degree, a, b, fa, fb);
       }
       a = b;
       fa = fb;
