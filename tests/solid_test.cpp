@@ -225,9 +225,9 @@ TEST(Box, FacesAndNormals) {
 // ---- torus ----
 
 // The torus's root finder (geometry/polynomial.h) on quartics and cubics with known real roots
-// (x − r1)(x − r2)… — spread, or with a pair 1e-6 to 1e-4 apart —: every root is found, in order,
-// as near the true one as the rounded coefficients allow, and each is bracketed to the last bit:
-// f is 0 there or changes sign between it and a neighbouring double.
+// (x − r1)(x − r2)… — spread, with a pair 1e-6 to 1e-4 apart, or of magnitudes from 1e-3 to 50 —:
+// every root is found, in order, as near the true one as the rounded coefficients allow, and each
+// is bracketed to the last bit: f is 0 there or changes sign between it and a neighbouring double.
 TEST(Polynomial, RootsAreFoundToAdjacentDoubles) {
   test::Random rng(11);
   auto changes_sign_at = [](const Real* c, int degree, Real x) {
@@ -243,6 +243,8 @@ TEST(Polynomial, RootsAreFoundToAdjacentDoubles) {
     Real r[4];
     for (int k = 0; k < degree; ++k) r[k] = rng.uniform(-1, 1);
     if (i % 3 == 1) r[1] = r[0] + rng.uniform(1e-6, 1e-4);  // a tight pair
+    if (i % 3 == 2)                                          // magnitudes from 1e-3 to 50
+      for (int k = 0; k < degree; ++k) r[k] = (rng.coin() ? 1 : -1) * rng.log_uniform(1e-3, 50);
     for (int k = 1; k < degree; ++k)
       for (int j = k; j > 0 && r[j] < r[j - 1]; --j) std::swap(r[j], r[j - 1]);
     // c = ∏ (x − r_k), expanded.
@@ -250,14 +252,16 @@ TEST(Polynomial, RootsAreFoundToAdjacentDoubles) {
     for (int k = 0; k < degree; ++k)
       for (int j = k + 1; j >= 0; --j) c[j] = (j > 0 ? c[j - 1] : 0) - r[k] * c[j];
     Real roots[4];
-    const int n = degree == 3 ? kernel::polynomial_roots<3>(c, -2, 2, roots) : kernel::polynomial_roots<4>(c, -2, 2, roots);
+    const int n = degree == 3 ? kernel::polynomial_roots<3>(c, -100, 100, roots)
+                              : kernel::polynomial_roots<4>(c, -100, 100, roots);
     ASSERT_EQ(n, degree) << i;
     for (int k = 0; k < n; ++k) {
-      // Within the conditioning of the rounded coefficients: ~1e-16 / |f'(r_k)|.
-      Real slope = 1;
+      // Within the conditioning of the rounded coefficients: ε·Σ|c_j||r|^j / |f'(r)|, times 64.
+      Real slope = 1, size = 0, power = 1;
       for (int j = 0; j < degree; ++j)
         if (j != k) slope *= r[k] - r[j];
-      EXPECT_NEAR(roots[k], r[k], 1e-14 / std::fabs(slope)) << i << " root " << k;
+      for (int j = 0; j <= degree; ++j, power *= std::fabs(r[k])) size += std::fabs(c[j]) * power;
+      EXPECT_NEAR(roots[k], r[k], 64 * 0x1p-52 * size / std::fabs(slope)) << i << " root " << k;
       EXPECT_TRUE(changes_sign_at(c, degree, roots[k])) << i << " root " << k << " = " << roots[k];
       if (k > 0) {
         EXPECT_LT(roots[k - 1], roots[k]) << i;

@@ -25,11 +25,13 @@ STRAHL_HOST_DEVICE inline Real polynomial(const Real* c, int degree, Real x) {
 // bracket — at the root's rounding level, where Newton has converged from one side and the other
 // end is still far, or where the polynomial's curvature throws it out — the bracket's secant
 // (regula falsi) takes its place, a double inside either end where it falls on one: so the far
-// end comes to the root's other side in a step or two, not by bisection.
+// end comes to the root's other side in a step or two, not by halves. Should Newton fail again
+// right after a secant step, the bracket is bisected instead.
 STRAHL_HOST_DEVICE inline Real monotone_root(const Real* c, int degree, Real a, Real b, Real fa, Real fb) {
   Real d[4];
   for (int i = 1; i <= degree; ++i) d[i - 1] = Real(i) * c[i];
   Real x = Real(0.5) * (a + b);
+  bool secant = false;  // the last step was the secant's
   for (int iter = 0; iter < 200; ++iter) {
     const Real f = polynomial(c, degree, x);
     if (f == 0) return x;
@@ -43,11 +45,17 @@ STRAHL_HOST_DEVICE inline Real monotone_root(const Real* c, int degree, Real a, 
     const Real mid = a + Real(0.5) * (b - a);
     if (!(mid > a && mid < b)) return x;  // the bracket is down to adjacent doubles
     Real next = x - f / polynomial(d, degree - 1, x);
-    if (!(next > a && next < b)) {
+    if (next > a && next < b) {
+      secant = false;
+    } else if (secant) {
+      next = mid;  // twice in a row: bisect, so the bracket at least halves every other step
+      secant = false;
+    } else {
       next = a + fa / (fa - fb) * (b - a);
       if (next >= b) next = std::nextafter(b, a);
       else if (next <= a) next = std::nextafter(a, b);
       if (!(next > a && next < b)) next = mid;  // (NaN)
+      secant = true;
     }
     if (next == x) return x;
     x = next;
