@@ -2,8 +2,8 @@
 // Real roots of polynomials up to degree four within an interval, by bracketing alone: the roots
 // of the derivative split [lo, hi] into pieces on which the polynomial is monotone, and each
 // piece whose ends differ in sign holds exactly one root, found by Newton steps kept inside the
-// bracket (the bracket's secant where a step would leave it). The derivative's
-// roots come the same way from its derivative, down to the quadratic's closed form. Unlike
+// bracket (the bracket's secant where a step would leave it). The derivative's roots come the
+// same way from its derivative, down to the quadratic's closed form. Unlike
 // Ferrari's closed form this cannot lose a root to cancellation between its resolvent's terms:
 // every root comes out of a bracket of f itself, to the last bits of double.
 
