@@ -300,8 +300,9 @@ TEST_F(Cli, SamplingFiltersAovsAndTimeLimit) {
                 "--adaptive-threshold 0.05 -o a.png"),
             0)
       << log();
-  // A time limit without a sample count renders until the limit; a checkpoint rewrites the output.
-  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --time-limit 0.3 --checkpoint 0.05 -o t.png"), 0) << log();
+  // A time limit without a sample count renders until the limit (at most 65536 spp: 64×48 of them
+  // take seconds, where 16×12 could finish in 0.27 s on a fast machine); a checkpoint rewrites the output.
+  ASSERT_EQ(run("scene.yaml --width 64 --height 48 --time-limit 0.3 --checkpoint 0.05 -o t.png"), 0) << log();
   EXPECT_NE(log().find("stopped by the time limit"), std::string::npos) << log();
   EXPECT_TRUE(fs::exists(dir_ / "t.png"));
   // Bad values are usage errors.

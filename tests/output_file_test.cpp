@@ -98,5 +98,47 @@ TEST(OutputFile, AFailedWriteInTheCliNamesTheReasonAndKeepsTheOldImage) {
   EXPECT_EQ(entries(dir.path()), 6u) << "a temporary file was left";
 }
 
+
+// An output path that is a symbolic link is followed, through chains and relative links, to the
+// file that is then written: the links stay. A link to a name not yet there creates it; a link
+// to a device is refused like the device; a loop of links is an error, not a hang.
+TEST(OutputFile, SymbolicLinksAreFollowedAndKept) {
+  test::TempDir dir;
+  fs::create_directory(dir / "sub");
+  write_image(Image(1, 1), dir / "b.png");
+  fs::create_symlink("b.png", dir / "link.png");
+  fs::create_symlink("link.png", dir / "chain.png");
+  fs::create_symlink("../b.png", dir / "sub" / "relative.png");
+  int width = 2;
+  for (const char* name : {"link.png", "chain.png", "sub/relative.png"}) {
+    SCOPED_TRACE(name);
+    EXPECT_NO_THROW(check_output_path(dir / name));
+    write_image(Image(width, 1), dir / name);
+    EXPECT_EQ(read_image(dir / "b.png").width(), width++);
+    EXPECT_TRUE(fs::is_symlink(dir / name));
+  }
+  EXPECT_TRUE(fs::is_symlink(dir / "link.png"));
+  fs::create_symlink("made.png", dir / "new.png");
+  write_image(Image(7, 1), dir / "new.png");
+  EXPECT_TRUE(fs::is_symlink(dir / "new.png"));
+  EXPECT_EQ(read_image(dir / "made.png").width(), 7);
+  EXPECT_EQ(entries(dir.path()), 6u);  // sub, b, link, chain, new, made: no temporary file left
+  EXPECT_EQ(entries(dir / "sub"), 1u);
+
+  fs::create_symlink("/dev/null", dir / "null.png");
+  EXPECT_NE(error_of([&] { check_output_path(dir / "null.png"); })
+                .find("(-> /dev/null): cannot write the image: it exists and is not a regular file"),
+            std::string::npos);
+  EXPECT_TRUE(fs::is_symlink(dir / "null.png"));
+  fs::create_symlink("loop2.png", dir / "loop1.png");
+  fs::create_symlink("loop1.png", dir / "loop2.png");
+  EXPECT_NE(error_of([&] { check_output_path(dir / "loop1.png"); }).find("Too many levels of symbolic links"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { write_image(Image(1, 1), dir / "loop1.png"); }).find("Too many levels of symbolic links"),
+            std::string::npos);
+  EXPECT_TRUE(fs::is_symlink(dir / "loop1.png"));
+  EXPECT_EQ(entries(dir.path()), 9u);
+}
+
 }  // namespace
 }  // namespace strahl::output_file_test

@@ -267,24 +267,27 @@ void check_image_size(const fs::path& path, int width, int height) {
   if (ext == ".ppm" && 3 * w * h > kMaxPpmBytes) refuse("a PPM image can be read back with at most 2^31 - 1 bytes of pixels");
 }
 
-void check_output_path(const fs::path& path) {
-  if (!is_supported_image_extension(path))
-    throw Error(path.string() + ": unknown image format '" + path.extension().string() +
+void check_output_path(const fs::path& target) {
+  if (!is_supported_image_extension(target))
+    throw Error(target.string() + ": unknown image format '" + target.extension().string() +
                 "' (use .png, .jpg/.jpeg, .ppm, .pfm or .exr)");
+  // Where a symbolic link leads: the file that will be written (the link stays).
+  const fs::path path = OutputFile::output_destination(target);
+  const std::string name = path == target ? target.string() : target.string() + " (-> " + path.string() + ")";
   struct stat st {};
   if (::lstat(path.c_str(), &st) == 0) {
-    if (S_ISDIR(st.st_mode)) throw Error(path.string() + ": cannot write the image: it is a directory");
+    if (S_ISDIR(st.st_mode)) throw Error(name + ": cannot write the image: it is a directory");
     if (!S_ISREG(st.st_mode) && !S_ISLNK(st.st_mode))
-      throw Error(path.string() + ": cannot write the image: it exists and is not a regular file");
+      throw Error(name + ": cannot write the image: it exists and is not a regular file");
   } else if (errno != ENOENT && errno != ENOTDIR) {  // ENOTDIR: the directory check below says which
-    throw Error(path.string() + ": cannot write the image: " + system_reason(errno));
+    throw Error(name + ": cannot write the image: " + system_reason(errno));
   }
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (::stat(dir.c_str(), &st) != 0) {
-    if (errno == ENOENT) throw Error(path.string() + ": directory '" + dir.string() + "' does not exist");
-    throw Error(path.string() + ": cannot reach directory '" + dir.string() + "': " + system_reason(errno));
+    if (errno == ENOENT) throw Error(name + ": directory '" + dir.string() + "' does not exist");
+    throw Error(name + ": cannot reach directory '" + dir.string() + "': " + system_reason(errno));
   }
-  if (!S_ISDIR(st.st_mode)) throw Error(path.string() + ": '" + dir.string() + "' is not a directory");
+  if (!S_ISDIR(st.st_mode)) throw Error(name + ": '" + dir.string() + "' is not a directory");
   // A file with the very name the image's temporary file will have: this also finds names too
   // long for the directory's file system (the temporary name is the longest one written).
   for (std::uint32_t serial = 0xffffffffu;; --serial) {
@@ -296,7 +299,7 @@ void check_output_path(const fs::path& path) {
       return;
     }
     if (errno != EEXIST || serial < 0xffffff00u)
-      throw Error(path.string() + ": cannot write in directory '" + dir.string() + "': " + system_reason(errno));
+      throw Error(name + ": cannot write in directory '" + dir.string() + "': " + system_reason(errno));
   }
 }
 

@@ -21,7 +21,8 @@ bool is_supported_image_extension(const std::filesystem::path& path);
 // Checks, before any work is done, that write_image could write `path`: a known extension, an
 // existing directory in which a file can be created (tried with the very temporary name the
 // image will be written under, removed at once), and no directory or non-regular file (a FIFO,
-// a device such as /dev/null) at `path` itself, which the final rename would replace. Throws
+// a device such as /dev/null) at `path` itself, which the final rename would replace. Where `path`
+// is a symbolic link, all this holds for the file it leads to, which is what is written. Throws
 // strahl::Error naming the problem and, for a failed system call, its reason (errno).
 void check_output_path(const std::filesystem::path& path);
 

@@ -61,10 +61,22 @@ fs::path OutputFile::temporary_name(const fs::path& target, std::uint32_t serial
   return name;
 }
 
-OutputFile::OutputFile(const fs::path& target) : target_(target) {
+fs::path OutputFile::output_destination(const fs::path& target) {
+  fs::path path = target;
+  for (int links = 0; links <= 40; ++links) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(path, ec)) || ec) return path;
+    const fs::path link = fs::read_symlink(path, ec);
+    if (ec) return path;  // (the write itself then names the reason)
+    path = link.is_absolute() ? link : path.parent_path() / link;
+  }
+  throw Error(target.string() + ": cannot write the image: " + system_reason(ELOOP));
+}
+
+OutputFile::OutputFile(const fs::path& target) : target_(target), destination_(output_destination(target)) {
   static std::atomic<std::uint32_t> serial{0};
   for (int attempt = 0; fd_ < 0; ++attempt) {
-    temporary_ = temporary_name(target, serial++);
+    temporary_ = temporary_name(destination_, serial++);
     slot_ = claim_slot(temporary_.string());
     fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd_ >= 0) {
@@ -129,7 +141,7 @@ void OutputFile::commit() {
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) throw_error(errno);  // NFS and quotas report failed writes here
-  if (::rename(temporary_.c_str(), target_.c_str()) != 0) throw_error(errno);
+  if (::rename(temporary_.c_str(), destination_.c_str()) != 0) throw_error(errno);
   temporary_exists_ = false;
   release_slot(slot_);
   slot_ = -1;

@@ -4,6 +4,8 @@
 // every write checked, and renamed over the target only once it is complete and closed without
 // an error. On any failure, or when destroyed before commit(), the temporary file is removed, so
 // the target is never left half-written. Errors name the target and the reason from errno.
+// A target that is a symbolic link is followed (output_destination): the file it points to is
+// written, and the link stays.
 
 #include <cstddef>
 #include <cstdint>
@@ -34,13 +36,18 @@ class OutputFile {
   // The temporary name for `target`; `serial` distinguishes the files of one process.
   static std::filesystem::path temporary_name(const std::filesystem::path& target, std::uint32_t serial);
 
+  // The file that writing `target` replaces: `target` itself, or where its symbolic links lead
+  // (each relative to the link's directory; a link to a name that does not exist yet leads to a
+  // new file there). Throws strahl::Error after 40 links (a loop), as the system does.
+  static std::filesystem::path output_destination(const std::filesystem::path& target);
+
  private:
   void flush() noexcept;
   void fail(int error) noexcept;
   [[noreturn]] void throw_error(int error) const;
   void discard() noexcept;
 
-  std::filesystem::path target_, temporary_;
+  std::filesystem::path target_, destination_, temporary_;
   int fd_ = -1;
   bool temporary_exists_ = false;
   int error_ = 0;  // the first errno, 0 while all is well
