@@ -4,6 +4,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -26,6 +30,41 @@ constexpr std::uint32_t kParallelThreshold = 4096;  // subtrees smaller than thi
 // (bvh.h). SAH alone can peel off one primitive per level (geometrically spaced spheres).
 constexpr std::size_t kMaxSahDepth = 32;
 
+// A box as the build merges it: the low corner and the negated high corner in eight lanes
+// (lo.x lo.y lo.z · −hi.x −hi.y −hi.z ·), so that merging two boxes is one minimum of eight
+// doubles (one AVX-512 instruction, two AVX ones) — the very values of merge(): min and negation
+// are exact, and `a < b ? a : b` picks as min()/max() do on equal values. A primitive's box
+// carries its index in lane 3 (a double holds it exactly; the lane is never read as a bound), so
+// the build moves one 64-byte record per primitive and every pass over a node's primitives reads
+// one contiguous run, not the scene's boxes through an index.
+struct alignas(64) BinBox {
+  Real v[8] = {kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity};
+
+  static BinBox of(const Bounds& b, std::uint32_t id) {
+    BinBox r;
+    r.v[0] = b.lo.x, r.v[1] = b.lo.y, r.v[2] = b.lo.z, r.v[3] = Real(id);
+    r.v[4] = -b.hi.x, r.v[5] = -b.hi.y, r.v[6] = -b.hi.z, r.v[7] = 0;
+    return r;
+  }
+  void merge(const BinBox& o) {
+#if defined(__AVX512F__)
+    // a < b ? a : b, lane by lane (the masked form: GCC 12 warns of _mm512_min_pd's undefined source)
+    const __m512d a = _mm512_load_pd(v);
+    _mm512_store_pd(v, _mm512_mask_min_pd(a, 0xff, a, _mm512_load_pd(o.v)));
+#elif defined(__AVX__)
+    _mm256_store_pd(v, _mm256_min_pd(_mm256_load_pd(v), _mm256_load_pd(o.v)));
+    _mm256_store_pd(v + 4, _mm256_min_pd(_mm256_load_pd(v + 4), _mm256_load_pd(o.v + 4)));
+#else
+    for (int k = 0; k < 8; ++k) v[k] = v[k] < o.v[k] ? v[k] : o.v[k];
+#endif
+  }
+  Bounds bounds() const { return Bounds{Vec3(v[0], v[1], v[2]), Vec3(-v[4], -v[5], -v[6])}; }
+  // (lo + hi) / 2, as (lo − (−hi)) / 2: the same IEEE operation.
+  Vec3 centroid() const { return Vec3(v[0] - v[4], v[1] - v[5], v[2] - v[6]) * Real(0.5); }
+  std::uint32_t id() const { return std::uint32_t(v[3]); }
+};
+using PrimRef = BinBox;
+
 // Builds into a node array sized for the worst case (2n − 1 nodes): a split takes the next two
 // free slots for its children, so subtrees build in parallel without a temporary tree. The array
 // is allocated, not initialised (in 2 MiB pages when large: util/large_array.h): each node is
@@ -33,9 +72,7 @@ constexpr std::size_t kMaxSahDepth = 32;
 // handed out in order; about n/2 of the 2n − 1 for triangle meshes) is never touched and costs
 // neither time nor resident memory.
 struct Builder {
-  const Bounds* prim_bounds;
-  const Vec3* centroids;
-  LargeArray<std::uint32_t>& index;
+  PrimRef* refs;
   BvhNode* nodes;
   const BvhBuildOptions& options;
   // Primitives from this index on are solids (accel/primitive.h puts them last): each costs a
@@ -51,18 +88,27 @@ struct Builder {
     return Real((n - costly + options.leaf_block - 1) / options.leaf_block + costly);
   }
 
-  void build(std::uint32_t at, std::uint32_t begin, std::uint32_t end, std::size_t depth) {
-    Bounds bounds, centroid_bounds;
+  // The boxes of the primitives refs[begin, end) and of their centroids: a pass over them, where
+  // the split that made the node did not already give them (the root, a median split).
+  void measure(std::uint32_t begin, std::uint32_t end, Bounds& bounds, Bounds& centroid_bounds) const {
+    BinBox box;
+    centroid_bounds = Bounds{};
     for (std::uint32_t i = begin; i < end; ++i) {
-      bounds = merge(bounds, prim_bounds[index[i]]);
-      centroid_bounds.extend(centroids[index[i]]);
+      box.merge(refs[i]);
+      centroid_bounds.extend(refs[i].centroid());
     }
+    bounds = box.bounds();
+  }
+
+  // `bounds` and `centroid_bounds`: those of the node's primitives (measure()).
+  void build(std::uint32_t at, std::uint32_t begin, std::uint32_t end, std::size_t depth, const Bounds& bounds,
+             const Bounds& centroid_bounds) {
     BvhNode& node = *::new (static_cast<void*>(nodes + at)) BvhNode{};
     node.bounds = bounds;
     const std::uint32_t count = end - begin;
     std::uint32_t costly = 0;
     if (first_costly != ~std::uint32_t(0))
-      for (std::uint32_t i = begin; i < end; ++i) costly += index[i] >= first_costly;
+      for (std::uint32_t i = begin; i < end; ++i) costly += refs[i].id() >= first_costly;
     const auto make_leaf = [&] {
       node.offset = begin;
       node.count = std::uint16_t(count);
@@ -77,7 +123,7 @@ struct Builder {
     if (count <= 1 || (costly == 0 && (count <= 2 || (at == 0 && count <= max_leaf)))) return make_leaf();
 
     // Binned SAH: the best of kBins − 1 candidate planes on each axis, all axes in one pass.
-    std::array<std::array<Bounds, kBins>, 3> bin_bounds;
+    std::array<std::array<BinBox, kBins>, 3> bin_bounds;
     std::array<std::array<std::uint32_t, kBins>, 3> bin_count{}, bin_costly{};
     Vec3 scale;
     for (int axis = 0; axis < 3; ++axis) {
@@ -89,12 +135,13 @@ struct Builder {
     };
     const auto bin_all = [&](auto with_costly) {
       for (std::uint32_t i = begin; i < end; ++i) {
-        const std::uint32_t p = index[i];
+        const PrimRef& p = refs[i];
+        const Vec3 c = p.centroid();
         for (int axis = 0; axis < 3; ++axis) {
-          const int b = bin_of(centroids[p], axis);
-          bin_bounds[axis][b] = merge(bin_bounds[axis][b], prim_bounds[p]);
+          const int b = bin_of(c, axis);
+          bin_bounds[axis][b].merge(p);
           ++bin_count[axis][b];
-          if constexpr (decltype(with_costly)::value) bin_costly[axis][b] += p >= first_costly;
+          if constexpr (decltype(with_costly)::value) bin_costly[axis][b] += p.id() >= first_costly;
         }
       }
     };
@@ -117,7 +164,7 @@ struct Builder {
       Bounds acc;
       std::uint32_t n = 0, nc = 0;
       for (int j = m - 1; j > 0; --j) {
-        acc = merge(acc, bin_bounds[axis][used[j]]);
+        acc = merge(acc, bin_bounds[axis][used[j]].bounds());
         n += bin_count[axis][used[j]];
         nc += bin_costly[axis][used[j]];
         right_area[j] = surface_area(acc);
@@ -127,7 +174,7 @@ struct Builder {
       acc = Bounds{};
       n = nc = 0;
       for (int j = 0; j < m - 1; ++j) {
-        acc = merge(acc, bin_bounds[axis][used[j]]);
+        acc = merge(acc, bin_bounds[axis][used[j]].bounds());
         n += bin_count[axis][used[j]];
         nc += bin_costly[axis][used[j]];
         const Real cost = surface_area(acc) * leaf_cost(n, nc) +
@@ -147,29 +194,60 @@ struct Builder {
 
     std::uint32_t mid = begin + count / 2;
     std::uint8_t axis = 0;
-    if (depth >= kMaxSahDepth || best_axis < 0) {
+    // The children's boxes and their centroids' boxes.
+    Bounds left, left_centroids, right, right_centroids;
+    bool measured = false;
+    if (depth < kMaxSahDepth && best_axis >= 0) {
+      axis = std::uint8_t(best_axis);
+      // The bins below the plane to the left, the others to the right, in the order that
+      // std::partition gives (libstdc++'s for bidirectional iterators, step for step: the same
+      // tree as before), each primitive tested once, its centroid added to its side's box. The
+      // sides' own boxes are those of their bins.
+      PrimRef* first = refs + begin;
+      PrimRef* last = refs + end;
+      const auto to_left = [&](const PrimRef& p) {
+        const Vec3 c = p.centroid();
+        const bool is_left = bin_of(c, best_axis) < best_split;
+        (is_left ? left_centroids : right_centroids).extend(c);
+        return is_left;
+      };
+      for (;;) {
+        while (first != last && to_left(*first)) ++first;
+        if (first == last) break;
+        while (--last != first && !to_left(*last)) {
+        }
+        if (first == last) break;
+        std::swap(*first, *last);
+        ++first;
+      }
+      mid = std::uint32_t(first - refs);
+      BinBox left_box, right_box;
+      for (int b = 0; b < kBins; ++b) (b < best_split ? left_box : right_box).merge(bin_bounds[best_axis][b]);
+      left = left_box.bounds();
+      right = right_box.bounds();
+      measured = mid != begin && mid != end;
+      if (!measured) mid = begin + count / 2;
+    } else {
       // Median split on the widest centroid axis (all centroids may coincide: then any halves).
       const Vec3 extent = centroid_bounds.hi - centroid_bounds.lo;
       axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-      std::nth_element(index.data() + begin, index.data() + mid, index.data() + end,
-                       [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
-    } else {
-      axis = std::uint8_t(best_axis);
-      auto* split = std::partition(index.data() + begin, index.data() + end,
-                                   [&](std::uint32_t p) { return bin_of(centroids[p], best_axis) < best_split; });
-      mid = std::uint32_t(split - index.data());
-      if (mid == begin || mid == end) mid = begin + count / 2;
+      std::nth_element(refs + begin, refs + mid, refs + end,
+                       [&](const PrimRef& a, const PrimRef& b) { return a.centroid()[axis] < b.centroid()[axis]; });
+    }
+    if (!measured) {
+      measure(begin, mid, left, left_centroids);
+      measure(mid, end, right, right_centroids);
     }
     const std::uint32_t children = next_node.fetch_add(2);
     node.offset = children;
     node.count = 0;
     node.axis = axis;
     if (count > kParallelThreshold) {
-      tbb::parallel_invoke([&] { build(children, begin, mid, depth + 1); },
-                           [&] { build(children + 1, mid, end, depth + 1); });
+      tbb::parallel_invoke([&] { build(children, begin, mid, depth + 1, left, left_centroids); },
+                           [&] { build(children + 1, mid, end, depth + 1, right, right_centroids); });
     } else {
-      build(children, begin, mid, depth + 1);
-      build(children + 1, mid, end, depth + 1);
+      build(children, begin, mid, depth + 1, left, left_centroids);
+      build(children + 1, mid, end, depth + 1, right, right_centroids);
     }
   }
 };
@@ -187,20 +265,22 @@ Bvh build_bvh(const Bounds* bounds, std::uint32_t n, AccelBuildStats* stats_out,
   AccelBuildStats stats;
   stats.primitives = stats.primitive_references = n;
   if (n > 0) {
-    LargeArray<Vec3> centroids(n);
+    LargeArray<PrimRef> refs(n);
     bvh.prims.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1024), [&](const auto& r) {
-      for (std::uint32_t i = r.begin(); i != r.end(); ++i) {
-        centroids[i] = (bounds[i].lo + bounds[i].hi) * Real(0.5);
-        bvh.prims[i] = i;
-      }
+      for (std::uint32_t i = r.begin(); i != r.end(); ++i) refs[i] = BinBox::of(bounds[i], i);
     });
     static_assert(std::is_trivially_copyable_v<BvhNode> && std::is_trivially_destructible_v<BvhNode>);
     const std::size_t slot_count = 2 * std::size_t(n) - 1;
     const std::unique_ptr<BvhNode, SlotsDeleter> slots(LargeArrayAllocator<BvhNode>().allocate(slot_count),
                                                       SlotsDeleter{slot_count});
-    Builder builder{bounds, centroids.data(), bvh.prims, slots.get(), options, first_costly};
-    builder.build(0, 0, n, 1);
+    Builder builder{refs.data(), slots.get(), options, first_costly};
+    Bounds root, root_centroids;
+    builder.measure(0, n, root, root_centroids);
+    builder.build(0, 0, n, 1, root, root_centroids);
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1024), [&](const auto& r) {
+      for (std::uint32_t i = r.begin(); i != r.end(); ++i) bvh.prims[i] = refs[i].id();
+    });
     bvh.nodes.assign(slots.get(), slots.get() + builder.next_node.load());
     stats.leaves = builder.leaves.load();
     stats.max_depth = builder.max_depth.load();
