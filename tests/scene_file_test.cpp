@@ -229,7 +229,10 @@ TEST(SceneFile, UnknownNames) {
   EXPECT_TRUE(error_at("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, material: shiny}\n", "shiny",
                        "unknown material 'shiny'"));
   EXPECT_TRUE(error_at("materials:\n  glass: {ior: unobtainium}\n" + kSphere, "unobtainium", "unknown ior"));
-  EXPECT_TRUE(error_at("render:\n  medium_ior: jelly\n" + kSphere, "jelly", "jelly"));
+  EXPECT_TRUE(error_at("render:\n  medium_ior: jelly\n" + kSphere, "jelly", "unknown medium_ior 'jelly'"));
+  // A value out of range names the key it was given under.
+  EXPECT_TRUE(error_at("render:\n  medium_ior: -1\n" + kSphere, "-1", "medium_ior"));
+  EXPECT_TRUE(error_at("materials:\n  glass: {ior: 0}\n" + kSphere, "0}", "ior"));
   EXPECT_TRUE(error_at("objects:\n  - {type: cube, center: [0, 0, 0]}\n", "cube", "cube"));
   EXPECT_TRUE(error_at(kSphere + "lights:\n  - {type: spot, position: [0, 1, 0]}\n", "spot", "spot"));
   EXPECT_TRUE(error_at("camera:\n  fov_axis: diagonal\n" + kSphere, "diagonal", "fov_axis"));

@@ -203,12 +203,13 @@ class Reader {
     validate::in_range(v, 0, 1, loc(n), what);
     return v;
   }
-  Real ior(const YAML::Node& n) const {
+  // An index of refraction by number or by name; errors name the key (`ior`, `medium_ior`).
+  Real ior(const YAML::Node& n, const std::string& what) const {
     Real v = 0;
     if (n.IsScalar() && named_ior(n.Scalar(), v)) return v;
     if (n.IsScalar() && number::parse_real(n.Scalar()).status == number::Real::Status::NotANumber && n.Tag() == "?")
-      fail(n, "unknown ior '" + n.Scalar() + "' (a number or one of vacuum, air, water, ice, acrylic, glass, diamond)");
-    return positive(n, "ior");
+      fail(n, "unknown " + what + " '" + n.Scalar() + "' (a number or one of vacuum, air, water, ice, acrylic, glass, diamond)");
+    return positive(n, what);
   }
 
   void render(const YAML::Node& n, RenderSettings& s) const {
@@ -225,7 +226,7 @@ class Reader {
     if (const auto v = n["supersample"]) s.supersample = integer(v, "supersample", 1, 64);
     if (const auto v = n["background"]) s.background = color(v, "background");
     if (const auto v = n["ambient_light"]) s.ambient_light = color(v, "ambient_light");
-    if (const auto v = n["medium_ior"]) s.medium_ior = ior(v);
+    if (const auto v = n["medium_ior"]) s.medium_ior = ior(v, "medium_ior");
     if (const auto v = n["accel"]) {
       const std::optional<AccelKind> kind = accel_from_name(scalar(v, "accel"));
       if (!kind) fail(v, "unknown accel '" + v.Scalar() + "' (" + accel_names() + ")");
@@ -327,7 +328,7 @@ class Reader {
     if (const auto v = n["shininess"]) m.shininess = non_negative(v, "shininess");
     if (const auto v = n["reflectivity"]) m.reflectivity = unit(v, "reflectivity");
     if (const auto v = n["transparency"]) m.transparency = unit(v, "transparency");
-    if (const auto v = n["ior"]) m.ior = ior(v);
+    if (const auto v = n["ior"]) m.ior = ior(v, "ior");
     if (const auto v = n["fresnel"]) m.fresnel = boolean(v, "fresnel");
     if (const auto v = n["filter"]) m.filter = boolean(v, "filter");
     if (const auto v = n["roughness"]) m.roughness = unit(v, "roughness");
