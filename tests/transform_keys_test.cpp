@@ -141,6 +141,46 @@ TEST(TransformKeys, TriangleIsBaked) {
   EXPECT_EQ(t.v0, Vec3(0, 0, 0));
 }
 
+// The C++ API's placement of a plane or a triangle is what a scene file's keys do (both are taken
+// into the coordinates), survives a save and a load, and a singular one is an error.
+TEST(TransformKeys, ApiPlacementOfPlanesAndTrianglesIsTheFilesKeys) {
+  const RenderScene file = scene_of(
+      "  - {type: plane, normal: [0, 1, 0], distance: 0.5, scale: [3, -2, 3]}\n"
+      "  - {type: triangle, vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], transform: [{scale: [-1, 2, 1]}, "
+      "{rotate: {axis: [1, 1, 0], angle: 30}}, {translate: [1, 2, 3]}]}\n");
+  // The same map as the file's list: its matrix and translation.
+  const Scene listed = scene_text(
+      "  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], transform: [{scale: [-1, 2, 1]}, "
+      "{rotate: {axis: [1, 1, 0], angle: 30}}, {translate: [1, 2, 3]}]}\n");
+  Scene api = scene_text("  - {type: sphere, center: [0, -50, 0], radius: 1}\n");
+  Plane& plane = api.add(Plane(Vec3(0, 1, 0), 0.5, Vec3(1)));
+  plane.placement.scale = Vec3(3, -2, 3);
+  Triangle& triangle = api.add(Triangle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1)));
+  triangle.placement = listed.objects()[0]->placement;
+  const RenderScene placed = compile(api);
+  ASSERT_EQ(placed.planes.size(), 1u);
+  EXPECT_EQ(placed.planes[0].normal, file.planes[0].normal);
+  EXPECT_EQ(placed.planes[0].distance, file.planes[0].distance);
+  ASSERT_EQ(placed.triangles.size(), 1u);
+  EXPECT_EQ(placed.triangles[0].v0, file.triangles[0].v0);
+  EXPECT_EQ(placed.triangles[0].v1, file.triangles[0].v1);
+  EXPECT_EQ(placed.triangles[0].v2, file.triangles[0].v2);
+  EXPECT_EQ(file.planes[0].normal, Vec3(0, -1, 0));  // (the file's plane: mirrored, scaled by 2)
+  // Saved and loaded back: the loader takes the written keys into the coordinates.
+  const RenderScene back = compile(parse_scene(scene_to_yaml(api), "back.yaml", "."));
+  EXPECT_EQ(back.planes[0].normal, file.planes[0].normal);
+  EXPECT_EQ(back.planes[0].distance, file.planes[0].distance);
+  EXPECT_EQ(back.triangles[0].v0, file.triangles[0].v0);
+  EXPECT_EQ(back.triangles[0].v2, file.triangles[0].v2);
+  plane.placement.scale = Vec3(1, 0, 1);
+  try {
+    compile(api);
+    ADD_FAILURE() << "a singular plane placement compiled";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the transform is singular"), std::string::npos) << e.what();
+  }
+}
+
 TEST(TransformKeys, MeshTakesTheSameForms) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "strahl_transform_keys_mesh";
   std::filesystem::create_directories(dir);

@@ -177,10 +177,17 @@ void Plane::compile_into(RenderScene& out, std::uint32_t material_index, std::ui
   if (motion.moving()) throw Error(loc, "planes cannot move (motion is for spheres, triangles and meshes)");
   validate::non_zero(normal, loc, "plane normal");
   validate::finite(distance, loc, "plane distance");
+  Vec3 n = normal;
+  Real d = distance;
+  if (placed()) {  // (a scene file's plane comes with its placement taken in already)
+    place_plane(placement, n, d, loc);
+    validate::non_zero(n, loc, "plane normal after the plane's transform");
+    validate::finite(d, loc, "plane distance after the plane's transform");
+  }
   kernel::Plane p;
-  const Real len = validate::norm(normal);  // without under- or overflow of N·N
-  p.normal = validate::direction(normal);
-  p.distance = distance / len;
+  const Real len = validate::norm(n);  // without under- or overflow of N·N
+  p.normal = validate::direction(n);
+  p.distance = d / len;
   validate::coordinate(p.distance, loc, "plane distance");
   plane_frame(p.normal, p.tangent, p.bitangent);
   p.material = material_index;
@@ -219,25 +226,27 @@ bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c
 }  // namespace
 
 void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
-  validate::coordinates(v0, loc, "triangle vertex");
-  validate::coordinates(v1, loc, "triangle vertex");
-  validate::coordinates(v2, loc, "triangle vertex");
+  Vec3 a = v0, b = v1, c = v2;
+  if (placed()) place_triangle(placement, a, b, c, loc);  // (a scene file's comes placed already)
+  validate::coordinates(a, loc, "triangle vertex");
+  validate::coordinates(b, loc, "triangle vertex");
+  validate::coordinates(c, loc, "triangle vertex");
   validate_motion(motion, loc);
-  const Real longest = std::fmax(validate::norm(v1 - v0), std::fmax(validate::norm(v2 - v1), validate::norm(v0 - v2)));
+  const Real longest = std::fmax(validate::norm(b - a), std::fmax(validate::norm(c - b), validate::norm(a - c)));
   if (longest > 0) {
     validate::length(longest, loc, "triangle's longest edge");
-    validate::resolvable(longest, std::fmax(max_abs_component(v0), std::fmax(max_abs_component(v1), max_abs_component(v2))),
+    validate::resolvable(longest, std::fmax(max_abs_component(a), std::fmax(max_abs_component(b), max_abs_component(c))),
                          loc, "triangle's longest edge");
   }
   Vec3 keyed[6];
   for (int key = 0; key < 2; ++key) {
-    keyed[3 * key] = moved(motion, out, v0, key);
-    keyed[3 * key + 1] = moved(motion, out, v1, key);
-    keyed[3 * key + 2] = moved(motion, out, v2, key);
+    keyed[3 * key] = moved(motion, out, a, key);
+    keyed[3 * key + 1] = moved(motion, out, b, key);
+    keyed[3 * key + 2] = moved(motion, out, c, key);
   }
   if (motion.moving())
     for (const Vec3& v : keyed) validate::coordinates(v, loc, "moving triangle vertex");
-  if (!push_triangle(out, v0, v1, v2, material_index, -1, object_id, motion.moving() ? keyed : nullptr))
+  if (!push_triangle(out, a, b, c, material_index, -1, object_id, motion.moving() ? keyed : nullptr))
     throw Error(loc, "degenerate triangle (its vertices are collinear)");
 }
 

@@ -1,8 +1,9 @@
-// place_last_solid (scene/place_solid.h).
+// place_last_solid, place_plane and place_triangle (scene/place_solid.h).
 
 #include "strahl/scene/place_solid.h"
 
 #include <cmath>
+#include <utility>
 
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/validate.h"
@@ -52,6 +53,33 @@ void place_last_solid(RenderScene& out, const Affine& to_world, const FileLoc& l
     handle = {kernel::SolidKind::Placed, static_cast<std::uint32_t>(out.placed.size() - 1), handle.material};
   }
   out.solids.back() = handle;
+}
+
+namespace {
+// The map's linear part, refused where it is singular.
+Mat3 regular_linear(const Transform& x, const FileLoc& loc) {
+  const Mat3 m = x.linear();
+  const Real det = m.determinant();
+  if (!(std::fabs(det) > 0) || !std::isfinite(det))
+    throw Error(loc, "the transform is singular (a scale of 0 flattens the object)");
+  return m;
+}
+}  // namespace
+
+void place_plane(const Transform& x, Vec3& normal, Real& distance, const FileLoc& loc) {
+  const Mat3 m = regular_linear(x, loc);
+  const Vec3 n = validate::direction(normal);
+  const Vec3 point = n * (distance / validate::norm(normal));
+  normal = m.inverse().transposed() * n;
+  distance = dot(normal, m * point + x.translate);
+}
+
+void place_triangle(const Transform& x, Vec3& a, Vec3& b, Vec3& c, const FileLoc& loc) {
+  const Mat3 m = regular_linear(x, loc);
+  a = m * a + x.translate;
+  b = m * b + x.translate;
+  c = m * c + x.translate;
+  if (m.determinant() < 0) std::swap(b, c);
 }
 
 }  // namespace strahl

@@ -67,9 +67,9 @@ class SceneObject {
   Material material;
   FileLoc loc;  // where a scene file defined it, if it did
   Motion motion;
-  // Where the object's own coordinates are placed (solids, spheres and CSG nodes: scale, then
-  // rotate about x, y, z, then translate, or a general affine map). Meshes have their own
-  // `transform`; the scene loader bakes a plane's or triangle's into its coordinates.
+  // Where the object's own coordinates are placed (scale, then rotate about x, y, z, then
+  // translate, or a general affine map). Meshes have their own `transform`; a plane or a
+  // triangle takes its placement into its coordinates when compiled (scene/place_solid.h).
   Transform placement;
   bool placed() const { return !placement.identity(); }
 };

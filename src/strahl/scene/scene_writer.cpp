@@ -96,7 +96,7 @@ std::string box_map(const Vec3& a, const Vec3& b, const std::string& what) {
   return "{type: box, corners: [" + Writer::vec(a, what) + ", " + Writer::vec(b, what) + "]}";
 }
 
-// scale, rotate and translate of a placed solid, sphere or CSG node.
+// scale, rotate and translate (or the matrix) of a placed object.
 void placement(Writer& w, const SceneObject& o) {
   if (!o.placed()) return;
   if (o.placement.general()) return matrix(w, o.placement, "matrix");
@@ -210,10 +210,12 @@ void object(Writer& w, const SceneObject& o, const std::string& mesh_stem, int& 
     w.line(2, "- type: plane");
     w.line(4, "normal: " + W::vec(p->normal, "plane normal"));
     w.line(4, "distance: " + W::num(p->distance, "plane distance"));
+    placement(w, *p);
   } else if (const auto* t = dynamic_cast<const Triangle*>(&o)) {
     w.line(2, "- type: triangle");
     w.line(4, "vertices: [" + W::vec(t->v0, "triangle vertex") + ", " + W::vec(t->v1, "triangle vertex") + ", " +
                   W::vec(t->v2, "triangle vertex") + "]");
+    placement(w, *t);
   } else if (const auto* m = dynamic_cast<const Mesh*>(&o)) {
     w.line(2, "- type: mesh");
     mesh(w, *m, mesh_file(mesh_stem, meshes++));

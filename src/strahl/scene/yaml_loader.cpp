@@ -17,6 +17,7 @@
 
 #include "strahl/scene/instances.h"
 #include "strahl/scene/mesh_file.h"
+#include "strahl/scene/place_solid.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
@@ -505,21 +506,14 @@ class Reader {
       Vec3 normal = vec3(nn, "plane normal");
       validate::non_zero(normal, loc(nn), "plane normal");
       Real distance = n["distance"] ? number(n["distance"], "plane distance") : Real(0);
-      if (const Transform t = placement(n); !t.identity()) transform_plane(t, normal, distance);
+      if (const Transform t = placement(n); !t.identity()) place_plane(t, normal, distance, loc(n));
       added = &scene.add(Plane(normal, distance, object_material(n)));
     } else if (type == "triangle") {
       keys(n, {"type", "vertices", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "triangle");
       const YAML::Node v = required(n, "vertices", "triangle");
       if (!v.IsSequence() || v.size() != 3) fail(v, "triangle vertices must be a list of three points");
       Vec3 a = vec3(v[0], "vertex"), b = vec3(v[1], "vertex"), c = vec3(v[2], "vertex");
-      if (const Transform t = placement(n); !t.identity()) {
-        // Baked into the vertices; a mirroring map swaps two so the front face stays in front.
-        const Mat3 m = t.linear();
-        a = m * a + t.translate;
-        b = m * b + t.translate;
-        c = m * c + t.translate;
-        if (m.determinant() < 0) std::swap(b, c);
-      }
+      if (const Transform t = placement(n); !t.identity()) place_triangle(t, a, b, c, loc(n));
       if (!(length_squared(cross(b - a, c - a)) > 0)) fail(v, "degenerate triangle (its vertices are collinear)");
       added = &scene.add(Triangle(a, b, c, object_material(n)));
     } else if (type == "mesh") {
@@ -597,15 +591,6 @@ class Reader {
       }
     }
     return t;
-  }
-  // The plane N·p = d carried by p' = M·p + t: its normal by M's inverse transpose, a point of it
-  // (N·d/|N|²) by the map; the front side stays in front.
-  static void transform_plane(const Transform& x, Vec3& normal, Real& distance) {
-    const Mat3 m = x.linear();
-    const Vec3 n = validate::direction(normal);
-    const Vec3 point = n * (distance / validate::norm(normal));
-    normal = m.inverse().transposed() * n;
-    distance = dot(normal, m * point + x.translate);
   }
   Vec3 scale(const YAML::Node& v, const std::string& what) const {
     const Vec3 s = v.IsScalar() ? Vec3(number(v, "scale")) : vec3(v, "scale");
