@@ -23,6 +23,7 @@
 #include "strahl/scene/validate.h"
 #include "strahl/scene/yaml_csg.h"
 #include "strahl/scene/yaml_limits.h"
+#include "strahl/scene/yaml_merge.h"
 #include "strahl/shading/area_light.h"
 #include "strahl/util/cancel.h"
 #include "strahl/util/large_pages.h"
@@ -86,6 +87,7 @@ class Reader {
         } catch (const YAML::Exception& e) {
           throw Error(FileLoc{name_, o.line + e.mark.line + 1, e.mark.column + 1}, "syntax error: " + e.msg);
         }
+        if (may_hold_merge_keys(o.text)) expand_merge_keys(element, name_, o.line);
         line_offset_ = o.line;
         object(element, scene);
         line_offset_ = 0;
@@ -896,6 +898,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const fs::pa
   } catch (const YAML::Exception& e) {
     throw Error(FileLoc{name, e.mark.line + 1, e.mark.column + 1}, "syntax error: " + e.msg);
   }
+  if (may_hold_merge_keys(split.objects.empty() ? text : split.rest)) expand_merge_keys(root, name);
   split.rest = std::string();
   Scene scene = Reader(name, base_dir).read(root, split.objects);
   // A scene is one document; what follows a second `---` would be silently dropped.
