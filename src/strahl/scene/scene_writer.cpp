@@ -9,6 +9,7 @@
 
 #include "strahl/image/output_file.h"
 #include "strahl/scene/csg.h"
+#include "strahl/scene/instances.h"
 #include "strahl/scene/solids.h"
 #include "strahl/shading/light.h"
 
@@ -38,6 +39,31 @@ class Writer {
     return "[" + num(v.x, what) + ", " + num(v.y, what) + ", " + num(v.z, what) + "]";
   }
   static std::string boolean(bool b) { return b ? "true" : "false"; }
+  // A YAML double-quoted scalar that reads back as `text`, whatever its characters.
+  static std::string quoted(const std::string& text) {
+    std::string q = "\"";
+    for (const char ch : text) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (ch == '"' || ch == '\\') {
+        q += '\\';
+        q += ch;
+      } else if (c < 0x20 || c == 0x7f) {
+        static const char* const kHex = "0123456789abcdef";
+        q += "\\x";
+        q += kHex[c >> 4];
+        q += kHex[c & 15];
+      } else {
+        q += ch;
+      }
+    }
+    return q + "\"";
+  }
+  // Another writer's lines, each indented by `indent` more.
+  void lines(int indent, const Writer& sub) {
+    std::size_t start = 0;
+    for (std::size_t end; (end = sub.text.find('\n', start)) != std::string::npos; start = end + 1)
+      line(indent, sub.text.substr(start, end - start));
+  }
 };
 
 std::string material_map(const Material& m) {
@@ -194,14 +220,21 @@ void csg(Writer& w, const Csg& c) {
     if (const auto* n = dynamic_cast<const Csg*>(child.get())) csg(sub, *n);
     else if (const auto* s = dynamic_cast<const Sphere*>(child.get())) sphere(sub, *s);
     else if (!solid(sub, *child)) throw Error(child->loc, "cannot write this kind of object as an object of a CSG");
-    std::size_t start = 0;
-    for (std::size_t end; (end = sub.text.find('\n', start)) != std::string::npos; start = end + 1)
-      w.line(4, sub.text.substr(start, end - start));
+    w.lines(4, sub);
   }
 }
 
-void object(Writer& w, const SceneObject& o, const std::string& mesh_stem, int& meshes) {
+// One object; `groups`: the scene's, which instances name.
+void object(Writer& w, const SceneObject& o, const std::vector<ObjectGroup>& groups, const std::string& mesh_stem,
+            int& meshes) {
   using W = Writer;
+  if (const auto* in = dynamic_cast<const Instance*>(&o)) {  // (no material, no motion)
+    if (in->group >= groups.size()) throw Error(in->loc, "cannot write an instance of a group the scene does not have");
+    w.line(2, "- type: instance");
+    w.line(4, "of: " + W::quoted(groups[in->group].name));
+    placement(w, *in);
+    return;
+  }
   if (const auto* s = dynamic_cast<const Sphere*>(&o)) {
     sphere(w, *s);
   } else if (const auto* c = dynamic_cast<const Csg*>(&o)) {
@@ -295,8 +328,6 @@ void render_settings(Writer& w, const RenderSettings& s) {
 }  // namespace
 
 std::string scene_to_yaml(const Scene& scene, const std::string& mesh_stem) {
-  if (!scene.groups.empty())
-    throw Error(scene.groups.front().loc, "cannot write a scene with groups and instances to a scene file (not supported yet)");
   Writer w;
   w.line(0, "# Written by strahl " + std::string("(scene_to_yaml); docs/scene-format.md describes every key."));
   camera(w, scene.camera);
@@ -305,9 +336,20 @@ std::string scene_to_yaml(const Scene& scene, const std::string& mesh_stem) {
     w.line(0, "lights:");
     for (const Light& l : scene.lights()) light(w, l);
   }
+  int meshes = 0;  // numbered in the order written: the groups' first (save_scene writes their files so)
+  if (!scene.groups.empty()) {
+    w.line(0, "groups:");
+    for (const ObjectGroup& g : scene.groups) {
+      w.line(2, Writer::quoted(g.name) + ":");
+      for (const auto& o : g.objects) {
+        Writer sub;
+        object(sub, *o, scene.groups, mesh_stem, meshes);
+        w.lines(2, sub);
+      }
+    }
+  }
   w.line(0, "objects:");
-  int meshes = 0;
-  for (const auto& o : scene.objects()) object(w, *o, mesh_stem, meshes);
+  for (const auto& o : scene.objects()) object(w, *o, scene.groups, mesh_stem, meshes);
   return w.text;
 }
 
@@ -346,8 +388,12 @@ void save_scene(const Scene& scene, const std::filesystem::path& path) {
     out.commit();
   };
   std::vector<std::string> objs;  // every file's text first: a number that cannot be written fails before any file
-  for (const auto& o : scene.objects())
-    if (const auto* m = dynamic_cast<const Mesh*>(o.get())) objs.push_back(mesh_to_obj(m->data));
+  const auto add_meshes = [&](const std::vector<std::unique_ptr<SceneObject>>& objects) {
+    for (const auto& o : objects)
+      if (const auto* m = dynamic_cast<const Mesh*>(o.get())) objs.push_back(mesh_to_obj(m->data));
+  };
+  for (const ObjectGroup& g : scene.groups) add_meshes(g.objects);  // in the order scene_to_yaml numbers them
+  add_meshes(scene.objects());
   for (std::size_t i = 0; i < objs.size(); ++i) write(path.parent_path() / mesh_file(stem, int(i)), objs[i]);
   write(path, text);
 }

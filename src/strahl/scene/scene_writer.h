@@ -11,7 +11,8 @@
 
 namespace strahl {
 
-// The scene as YAML text; mesh number i (counting the scene's meshes from 0) refers to the file
+// The scene as YAML text, groups and instances included; mesh number i (counting the scene's
+// meshes from 0, the groups' first, then the objects') refers to the file
 // "<mesh_stem>.mesh<i>.obj" (relative to the scene file), which save_scene writes. Throws
 // strahl::Error for what a scene file cannot hold: a number that is not finite (naming what it
 // is), an object of a kind scene files do not have.
