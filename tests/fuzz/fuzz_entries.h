@@ -14,11 +14,13 @@
 #include <string_view>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/render/scene_hash.h"
 #include "strahl/scene/expression_ast.h"
 #include "strahl/scene/expression_compiler.h"
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/ply_loader.h"
 #include "strahl/scene/scene_file.h"
+#include "strahl/scene/scene_writer.h"
 #include "strahl/util/error.h"
 
 namespace strahl::fuzz {
@@ -36,7 +38,9 @@ inline Outcome compile_scene(const Scene& scene) {
   return Outcome::Accepted;
 }
 
-// A scene file's text; mesh paths resolve in a directory that does not exist.
+// A scene file's text; mesh paths resolve in a directory that does not exist. An accepted scene
+// is also written (scene_to_yaml) and read back: the compiled scenes must be the same (scene_hash),
+// as save_scene promises; a scene the writer refuses (a kind of object files do not have) is fine.
 inline Outcome scene_input(const std::uint8_t* data, std::size_t size) {
   Scene scene;
   try {
@@ -45,7 +49,23 @@ inline Outcome scene_input(const std::uint8_t* data, std::size_t size) {
   } catch (const Error&) {
     return Outcome::Refused;
   }
-  return compile_scene(scene);
+  std::uint64_t hash = 0;
+  try {
+    hash = scene_hash(compile(scene));
+  } catch (const Error&) {
+    return Outcome::Refused;
+  }
+  std::string text;
+  try {
+    text = scene_to_yaml(scene);
+  } catch (const Error&) {
+    return Outcome::Accepted;
+  }
+  // (Throws, which the fuzzer reports, where the text does not read back or compiles otherwise.)
+  const Scene back = parse_scene(text, "fuzz-back.yaml", "/nonexistent-strahl-fuzz-dir");
+  if (scene_hash(compile(back)) != hash)
+    throw std::logic_error("the written scene reads back to another compiled scene:\n" + text);
+  return Outcome::Accepted;
 }
 
 inline Outcome mesh_outcome(MeshData (*parse)(std::string_view, const std::string&), const char* name,
