@@ -88,21 +88,14 @@ struct Builder {
     return Real((n - costly + options.leaf_block - 1) / options.leaf_block + costly);
   }
 
-  // The boxes of the primitives refs[begin, end) and of their centroids: a pass over them, where
-  // the split that made the node did not already give them (the root, a median split).
-  void measure(std::uint32_t begin, std::uint32_t end, Bounds& bounds, Bounds& centroid_bounds) const {
+  void build(std::uint32_t at, std::uint32_t begin, std::uint32_t end, std::size_t depth) {
     BinBox box;
-    centroid_bounds = Bounds{};
+    Bounds centroid_bounds;
     for (std::uint32_t i = begin; i < end; ++i) {
       box.merge(refs[i]);
       centroid_bounds.extend(refs[i].centroid());
     }
-    bounds = box.bounds();
-  }
-
-  // `bounds` and `centroid_bounds`: those of the node's primitives (measure()).
-  void build(std::uint32_t at, std::uint32_t begin, std::uint32_t end, std::size_t depth, const Bounds& bounds,
-             const Bounds& centroid_bounds) {
+    const Bounds bounds = box.bounds();
     BvhNode& node = *::new (static_cast<void*>(nodes + at)) BvhNode{};
     node.bounds = bounds;
     const std::uint32_t count = end - begin;
@@ -194,60 +187,29 @@ struct Builder {
 
     std::uint32_t mid = begin + count / 2;
     std::uint8_t axis = 0;
-    // The children's boxes and their centroids' boxes.
-    Bounds left, left_centroids, right, right_centroids;
-    bool measured = false;
-    if (depth < kMaxSahDepth && best_axis >= 0) {
-      axis = std::uint8_t(best_axis);
-      // The bins below the plane to the left, the others to the right, in the order that
-      // std::partition gives (libstdc++'s for bidirectional iterators, step for step: the same
-      // tree as before), each primitive tested once, its centroid added to its side's box. The
-      // sides' own boxes are those of their bins.
-      PrimRef* first = refs + begin;
-      PrimRef* last = refs + end;
-      const auto to_left = [&](const PrimRef& p) {
-        const Vec3 c = p.centroid();
-        const bool is_left = bin_of(c, best_axis) < best_split;
-        (is_left ? left_centroids : right_centroids).extend(c);
-        return is_left;
-      };
-      for (;;) {
-        while (first != last && to_left(*first)) ++first;
-        if (first == last) break;
-        while (--last != first && !to_left(*last)) {
-        }
-        if (first == last) break;
-        std::swap(*first, *last);
-        ++first;
-      }
-      mid = std::uint32_t(first - refs);
-      BinBox left_box, right_box;
-      for (int b = 0; b < kBins; ++b) (b < best_split ? left_box : right_box).merge(bin_bounds[best_axis][b]);
-      left = left_box.bounds();
-      right = right_box.bounds();
-      measured = mid != begin && mid != end;
-      if (!measured) mid = begin + count / 2;
-    } else {
+    if (depth >= kMaxSahDepth || best_axis < 0) {
       // Median split on the widest centroid axis (all centroids may coincide: then any halves).
       const Vec3 extent = centroid_bounds.hi - centroid_bounds.lo;
       axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
       std::nth_element(refs + begin, refs + mid, refs + end,
                        [&](const PrimRef& a, const PrimRef& b) { return a.centroid()[axis] < b.centroid()[axis]; });
-    }
-    if (!measured) {
-      measure(begin, mid, left, left_centroids);
-      measure(mid, end, right, right_centroids);
+    } else {
+      axis = std::uint8_t(best_axis);
+      PrimRef* split = std::partition(refs + begin, refs + end,
+                                      [&](const PrimRef& p) { return bin_of(p.centroid(), best_axis) < best_split; });
+      mid = std::uint32_t(split - refs);
+      if (mid == begin || mid == end) mid = begin + count / 2;
     }
     const std::uint32_t children = next_node.fetch_add(2);
     node.offset = children;
     node.count = 0;
     node.axis = axis;
     if (count > kParallelThreshold) {
-      tbb::parallel_invoke([&] { build(children, begin, mid, depth + 1, left, left_centroids); },
-                           [&] { build(children + 1, mid, end, depth + 1, right, right_centroids); });
+      tbb::parallel_invoke([&] { build(children, begin, mid, depth + 1); },
+                           [&] { build(children + 1, mid, end, depth + 1); });
     } else {
-      build(children, begin, mid, depth + 1, left, left_centroids);
-      build(children + 1, mid, end, depth + 1, right, right_centroids);
+      build(children, begin, mid, depth + 1);
+      build(children + 1, mid, end, depth + 1);
     }
   }
 };
@@ -275,9 +237,7 @@ Bvh build_bvh(const Bounds* bounds, std::uint32_t n, AccelBuildStats* stats_out,
     const std::unique_ptr<BvhNode, SlotsDeleter> slots(LargeArrayAllocator<BvhNode>().allocate(slot_count),
                                                       SlotsDeleter{slot_count});
     Builder builder{refs.data(), slots.get(), options, first_costly};
-    Bounds root, root_centroids;
-    builder.measure(0, n, root, root_centroids);
-    builder.build(0, 0, n, 1, root, root_centroids);
+    builder.build(0, 0, n, 1);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, 1024), [&](const auto& r) {
       for (std::uint32_t i = r.begin(); i != r.end(); ++i) bvh.prims[i] = refs[i].id();
     });
