@@ -16,11 +16,12 @@ std::string summary(const std::string& output, int width, int height, int thread
   const AccelBuildStats& a = scene.accel.stats;
   // Moving shapes count with the others (and are named, as the accelerator line leaves them out),
   // with the time segments their BVH was cut into (accel/motion_bvh.h) where more than one.
-  const std::size_t moving = scene.moving_spheres.size() + scene.moving_triangles.size();
+  const std::size_t moving = scene.moving_spheres.size() + scene.moving_triangles.size() + scene.moving_solids.size();
   const std::uint32_t segments = scene.moving_bvh.segments;
   out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} solids, {} lights{}\n",
                      scene.spheres.size() + scene.moving_spheres.size(), scene.planes.size(),
-                     scene.triangles.size() + scene.moving_triangles.size(), scene.solids.size(), scene.lights.size(),
+                     scene.triangles.size() + scene.moving_triangles.size(), scene.solids.size() + scene.moving_solids.size(),
+                     scene.lights.size(),
                      moving == 0     ? std::string()
                      : segments > 1 ? fmt::format(" ({} of the shapes moving, their BVH cut into {} time segments)",
                                                   moving, segments)

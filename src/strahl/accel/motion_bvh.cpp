@@ -82,12 +82,16 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
 }
 
 MotionBvh build_motion_bvh(const std::vector<kernel::MovingSphere>& spheres,
-                           const std::vector<kernel::MovingTriangle>& triangles, std::uint32_t segments) {
+                           const std::vector<kernel::MovingTriangle>& triangles,
+                           const std::vector<kernel::MovingSolid>& solids, std::uint32_t segments) {
   const auto n = static_cast<std::uint32_t>(spheres.size());
+  const auto m = n + static_cast<std::uint32_t>(triangles.size());
   return build_motion_bvh(
-      n + static_cast<std::uint32_t>(triangles.size()),
+      m + static_cast<std::uint32_t>(solids.size()),
       [&](std::uint32_t i, Real u0, Real u1) {
-        return i < n ? kernel::swept_bounds(spheres[i], u0, u1) : kernel::swept_bounds(triangles[i - n], u0, u1);
+        return i < n   ? kernel::swept_bounds(spheres[i], u0, u1)
+               : i < m ? kernel::swept_bounds(triangles[i - n], u0, u1)
+                       : kernel::swept_bounds(solids[i - m], u0, u1);
       },
       segments);
 }

@@ -56,7 +56,7 @@ STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint3
     }
   }
   if (is_sphere_leaf(s.accel) && s.solid_count == s.bounded_solid_count &&
-      s.moving_sphere_count + s.moving_triangle_count == 0 && s.instance_count == 0) {
+      s.moving_count() == 0 && s.instance_count == 0) {
     // Planes and one leaf of spheres (the lecture's scenes): the spheres side by side too, the
     // hits left in lane form (a plane behind the sphere hit is no hit of the plane).
     HitLanes<N>& h = out.lanes;
@@ -114,7 +114,7 @@ STRAHL_HOST_DEVICE inline void closest_hit_packet(const SceneView& s, std::uint3
         hit.b2 = nearest[i].hit.b2;
       }
     }
-    if (s.moving_sphere_count + s.moving_triangle_count > 0) closest_moving_hit(s, rays[i], 0, hit);
+    if (s.moving_count() > 0) closest_moving_hit(s, rays[i], 0, hit);
     if (s.instance_count > 0) closest_instance_hit(s, rays[i], 0, hit);
     if (!hit.found()) hit.t = kInfinity;
   }
@@ -126,7 +126,7 @@ template <int N>
 STRAHL_HOST_DEVICE inline void transmittance_packet(const SceneView& s, std::uint32_t active, const PacketRays<N>& r,
                                                     const Real* distance, Real* __restrict tx, Real* __restrict ty,
                                                     Real* __restrict tz) {
-  const bool moving = s.moving_sphere_count + s.moving_triangle_count > 0;
+  const bool moving = s.moving_count() > 0;
   Real t_min[N], t[N];
   for (int i = 0; i < N; ++i) t_min[i] = 0;
   if (!s.opaque && !moving && s.instance_count == 0 && is_sphere_leaf(s.accel)) {

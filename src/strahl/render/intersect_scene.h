@@ -41,7 +41,7 @@ STRAHL_HOST_DEVICE inline Hit closest_hit(const SceneView& s, const Ray& ray, Re
     }
   }
   // Each guarded here as well as inside: a scene without moving shapes or instances pays no call.
-  if (s.moving_sphere_count + s.moving_triangle_count > 0) closest_moving_hit(s, ray, t_min, hit);
+  if (s.moving_count() > 0) closest_moving_hit(s, ray, t_min, hit);
   if (s.instance_count > 0) closest_instance_hit(s, ray, t_min, hit);
   if (!hit.found()) hit.t = kInfinity;
   return hit;
@@ -79,7 +79,7 @@ STRAHL_HOST_DEVICE STRAHL_DEVICE_NOINLINE Vec3 transmittance(const SceneView& s,
                ? Vec3(0)
                : tr;
   }
-  if (is_sphere_leaf(s.accel) && s.moving_sphere_count + s.moving_triangle_count == 0 && s.instance_count == 0) {
+  if (is_sphere_leaf(s.accel) && s.moving_count() == 0 && s.instance_count == 0) {
     // One leaf of spheres: for_each_crossing's naive loop, without its visitor.
     if (s.accel.sphere_quads != nullptr) {
       const std::uint32_t quads = kernel::sphere_quad_count(s.accel.prims.sphere_count);

@@ -1,6 +1,6 @@
 #pragma once
 // Scene queries against the moving shapes (motion blur): each is intersected where it is at the
-// ray's time. They sit in BVHs of their own over their swept boxes, one per time segment of the
+// ray's time (a solid: the ray brought to where the solid is unmoved, geometry/moving_solid.h). They sit in BVHs of their own over their swept boxes, one per time segment of the
 // shutter (accel/motion_bvh.h), so static shapes keep their tight tree and a static scene pays
 // nothing (an empty tree is skipped at once).
 
@@ -17,7 +17,7 @@ STRAHL_HOST_DEVICE inline Real shutter_fraction(const SceneView& s, Real time) {
 
 // Lowers hit.t (and sets the hit) when a moving shape lies nearer than hit.t.
 STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray& ray, Real t_min, Hit& hit) {
-  if (s.moving_sphere_count + s.moving_triangle_count == 0) return;
+  if (s.moving_count() == 0) return;
   const Real u = shutter_fraction(s, ray.time);
   Real t_max = hit.t;
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
@@ -28,7 +28,7 @@ STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray&
         hit.kind = ShapeKind::MovingSphere;
         hit.index = prim;
       }
-    } else {
+    } else if (prim < s.moving_sphere_count + s.moving_triangle_count) {
       const std::uint32_t i = prim - s.moving_sphere_count;
       const kernel::MovingTriangleHit h = kernel::intersect(kernel::at_time(s.moving_triangles[i], u), ray, t_min, t_far);
       if (h.t < t_far) {
@@ -37,6 +37,17 @@ STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray&
         hit.index = i;
         hit.b1 = h.b1;
         hit.b2 = h.b2;
+      }
+    } else {
+      const std::uint32_t i = prim - s.moving_sphere_count - s.moving_triangle_count;
+      const kernel::MovingSolid& ms = s.moving_solids[i];
+      const Ray r = kernel::object_ray(kernel::at_time(ms, u), ray);
+      const kernel::SolidCrossing c = kernel::intersect(s.accel.prims.shapes, ms.solid, r, t_min, t_far);
+      if (c.t < t_far) {
+        t_far = hit.t = c.t;
+        hit.kind = ShapeKind::MovingSolid;
+        hit.index = i;
+        hit.b1 = Real(c.part);
       }
     }
     return false;
@@ -49,7 +60,7 @@ STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray&
 // their boxes along the ray; else in the tree's order (any-hit queries: no sorting).
 template <bool kNearestFirst = true, class Cross>
 STRAHL_HOST_DEVICE inline void for_each_moving_crossing(const SceneView& s, const Ray& ray, Real distance, Cross& cross) {
-  if (s.moving_sphere_count + s.moving_triangle_count == 0) return;
+  if (s.moving_count() == 0) return;
   const Real u = shutter_fraction(s, ray.time);
   Real t_max = distance;
   auto visit = [&](std::uint32_t prim, Real, Real, Real& t_far) {
@@ -58,8 +69,14 @@ STRAHL_HOST_DEVICE inline void for_each_moving_crossing(const SceneView& s, cons
       const int n = kernel::crossings(kernel::at_time(ms, u), ray, 0, t_far);
       return n > 0 && cross(ms.material, n);
     }
-    const kernel::MovingTriangle& mt = s.moving_triangles[prim - s.moving_sphere_count];
-    return kernel::intersect(kernel::at_time(mt, u), ray, 0, t_far).t < kInfinity && cross(mt.material, 1);
+    if (prim < s.moving_sphere_count + s.moving_triangle_count) {
+      const kernel::MovingTriangle& mt = s.moving_triangles[prim - s.moving_sphere_count];
+      return kernel::intersect(kernel::at_time(mt, u), ray, 0, t_far).t < kInfinity && cross(mt.material, 1);
+    }
+    const kernel::MovingSolid& ms = s.moving_solids[prim - s.moving_sphere_count - s.moving_triangle_count];
+    const Ray r = kernel::object_ray(kernel::at_time(ms, u), ray);
+    const int n = kernel::crossings(s.accel.prims.shapes, ms.solid, r, 0, t_far);
+    return n > 0 && cross(ms.solid.material, n);
   };
   traverse<kNearestFirst>(s.moving_bvh.segment_at(u), ray, 0, t_max, visit);
 }

@@ -13,7 +13,7 @@ namespace strahl {
 STRAHL_HOST_DEVICE inline PixelSequence shared_sequence(const SceneView& s, const PixelSampler& sampler) {
   // Time matters only to moving shapes (ray.time is read nowhere else): a static scene's samples
   // leave it at 0 without computing it, whatever the shutter interval.
-  const bool uses_time = s.camera.shutter_close != s.camera.shutter_open && s.moving_sphere_count + s.moving_triangle_count > 0;
+  const bool uses_time = s.camera.shutter_close != s.camera.shutter_open && s.moving_count() > 0;
   return sampler.sequence(s.camera.lens_radius > 0, uses_time);
 }
 // … and what is pixel (x, row)'s own.

@@ -71,6 +71,7 @@ struct RenderScene {
   Accel accel;  // built by compile() over spheres, triangles and the bounded solids
   std::vector<kernel::MovingSphere> moving_spheres;
   std::vector<kernel::MovingTriangle> moving_triangles;
+  std::vector<kernel::MovingSolid> moving_solids;  // their shapes in the arrays above (not in `solids`)
   MotionBvh moving_bvh;  // over the moving shapes' swept boxes, per time segment (empty when nothing moves)
   // Instances (scene/instances.h): each group compiled once (its own arrays and structure; only
   // spheres, triangles, vertex normals, solids and accel are used), the instances' records, their
@@ -118,6 +119,8 @@ struct RenderScene {
     v.moving_sphere_count = static_cast<std::uint32_t>(moving_spheres.size());
     v.moving_triangles = moving_triangles.data();
     v.moving_triangle_count = static_cast<std::uint32_t>(moving_triangles.size());
+    v.moving_solids = moving_solids.data();
+    v.moving_solid_count = static_cast<std::uint32_t>(moving_solids.size());
     v.moving_bvh = moving_bvh.view();
     v.instances = instances.data();
     v.instance_count = static_cast<std::uint32_t>(instances.size());

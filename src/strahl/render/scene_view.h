@@ -9,6 +9,7 @@
 #include "strahl/accel/wide_bvh.h"
 #include "strahl/camera/camera.h"
 #include "strahl/geometry/moving.h"
+#include "strahl/geometry/moving_solid.h"
 #include "strahl/geometry/plane.h"
 #include "strahl/geometry/sphere.h"
 #include "strahl/geometry/triangle.h"
@@ -48,12 +49,15 @@ struct SceneView {
   std::uint32_t solid_count = 0;
   std::uint32_t bounded_solid_count = 0;
   // Moving shapes (motion blur), in BVHs of their own over their swept boxes, one per time
-  // segment (accel/motion_bvh.h): primitive i is moving sphere i, or moving triangle
-  // i − moving_sphere_count. Empty for static scenes.
+  // segment (accel/motion_bvh.h): primitive i is moving sphere i, moving triangle
+  // i − moving_sphere_count, or moving solid i − moving_sphere_count − moving_triangle_count
+  // (its shape in the solids' arrays, accel.prims.shapes). Empty for static scenes.
   const kernel::MovingSphere* moving_spheres = nullptr;
   std::uint32_t moving_sphere_count = 0;
   const kernel::MovingTriangle* moving_triangles = nullptr;
   std::uint32_t moving_triangle_count = 0;
+  const kernel::MovingSolid* moving_solids = nullptr;
+  std::uint32_t moving_solid_count = 0;
   MotionBvhView moving_bvh;
   // Instances (render/instance_queries.h): small records in a BVH of their own over their world
   // boxes, each placing one of the groups. Empty without instances.
@@ -69,6 +73,11 @@ struct SceneView {
   std::uint32_t area_light_count = 0;  // of those, area lights (0: no emitter tests per ray)
   Camera camera;
   TraceSettings settings;
+
+  // How many shapes move (0: the ray's time matters to nothing).
+  STRAHL_HOST_DEVICE std::uint32_t moving_count() const {
+    return moving_sphere_count + moving_triangle_count + moving_solid_count;
+  }
 };
 
 }  // namespace strahl

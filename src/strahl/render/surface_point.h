@@ -123,6 +123,17 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void surface_at(const SceneView& s, const
       sp.offset = ray_offset(ray, hit.t, sp.p, 0);
       break;
     }
+    case ShapeKind::MovingSolid: {
+      // The normal where the solid is unmoved, brought back by A(u)⁻ᵀ (geometry/moving_solid.h).
+      const kernel::MovingSolid& ms = s.moving_solids[hit.index];
+      const kernel::Placement x = kernel::at_time(ms, shutter_fraction(s, ray.time));
+      const Vec3 n = kernel::normal_at(s.accel.prims.shapes, ms.solid, int(hit.b1), kernel::object_point(x, sp.p));
+      sp.geometric_normal = sp.normal = kernel::world_normal(x, n);
+      sp.texcoord = sp.p;
+      sp.material = ms.solid.material;
+      sp.offset = ray_offset(ray, hit.t, sp.p, 0);
+      break;
+    }
     case ShapeKind::Instance: {
       const InstanceSurface is = instance_surface(s, sp.p, hit);
       sp.geometric_normal = is.geometric_normal;

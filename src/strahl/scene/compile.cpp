@@ -6,6 +6,7 @@
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/camera_build.h"
 #include "strahl/scene/instances.h"
+#include "strahl/scene/move_solid.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/place_solid.h"
 #include "strahl/scene/scene_warnings.h"
@@ -80,17 +81,6 @@ namespace {
 
 Vec3 apply(const Transform& t, const Vec3& p) { return t.linear() * p + t.translate; }
 
-void validate_motion(const Motion& m, const FileLoc& loc) {
-  if (m.kind == Motion::Kind::Velocity) validate::finite(m.velocity, loc, "motion velocity");
-  if (m.kind != Motion::Kind::Keyframes) return;
-  for (const Transform* t : {&m.from, &m.to}) {
-    validate::finite(t->scale, loc, "motion scale");
-    validate::finite(t->rotate_degrees, loc, "motion rotate");
-    validate::finite(t->translate, loc, "motion translate");
-    if (t->linear().determinant() == 0) throw Error(loc, "motion scale must not be zero");
-  }
-}
-
 // Where point p is at shutter open (key 0) and close (key 1).
 Vec3 moved(const Motion& m, const RenderScene& out, const Vec3& p, int key) {
   switch (m.kind) {
@@ -132,8 +122,7 @@ void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::u
       moved_sphere.compile_into(out, material_index, object_id);
       return;
     }
-    // An ellipsoid: the sphere as a solid, placed (geometry/placement.h).
-    if (motion.moving()) throw Error(loc, "a sphere scaled unevenly (an ellipsoid) cannot move");
+    // An ellipsoid: the sphere as a solid, placed (geometry/placement.h), and moved as solids are.
     validate::coordinates(center, loc, "sphere center");
     validate::positive(radius, loc, "sphere radius");
     validate::length(radius, loc, "sphere radius");
@@ -141,6 +130,7 @@ void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::u
     out.solid_spheres.push_back({center, radius, material_index});
     out.solids.push_back({kernel::SolidKind::Sphere, std::uint32_t(out.solid_spheres.size() - 1), material_index});
     place_last_solid(out, affine_of(placement), loc);
+    if (motion.moving()) move_last_solid(out, motion, loc);
     return;
   }
   validate::coordinates(center, loc, "sphere center");
@@ -443,7 +433,7 @@ RenderScene compile(const Scene& scene) {
     out.warnings.push_back(s.loc.str() + (s.loc.file.empty() ? "" : ": ") + "accel embree cannot hold this scene, " +
                            embree_misfit(out.primitives()) + "; rendering with bvh instead");
 #endif
-  out.moving_bvh = build_motion_bvh(out.moving_spheres, out.moving_triangles);
+  out.moving_bvh = build_motion_bvh(out.moving_spheres, out.moving_triangles, out.moving_solids);
   build_instance_bvh(out);
   return out;
 }

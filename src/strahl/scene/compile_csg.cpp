@@ -7,6 +7,7 @@
 
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/csg.h"
+#include "strahl/scene/move_solid.h"
 #include "strahl/scene/place_solid.h"
 #include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
@@ -141,9 +142,12 @@ struct TreeBuilder {
                       "sphere, or CSG)");
     if (tree.leaf_count >= std::uint32_t(kernel::kMaxCsgLeaves))
       throw Error(o.loc, "CSG tree has more than " + std::to_string(kernel::kMaxCsgLeaves) + " solids");
+    if (o.motion.moving())
+      throw Error(o.loc.file.empty() ? parent.loc : o.loc,
+                  "an operand of " + std::string(csg_operation_name(parent.operation)) +
+                      " cannot move on its own (give the motion to the outermost CSG node)");
     kernel::Solid handle;
     if (const auto* s = dynamic_cast<const Sphere*>(&o)) {
-      if (s->motion.moving()) throw Error(s->loc, "a sphere in a CSG cannot move");
       validate::coordinates(s->center, s->loc, "sphere center");
       validate::positive(s->radius, s->loc, "sphere radius");
       validate::length(s->radius, s->loc, "sphere radius");
@@ -198,7 +202,8 @@ struct TreeBuilder {
     if (depth > kMaxCsgDepth)
       throw Error(c.loc, std::string(name) + " is nested too deeply: CSG nodes may be nested at most " +
                              std::to_string(kMaxCsgDepth) + " levels deep");
-    if (c.motion.moving()) throw Error(c.loc, std::string(name) + " cannot move (motion is for spheres, triangles and meshes)");
+    if (depth > 1 && c.motion.moving())
+      throw Error(c.loc, "an operand of a CSG cannot move on its own (give the motion to the outermost CSG node)");
     if (c.children.empty()) throw Error(c.loc, std::string("empty ") + name + ": it needs at least one operand");
     if (c.operation == CsgOperation::Inverse && c.children.size() != 1)
       throw Error(c.loc, "inverse takes exactly one operand (got " + std::to_string(c.children.size()) + ")");
@@ -302,6 +307,7 @@ void Csg::compile_into(RenderScene& out, std::uint32_t material_index, std::uint
   tree.hi = b.hi;
   out.csgs.push_back(tree);
   out.solids.push_back({kernel::SolidKind::Csg, static_cast<std::uint32_t>(out.csgs.size() - 1), material_index});
+  if (motion.moving()) move_last_solid(out, motion, loc);
 }
 
 }  // namespace strahl

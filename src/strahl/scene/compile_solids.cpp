@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/move_solid.h"
 #include "strahl/scene/place_solid.h"
 #include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
@@ -13,14 +14,12 @@
 namespace strahl {
 namespace {
 
-void no_motion(const SceneObject& o, const char* what) {
-  if (o.motion.moving()) throw Error(o.loc, std::string(what) + " cannot move (motion is for spheres, triangles and meshes)");
-}
-
-// Appends the handle, placed by the object's transform if it has one.
+// Appends the handle, placed by the object's transform if it has one, and moved by its motion if
+// it has one.
 void push(RenderScene& out, const SceneObject& o, kernel::SolidKind kind, std::size_t index, std::uint32_t material) {
   out.solids.push_back({kind, static_cast<std::uint32_t>(index), material});
   if (o.placed()) place_last_solid(out, affine_of(o.placement), o.loc);
+  if (o.motion.moving()) move_last_solid(out, o.motion, o.loc);
 }
 
 // Corners in any order → lo, hi; the box must have volume.
@@ -36,7 +35,6 @@ void box_corners(const Vec3& a, const Vec3& b, const FileLoc& loc, const std::st
 }  // namespace
 
 void Box::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
-  no_motion(*this, "boxes");
   kernel::Box b;
   box_corners(corner_a, corner_b, loc, "box", b.lo, b.hi);
   out.boxes.push_back(b);
@@ -45,7 +43,6 @@ void Box::compile_into(RenderScene& out, std::uint32_t material_index, std::uint
 
 void Cone::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
   const std::string what = is_cylinder ? "cylinder" : "cone";
-  no_motion(*this, is_cylinder ? "cylinders" : "cones");
   validate::finite(base, loc, what + " base");
   validate::finite(cap, loc, what + " cap");
   if (is_cylinder) {
@@ -70,7 +67,6 @@ void Cone::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
 }
 
 void Disk::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
-  no_motion(*this, "disks");
   validate::finite(center, loc, "disk center");
   validate::non_zero(normal, loc, "disk normal");
   validate::positive(radius, loc, "disk radius");
@@ -79,7 +75,6 @@ void Disk::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
 }
 
 void Torus::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
-  no_motion(*this, "tori");
   validate::finite(center, loc, "torus center");
   validate::non_zero(axis, loc, "torus axis");
   validate::positive(major, loc, "torus major radius");
@@ -92,7 +87,6 @@ void Torus::compile_into(RenderScene& out, std::uint32_t material_index, std::ui
 }
 
 void Quadric::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
-  no_motion(*this, "quadrics");
   kernel::Quadric q;
   bool surface = false;
   for (std::size_t i = 0; i < 10; ++i) {
@@ -111,7 +105,6 @@ void Quadric::compile_into(RenderScene& out, std::uint32_t material_index, std::
 }
 
 void ImplicitSurface::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t) const {
-  no_motion(*this, "implicit surfaces");
   kernel::Implicit s;
   try {
     s.f = compile_expression(expression, parameters);

@@ -17,6 +17,7 @@ Bounds bounded_shapes(const RenderScene& s) {
   Bounds b = bounds_of(s.primitives());
   for (const kernel::MovingSphere& m : s.moving_spheres) extend(b, kernel::swept_bounds(m));
   for (const kernel::MovingTriangle& m : s.moving_triangles) extend(b, kernel::swept_bounds(m));
+  for (const kernel::MovingSolid& m : s.moving_solids) extend(b, kernel::swept_bounds(m));
   for (const Bounds& p : s.instance_bounds) extend(b, p);
   return b;
 }

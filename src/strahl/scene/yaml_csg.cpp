@@ -32,7 +32,7 @@ Csg read_csg(const YAML::Node& n, const std::string& type, const CsgReader& r, i
   for (const Named& o : kOperations)
     if (type == o.name) op = o.op;
   const auto fail = [&](const YAML::Node& at, const std::string& message) { throw Error(r.loc(at), message); };
-  if (depth == 1) r.keys(n, {"type", "objects", "material", "scale", "rotate", "translate", "matrix", "transform"}, type);
+  if (depth == 1) r.keys(n, {"type", "objects", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, type);
   else
     r.keys(n, {"type", "objects", "scale", "rotate", "translate", "matrix", "transform"},
            type + " (inside a CSG: the outermost one's material applies)");

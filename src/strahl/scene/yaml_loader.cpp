@@ -680,13 +680,13 @@ class Reader {
   // The solids (scene/solids.h); nullptr for another type.
   SceneObject* solid(const std::string& type, const YAML::Node& n, Scene& scene) const {
     if (type == "box") {
-      keys(n, {"type", "corners", "material", "scale", "rotate", "translate", "matrix", "transform"}, "box");
+      keys(n, {"type", "corners", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "box");
       Vec3 a, b;
       corners(required(n, "corners", "box"), "box", a, b);
       return &scene.add(Box(a, b, object_material(n)));
     }
     if (type == "cylinder") {
-      keys(n, {"type", "base", "cap", "radius", "open", "material", "scale", "rotate", "translate", "matrix", "transform"}, "cylinder");
+      keys(n, {"type", "base", "cap", "radius", "open", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "cylinder");
       const Vec3 base = vec3(required(n, "base", "cylinder"), "cylinder base");
       const Vec3 cap = vec3(required(n, "cap", "cylinder"), "cylinder cap");
       if (base == cap) fail(n["cap"], "degenerate cylinder: its base and cap are the same point");
@@ -695,7 +695,7 @@ class Reader {
       return &scene.add(Cone::cylinder(base, cap, radius, object_material(n), open));
     }
     if (type == "cone") {
-      keys(n, {"type", "base", "base_radius", "cap", "cap_radius", "open", "material", "scale", "rotate", "translate", "matrix", "transform"}, "cone");
+      keys(n, {"type", "base", "base_radius", "cap", "cap_radius", "open", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "cone");
       const Vec3 base = vec3(required(n, "base", "cone"), "cone base");
       const Vec3 cap = vec3(required(n, "cap", "cone"), "cone cap");
       if (base == cap) fail(n["cap"], "degenerate cone: its base and cap are the same point");
@@ -706,7 +706,7 @@ class Reader {
       return &scene.add(Cone(base, r0, cap, r1, object_material(n), open));
     }
     if (type == "disk") {
-      keys(n, {"type", "center", "normal", "radius", "material", "scale", "rotate", "translate", "matrix", "transform"}, "disk");
+      keys(n, {"type", "center", "normal", "radius", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "disk");
       const Vec3 center = vec3(required(n, "center", "disk"), "disk center");
       const YAML::Node nn = required(n, "normal", "disk");
       const Vec3 normal = vec3(nn, "disk normal");
@@ -715,7 +715,7 @@ class Reader {
       return &scene.add(Disk(center, normal, radius, object_material(n)));
     }
     if (type == "torus") {
-      keys(n, {"type", "center", "axis", "major_radius", "minor_radius", "material", "scale", "rotate", "translate", "matrix", "transform"}, "torus");
+      keys(n, {"type", "center", "axis", "major_radius", "minor_radius", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "torus");
       const Vec3 center = n["center"] ? vec3(n["center"], "torus center") : Vec3(0);
       Vec3 axis(0, 1, 0);
       if (const auto v = n["axis"]) {
@@ -729,7 +729,7 @@ class Reader {
       return &scene.add(Torus(center, major, minor, object_material(n), axis));
     }
     if (type == "quadric") {
-      keys(n, {"type", "coefficients", "clipped_by", "material", "scale", "rotate", "translate", "matrix", "transform"}, "quadric");
+      keys(n, {"type", "coefficients", "clipped_by", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "quadric");
       const YAML::Node c = required(n, "coefficients", "quadric");
       if (!c.IsSequence() || c.size() != 10)
         fail(c, "quadric coefficients must be a list of ten numbers [A, B, C, D, E, F, G, H, I, J]");
@@ -754,7 +754,7 @@ class Reader {
 
   SceneObject* implicit(const YAML::Node& n, Scene& scene) const {
     keys(n, {"type", "expression", "parameters", "contained_by", "max_gradient", "accuracy", "method", "step",
-             "material", "scale", "rotate", "translate", "matrix", "transform"},
+             "material", "motion", "scale", "rotate", "translate", "matrix", "transform"},
          "implicit");
     const YAML::Node e = required(n, "expression", "implicit");
     ImplicitSurface s(scalar(e, "implicit expression"), object_material(n));

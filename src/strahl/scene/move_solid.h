@@ -1,0 +1,28 @@
+#pragma once
+// A solid's motion (motion blur): the solid just compiled leaves the static ones for
+// RenderScene::moving_solids, carried by the motion's map at shutter open and close
+// (geometry/moving_solid.h). Spheres (scene/compile.cpp) and meshes have motions of their own.
+
+#include "strahl/scene/place_solid.h"
+#include "strahl/scene/scene.h"
+
+namespace strahl {
+
+struct RenderScene;
+
+// A motion's values: finite, no scale of 0 (an error at `loc`).
+void validate_motion(const Motion& m, const FileLoc& loc);
+
+// The motion's map at shutter open (key 0) and close (key 1), in world space: a keyframe's
+// transform, or the velocity's displacement at that time of the shutter.
+Affine motion_key(const Motion& m, Real shutter_open, Real shutter_close, int key);
+
+// Moves the last solid of out.solids by `motion` (which moves): after the solid's own placement,
+// its points move on straight lines from where motion_key(0) puts them to where motion_key(1)
+// does, as a mesh's vertices would. Errors at `loc`: a solid without bounds (an unclipped quadric,
+// a CSG tree around an inverse), a motion whose map flattens the solid at some time of the
+// shutter (keyframes a half turn apart, a scale changing sign), positions outside the supported
+// coordinates.
+void move_last_solid(RenderScene& out, const Motion& motion, const FileLoc& loc);
+
+}  // namespace strahl
