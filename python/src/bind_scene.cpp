@@ -11,6 +11,7 @@
 
 #include "bindings.h"
 #include "convert.h"
+#include "shape_args.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/mesh_file.h"
 #include "strahl/scene/scene.h"
@@ -21,15 +22,6 @@
 
 namespace strahl::python {
 
-namespace {
-
-std::string repr(const Vec3& v) {
-  std::ostringstream out;
-  out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
-  return out.str();
-}
-
-// A colour: three numbers, or one number for grey.
 Vec3 color_arg(const py::handle& value, const char* what) {
   if (PyNumber_Check(value.ptr()) && !PySequence_Check(value.ptr())) return Vec3(value.cast<double>());
   try {
@@ -39,31 +31,12 @@ Vec3 color_arg(const py::handle& value, const char* what) {
   }
 }
 
-Real ior_arg(const py::handle& value) {
-  if (PyUnicode_Check(value.ptr())) {
-    const std::string name = value.cast<std::string>();
-    Real ior = 0;
-    if (!named_ior(name, ior))
-      throw Error("unknown ior '" + name + "' (a number or one of vacuum, air, water, ice, acrylic, glass, diamond)");
-    return ior;
-  }
-  return value.cast<double>();
-}
-
-// The material of a shape: `material`, or the default finish with `color`, or the default one.
 Material object_material(const py::object& color, const std::optional<Material>& material) {
   if (!color.is_none() && material) throw py::type_error("give either color or material, not both");
   Material m = material ? *material : Material{};
   if (!color.is_none()) m.color = color_arg(color, "color");
   validate::material(m, {});
   return m;
-}
-
-template <class T>
-T& placed(T& object, const std::optional<Motion>& motion) {
-  object.loc = caller_loc();
-  if (motion) object.motion = *motion;
-  return object;
 }
 
 Transform make_transform(const py::object& scale, const Vec3& rotate, const Vec3& translate, const char* what) {
@@ -77,6 +50,33 @@ Transform make_transform(const py::object& scale, const Vec3& rotate, const Vec3
   if (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0) throw Error(std::string(what) + " scale must not be zero");
   return t;
 }
+
+namespace {
+
+std::string repr(const Vec3& v) {
+  std::ostringstream out;
+  out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+  return out.str();
+}
+
+Real ior_arg(const py::handle& value) {
+  if (PyUnicode_Check(value.ptr())) {
+    const std::string name = value.cast<std::string>();
+    Real ior = 0;
+    if (!named_ior(name, ior))
+      throw Error("unknown ior '" + name + "' (a number or one of vacuum, air, water, ice, acrylic, glass, diamond)");
+    return ior;
+  }
+  return value.cast<double>();
+}
+
+template <class T>
+T& placed(T& object, const std::optional<Motion>& motion) {
+  object.loc = caller_loc();
+  if (motion) object.motion = *motion;
+  return object;
+}
+
 
 // numpy (or anything numpy takes) → N × 3 doubles.
 py::array_t<double, py::array::c_style> rows3(const py::handle& values, const char* what) {
@@ -176,11 +176,9 @@ const char* light_kind_name(LightKind k) {
 }
 
 void add_object(Scene& scene, const SceneObject& object) {
-  if (const auto* s = dynamic_cast<const Sphere*>(&object)) scene.add(*s);
-  else if (const auto* p = dynamic_cast<const Plane*>(&object)) scene.add(*p);
-  else if (const auto* t = dynamic_cast<const Triangle*>(&object)) scene.add(*t);
-  else if (const auto* mesh = dynamic_cast<const Mesh*>(&object)) scene.add(*mesh);
-  else throw py::type_error("Scene.add takes a Sphere, Plane, Triangle, Mesh or light");
+  std::unique_ptr<SceneObject> copy = copy_object(object);
+  if (!copy) throw py::type_error("Scene.add takes a shape (a Sphere, Plane, Triangle, Mesh, solid or CSG tree) or a light");
+  scene.addSceneObject(copy.release());
 }
 
 void bind_material(py::module_& m) {
@@ -266,22 +264,27 @@ void bind_motion(py::module_& m) {
 }
 
 void bind_shapes(py::module_& m) {
-  py::class_<SceneObject>(m, "SceneObject", "A shape of a scene (Sphere, Plane, Triangle, Mesh).")
+  py::class_<SceneObject>(m, "SceneObject", "A shape of a scene (Sphere, Plane, Triangle, Mesh, a solid or a CSG tree).")
       .def_readwrite("material", &SceneObject::material)
       .def_readwrite("motion", &SceneObject::motion)
+      .def_readwrite("placement", &SceneObject::placement,
+                     "Where the shape's own coordinates are placed (scale, rotate, translate)")
       .def_property_readonly("location", [](const SceneObject& o) { return o.loc.str(); },
                              "Where it was defined: file:line of a scene file or of the Python code");
 
-  py::class_<Sphere, SceneObject>(m, "Sphere")
+  py::class_<Sphere, SceneObject>(m, "Sphere", "A sphere; scaled unevenly (scale=(a, b, c)), an ellipsoid.")
       .def(py::init([](const Vec3& center, double radius, const py::object& color, const std::optional<Material>& material,
-                       const std::optional<Motion>& motion) {
+                       const std::optional<Motion>& motion, const py::object& scale, const Vec3& rotate,
+                       const Vec3& translate) {
              validate::finite(center, {}, "sphere center");
              validate::positive(radius, {}, "sphere radius");
              Sphere s(center, radius, object_material(color, material));
+             s.placement = make_transform(scale, rotate, translate, "sphere");
              return placed(s, motion);
            }),
            py::arg("center"), py::arg("radius"), py::arg("color") = py::none(), py::kw_only(),
-           py::arg("material") = py::none(), py::arg("motion") = py::none())
+           py::arg("material") = py::none(), py::arg("motion") = py::none(), py::arg("scale") = 1.0,
+           py::arg("rotate") = py::make_tuple(0, 0, 0), py::arg("translate") = py::make_tuple(0, 0, 0))
       .def_readwrite("center", &Sphere::center)
       .def_readwrite("radius", &Sphere::radius)
       .def("__repr__", [](const Sphere& s) {

@@ -8,5 +8,6 @@ PYBIND11_MODULE(_strahl, m) {
   m.doc() = "strahl, a Whitted-style ray tracer: the lecture's scene API, scene files and rendering (docs/python.md)";
   strahl::python::register_error(m);
   strahl::python::bind_scene(m);
+  strahl::python::bind_solids(m);
   strahl::python::bind_render(m);
 }

@@ -15,24 +15,37 @@ import tempfile as _tempfile
 import numpy as _np
 
 from ._strahl import (  # noqa: F401
+    Box,
     Camera,
+    Cone,
+    Csg,
+    Cylinder,
+    Difference,
     DirectionalLight,
+    Disk,
     DiskLight,
     Error,
+    Implicit,
+    Intersection,
+    Inverse,
     Light,
     Material,
+    Merge,
     Mesh,
     Motion,
     Plane,
     PointLight,
+    Quadric,
     RectLight,
     RenderSettings,
     Scene,
     SceneObject,
     Sphere,
     SphereLight,
+    Torus,
     Transform,
     Triangle,
+    Union,
     __version__,
     lecture_scene,
     load,
@@ -44,15 +57,16 @@ from . import _strahl
 from ._strahl import _scene_hash  # noqa: F401  (tests: the fingerprint of the compiled scene)
 
 __all__ = [
-    "Camera", "DirectionalLight", "DiskLight", "Error", "Image", "Light", "Material", "Mesh", "Motion", "Plane",
-    "PointLight", "RectLight", "RenderSettings", "Scene", "SceneObject", "Sphere", "SphereLight", "Transform",
-    "Triangle", "lecture_scene", "load", "loads", "read", "render", "version", "write",
+    "Box", "Camera", "Cone", "Csg", "Cylinder", "Difference", "DirectionalLight", "Disk", "DiskLight", "Error",
+    "Image", "Implicit", "Intersection", "Inverse", "Light", "Material", "Merge", "Mesh", "Motion", "Plane",
+    "PointLight", "Quadric", "RectLight", "RenderSettings", "Scene", "SceneObject", "Sphere", "SphereLight", "Torus",
+    "Transform", "Triangle", "Union", "lecture_scene", "load", "loads", "read", "render", "version", "write",
 ]
 
 
 # The compiled classes show as strahl.Sphere, not strahl._strahl.Sphere.
-for _name in ("Camera", "Light", "Material", "Mesh", "Motion", "Plane", "RenderSettings", "Scene", "SceneObject",
-              "Sphere", "Transform", "Triangle"):
+for _name in ("Box", "Camera", "Cone", "Csg", "Disk", "Implicit", "Light", "Material", "Mesh", "Motion", "Plane",
+              "Quadric", "RenderSettings", "Scene", "SceneObject", "Sphere", "Torus", "Transform", "Triangle"):
     getattr(_strahl, _name).__module__ = "strahl"
 
 
