@@ -73,7 +73,7 @@ struct MovingScene {
     }
   }
 
-  void build(std::uint32_t segments) { bvh = build_motion_bvh(spheres, triangles, {}, segments); }
+  void build(std::uint32_t segments) { bvh = build_motion_bvh(spheres, triangles, {}, {}, segments); }
 
   SceneView view() const {
     SceneView v;

@@ -1,7 +1,9 @@
-// Moving solids (geometry/moving_solid.h, scene/move_solid.h): a moving box is met exactly where
-// a moving mesh of its faces is (the same rays, times, distances and normals, and the same image);
-// a solid moving with a velocity is met where the still solid, displaced, is; the motion BVH over
-// many turning solids finds what testing each alone finds; and the errors name what cannot move.
+// Moving solids and instances (geometry/moving_solid.h, geometry/moving_instance.h,
+// scene/move_solid.h): a moving box is met exactly where a moving mesh of its faces is (the same
+// rays, times, distances and normals, and the same image), and so is a moving instance of a group
+// holding that mesh; a solid moving with a velocity is met where the still solid, displaced, is;
+// the motion BVH over many turning solids finds what testing each alone finds; and the errors
+// name what cannot move.
 
 #include <gtest/gtest.h>
 
@@ -13,6 +15,7 @@
 #include "strahl/render/scene_hash.h"
 #include "strahl/render/surface_point.h"
 #include "strahl/scene/csg.h"
+#include "strahl/scene/instances.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
 #include "strahl/scene/solids.h"
@@ -132,6 +135,53 @@ TEST(MovingSolid, BoxRendersAsTheMovingMeshDoes) {
   Scene frozen = scene(false);
   frozen.camera.shutter_close = 0;
   EXPECT_GT(test::max_abs_diff(a, test::render_image(frozen)), 0.1f);
+}
+
+// An instance placed by P and moved by A(u) is met where a mesh with P taken into its vertices,
+// moved by the same motion, is (A acts after the placement, in world space).
+TEST(MovingSolid, InstanceIsMetWhereTheMovingMeshIs) {
+  const Transform placement = keyframe({1.2, 0.7, 1}, {10, 20, 30}, {0.2, -0.1, 0.3});
+  for (const Motion& motion : {box_motion(), Motion::linear({0.6, -0.2, 0.3})}) {
+    Scene instanced, meshed;
+    ObjectGroup g;
+    g.name = "box";
+    g.objects.push_back(std::make_unique<Mesh>(box_mesh(kLo, kHi), Material{}));
+    instanced.groups.push_back(std::move(g));
+    Instance in(0, placement);
+    in.motion = motion;
+    if (motion.kind == Motion::Kind::Velocity) in.placement.translate = in.placement.translate + Vec3(0, 0, -4);
+    const Transform p = in.placement;
+    instanced.add(std::move(in));
+    MeshData placed = box_mesh(kLo, kHi);
+    for (Vec3& v : placed.positions) v = p.linear() * v + p.translate;
+    Mesh mesh(std::move(placed), Material{});
+    mesh.motion = motion;
+    meshed.add(std::move(mesh));
+    for (Scene* s : {&instanced, &meshed}) {
+      s->camera.shutter_open = 0;
+      s->camera.shutter_close = 1;
+    }
+    const RenderScene a = compile(instanced), b = compile(meshed);
+    ASSERT_EQ(a.moving_instances.size(), 1u);
+    ASSERT_TRUE(a.instances.empty());
+    const SceneView va = a.view(), vb = b.view();
+    RayMaker rays;
+    int hits = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const Ray ray = rays.next({0.35, 0.15, -4.3}, 1.2);
+      const Hit ha = closest_hit(va, ray, 0, kInfinity), hb = closest_hit(vb, ray, 0, kInfinity);
+      ASSERT_EQ(ha.found(), hb.found()) << "ray " << i << " at time " << ray.time;
+      if (!ha.found()) continue;
+      ++hits;
+      ASSERT_EQ(ha.kind, ShapeKind::MovingInstance);
+      ASSERT_NEAR(ha.t, hb.t, 1e-12 * hb.t) << "ray " << i;
+      const SurfacePoint sa = surface_at(va, ray, ha), sb = surface_at(vb, ray, hb);
+      ASSERT_TRUE(test::vec_near(sa.normal, sb.normal, 1e-12)) << "ray " << i;
+      const Ray back{ray.at(ha.t * 0.5), ray.direction, ray.time};
+      ASSERT_EQ(transmittance(va, back, ha.t), transmittance(vb, back, hb.t)) << "ray " << i;
+    }
+    EXPECT_GT(hits, 1000);
+  }
 }
 
 // A velocity displaces the solid by velocity·τ at shutter time τ: a torus is met where the still
@@ -288,6 +338,12 @@ objects:
   EXPECT_EQ(error_of(turn + "90, 0]}}}\n"), "no error");
   EXPECT_EQ(error_of(turn + "179, 0]}}}\n"), "no error");
   EXPECT_EQ(error_of(turn + "200, 0]}}}\n"), "no error");
+  // Instances move too, under the same rule.
+  const std::string group = "groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]\nobjects:\n";
+  EXPECT_EQ(error_of(group + "  - {type: instance, of: g, motion: {velocity: [1, 0, 0]}}\n"), "no error");
+  EXPECT_NE(error_of(group + "  - {type: instance, of: g, motion: {to: {rotate: [180, 0, 0]}}}\n")
+                .find("bad.yaml:4:5: the motion flattens the instance"),
+            std::string::npos);
   // A scale changing sign on one axis passes through 0 there.
   EXPECT_NE(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {scale: [1, -1, 1]}}}\n")
                 .find("flattens"),
@@ -302,11 +358,15 @@ objects:
   - {type: box, corners: [[0, 0, 0], [1, 1, 1]], rotate: [0, 30, 0], motion: {velocity: [1, 0, 0]}}
   - {type: torus, center: [0, 0, 0], major_radius: 1, minor_radius: 0.2, motion: {from: {translate: [0, 1, 0]}, to: {rotate: [0, 0, 30]}}}
   - {type: difference, objects: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}, {type: sphere, center: [1, 1, 1], radius: 0.5}], motion: {velocity: [0, 0, 1]}}
+  - {type: instance, of: g, translate: [2, 0, 0], motion: {from: {rotate: [0, 10, 0]}, to: {translate: [0, 1, 0]}}}
+groups:
+  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]
 )";
   const Scene a = parse_scene(text, "a.yaml", ".");
   const Scene b = parse_scene(scene_to_yaml(a), "b.yaml", ".");
   const RenderScene ra = compile(a), rb = compile(b);
   ASSERT_EQ(ra.moving_solids.size(), 3u);
+  ASSERT_EQ(ra.moving_instances.size(), 1u);
   EXPECT_EQ(scene_hash(ra), scene_hash(rb));
 }
 

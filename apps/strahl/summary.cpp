@@ -26,7 +26,7 @@ std::string summary(const std::string& output, int width, int height, int thread
                      : segments > 1 ? fmt::format(" ({} of the shapes moving, their BVH cut into {} time segments)",
                                                   moving, segments)
                                     : fmt::format(" ({} of the shapes moving)", moving));
-  if (!scene.instances.empty()) {
+  if (!scene.instances.empty() || !scene.moving_instances.empty()) {
     std::size_t triangles = 0, spheres = 0, solids = 0, bytes = 0;
     for (const RenderScene& g : scene.groups) {
       triangles += g.triangles.size();
@@ -34,9 +34,12 @@ std::string summary(const std::string& output, int width, int height, int thread
       solids += g.solids.size();
       bytes += g.accel.stats.bytes;
     }
-    out += fmt::format("instances   {} instances of {} groups ({} spheres, {} triangles, {} solids, once; their {}: {:.1f} MiB)\n",
-                       scene.instances.size(), scene.groups.size(), spheres, triangles, solids,
-                       accel_name(scene.groups.front().accel.kind), double(bytes) / (1 << 20));
+    const std::size_t moving_instances = scene.moving_instances.size();
+    out += fmt::format("instances   {} instances{} of {} groups ({} spheres, {} triangles, {} solids, once; their {}: {:.1f} MiB)\n",
+                       scene.instances.size() + moving_instances,
+                       moving_instances > 0 ? fmt::format(" ({} moving)", moving_instances) : std::string(),
+                       scene.groups.size(), spheres, triangles, solids, accel_name(scene.groups.front().accel.kind),
+                       double(bytes) / (1 << 20));
   }
   // Embree reports no node count or depth.
   const std::string nodes =

@@ -83,15 +83,18 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
 
 MotionBvh build_motion_bvh(const std::vector<kernel::MovingSphere>& spheres,
                            const std::vector<kernel::MovingTriangle>& triangles,
-                           const std::vector<kernel::MovingSolid>& solids, std::uint32_t segments) {
+                           const std::vector<kernel::MovingSolid>& solids,
+                           const std::vector<kernel::MovingInstance>& instances, std::uint32_t segments) {
   const auto n = static_cast<std::uint32_t>(spheres.size());
   const auto m = n + static_cast<std::uint32_t>(triangles.size());
+  const auto k = m + static_cast<std::uint32_t>(solids.size());
   return build_motion_bvh(
-      m + static_cast<std::uint32_t>(solids.size()),
+      k + static_cast<std::uint32_t>(instances.size()),
       [&](std::uint32_t i, Real u0, Real u1) {
         return i < n   ? kernel::swept_bounds(spheres[i], u0, u1)
                : i < m ? kernel::swept_bounds(triangles[i - n], u0, u1)
-                       : kernel::swept_bounds(solids[i - m], u0, u1);
+               : i < k ? kernel::swept_bounds(solids[i - m], u0, u1)
+                       : kernel::swept_bounds(instances[i - k], u0, u1);
       },
       segments);
 }

@@ -20,6 +20,7 @@
 #include "strahl/accel/bvh.h"
 #include "strahl/accel/wide_bvh.h"
 #include "strahl/geometry/moving.h"
+#include "strahl/geometry/moving_instance.h"
 #include "strahl/geometry/moving_solid.h"
 #include "strahl/util/large_array.h"
 
@@ -72,10 +73,11 @@ using SweptBox = std::function<Bounds(std::uint32_t prim, Real u0, Real u1)>;
 // in each segment). `segments` > 0 forces K (a power of two ≤ kMaxMotionSegments; the tests).
 MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32_t segments = 0);
 
-// The same over a scene's moving shapes: primitive i is sphere i, triangle i − spheres.size(), or
-// solid i − spheres.size() − triangles.size() (render/moving_shapes.h).
+// The same over a scene's moving shapes: the spheres, then the triangles, the solids and the
+// instances, numbered on (render/moving_shapes.h).
 MotionBvh build_motion_bvh(const std::vector<kernel::MovingSphere>& spheres,
                            const std::vector<kernel::MovingTriangle>& triangles,
-                           const std::vector<kernel::MovingSolid>& solids = {}, std::uint32_t segments = 0);
+                           const std::vector<kernel::MovingSolid>& solids = {},
+                           const std::vector<kernel::MovingInstance>& instances = {}, std::uint32_t segments = 0);
 
 }  // namespace strahl

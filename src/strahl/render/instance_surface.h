@@ -2,7 +2,7 @@
 // The surface point of an instance hit (render/surface_point.h's ShapeKind::Instance): the
 // primitive's normal found in the group's object space and brought to the world by the inverse
 // transpose (geometry/placement.h); the texture coordinate is the object-space point, so a
-// procedural texture moves with the instance.
+// procedural texture moves with the instance (a moving one's too).
 
 #include <cmath>
 
@@ -17,8 +17,10 @@ struct InstanceSurface {
   Real magnitude = 0;  // of the primitive's coordinates in world units (ray offsets)
 };
 
-STRAHL_HOST_DEVICE inline InstanceSurface instance_surface(const SceneView& s, const Vec3& p, const Hit& hit) {
-  const kernel::Instance& x = s.instances[hit.index];
+// The surface of instance x at p (world space) for hit.prim, b1, b2; stretch and shift bound the
+// group → world map for the offset (x's own, or a moving instance's over the shutter).
+STRAHL_HOST_DEVICE inline InstanceSurface instance_surface(const SceneView& s, const kernel::Instance& x, Real stretch,
+                                                           Real shift, const Vec3& p, const Hit& hit) {
   const InstanceGroupView& g = s.groups[x.group];
   const PrimitiveSet& prims = g.accel.prims;
   const Vec3 po = kernel::object_point(x.to_object, p);
@@ -49,13 +51,30 @@ STRAHL_HOST_DEVICE inline InstanceSurface instance_surface(const SceneView& s, c
   if (x.translation_only) {
     out.geometric_normal = geometric;
     out.normal = shading;
-    out.magnitude = magnitude > 0 ? magnitude + x.shift : 0;
+    out.magnitude = magnitude > 0 ? magnitude + shift : 0;
   } else {
     out.geometric_normal = kernel::world_normal(x.to_object, geometric);
     out.normal = kernel::world_normal(x.to_object, shading);
-    out.magnitude = magnitude > 0 ? magnitude * x.stretch + x.shift : 0;
+    out.magnitude = magnitude > 0 ? magnitude * stretch + shift : 0;
   }
   // Keep the shading normal on the geometric normal's side (OBJ normals may disagree).
+  if (dot(out.normal, out.geometric_normal) < 0) out.normal = -out.normal;
+  return out;
+}
+
+STRAHL_HOST_DEVICE inline InstanceSurface instance_surface(const SceneView& s, const Vec3& p, const Hit& hit) {
+  const kernel::Instance& x = s.instances[hit.index];
+  return instance_surface(s, x, x.stretch, x.shift, p, hit);
+}
+
+// A moving instance's at shutter fraction u: found where it stands still (p brought there by
+// A(u)⁻¹), the normals brought back by A(u)⁻ᵀ.
+STRAHL_HOST_DEVICE inline InstanceSurface moving_instance_surface(const SceneView& s, Real u, const Vec3& p, const Hit& hit) {
+  const kernel::MovingInstance& m = s.moving_instances[hit.index];
+  const kernel::Placement a = kernel::at_time(m.map, u);
+  InstanceSurface out = instance_surface(s, m.instance, m.stretch, m.shift, kernel::object_point(a, p), hit);
+  out.geometric_normal = kernel::world_normal(a, out.geometric_normal);
+  out.normal = kernel::world_normal(a, out.normal);
   if (dot(out.normal, out.geometric_normal) < 0) out.normal = -out.normal;
   return out;
 }

@@ -1,10 +1,11 @@
 #pragma once
 // Scene queries against the moving shapes (motion blur): each is intersected where it is at the
-// ray's time (a solid: the ray brought to where the solid is unmoved, geometry/moving_solid.h). They sit in BVHs of their own over their swept boxes, one per time segment of the
+// ray's time (a solid or an instance: the ray brought to where it stands still, geometry/moving_map.h). They sit in BVHs of their own over their swept boxes, one per time segment of the
 // shutter (accel/motion_bvh.h), so static shapes keep their tight tree and a static scene pays
 // nothing (an empty tree is skipped at once).
 
 #include "strahl/geometry/hit.h"
+#include "strahl/render/instance_queries.h"
 #include "strahl/render/scene_view.h"
 
 namespace strahl {
@@ -38,7 +39,7 @@ STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray&
         hit.b1 = h.b1;
         hit.b2 = h.b2;
       }
-    } else {
+    } else if (prim < s.moving_sphere_count + s.moving_triangle_count + s.moving_solid_count) {
       const std::uint32_t i = prim - s.moving_sphere_count - s.moving_triangle_count;
       const kernel::MovingSolid& ms = s.moving_solids[i];
       const Ray r = kernel::object_ray(kernel::at_time(ms, u), ray);
@@ -48,6 +49,13 @@ STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray&
         hit.kind = ShapeKind::MovingSolid;
         hit.index = i;
         hit.b1 = Real(c.part);
+      }
+    } else {
+      const std::uint32_t i = prim - s.moving_sphere_count - s.moving_triangle_count - s.moving_solid_count;
+      const kernel::MovingInstance& mi = s.moving_instances[i];
+      if (nearest_in_instance(s, mi.instance, kernel::object_ray(kernel::at_time(mi.map, u), ray), t_min, t_far, hit)) {
+        hit.kind = ShapeKind::MovingInstance;
+        hit.index = i;
       }
     }
     return false;
@@ -73,10 +81,15 @@ STRAHL_HOST_DEVICE inline void for_each_moving_crossing(const SceneView& s, cons
       const kernel::MovingTriangle& mt = s.moving_triangles[prim - s.moving_sphere_count];
       return kernel::intersect(kernel::at_time(mt, u), ray, 0, t_far).t < kInfinity && cross(mt.material, 1);
     }
-    const kernel::MovingSolid& ms = s.moving_solids[prim - s.moving_sphere_count - s.moving_triangle_count];
-    const Ray r = kernel::object_ray(kernel::at_time(ms, u), ray);
-    const int n = kernel::crossings(s.accel.prims.shapes, ms.solid, r, 0, t_far);
-    return n > 0 && cross(ms.solid.material, n);
+    const std::uint32_t i = prim - s.moving_sphere_count - s.moving_triangle_count;
+    if (i < s.moving_solid_count) {
+      const kernel::MovingSolid& ms = s.moving_solids[i];
+      const Ray r = kernel::object_ray(kernel::at_time(ms, u), ray);
+      const int n = kernel::crossings(s.accel.prims.shapes, ms.solid, r, 0, t_far);
+      return n > 0 && cross(ms.solid.material, n);
+    }
+    const kernel::MovingInstance& mi = s.moving_instances[i - s.moving_solid_count];
+    return crossings_in_instance(s, mi.instance, kernel::object_ray(kernel::at_time(mi.map, u), ray), t_far, cross);
   };
   traverse<kNearestFirst>(s.moving_bvh.segment_at(u), ray, 0, t_max, visit);
 }

@@ -72,6 +72,7 @@ struct RenderScene {
   std::vector<kernel::MovingSphere> moving_spheres;
   std::vector<kernel::MovingTriangle> moving_triangles;
   std::vector<kernel::MovingSolid> moving_solids;  // their shapes in the arrays above (not in `solids`)
+  std::vector<kernel::MovingInstance> moving_instances;  // of the groups below (not in `instances`)
   MotionBvh moving_bvh;  // over the moving shapes' swept boxes, per time segment (empty when nothing moves)
   // Instances (scene/instances.h): each group compiled once (its own arrays and structure; only
   // spheres, triangles, vertex normals, solids and accel are used), the instances' records, their
@@ -121,6 +122,8 @@ struct RenderScene {
     v.moving_triangle_count = static_cast<std::uint32_t>(moving_triangles.size());
     v.moving_solids = moving_solids.data();
     v.moving_solid_count = static_cast<std::uint32_t>(moving_solids.size());
+    v.moving_instances = moving_instances.data();
+    v.moving_instance_count = static_cast<std::uint32_t>(moving_instances.size());
     v.moving_bvh = moving_bvh.view();
     v.instances = instances.data();
     v.instance_count = static_cast<std::uint32_t>(instances.size());

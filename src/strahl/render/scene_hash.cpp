@@ -56,7 +56,7 @@ static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof
 // (Not `warnings`: messages for the user, they change no pixel; nor the structure's arrays,
 // built from the primitives hashed here, such as accel.sphere_quads.)
 #if defined(STRAHL_HAVE_EMBREE)
-static_assert(sizeof(RenderScene) == 1792, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+static_assert(sizeof(RenderScene) == 1816, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
 #endif
 
 void hash(Hasher& h, const Material& m) {
@@ -235,15 +235,19 @@ void hash(Hasher& h, const kernel::PlacedSolid& x) {
   h.add(x.hi);
 }
 static_assert(sizeof(kernel::Instance) == 120, "kernel::Instance changed: hash its new fields here");
-static_assert(sizeof(kernel::MovingSolid) == 256, "kernel::MovingSolid changed: hash its new fields here");
-void hash(Hasher& h, const kernel::MovingSolid& x) {
-  hash(h, x.solid);
+static_assert(sizeof(kernel::MovingMap) == 192 && sizeof(kernel::MovingSolid) == 256,
+              "kernel::MovingMap or MovingSolid changed: hash its new fields here");
+void hash(Hasher& h, const kernel::MovingMap& x) {
   for (int i = 0; i < 3; ++i) {
     h.add(x.linear0[i]);
     h.add(x.linear1[i]);
   }
   h.add(x.translate0);
   h.add(x.translate1);
+}
+void hash(Hasher& h, const kernel::MovingSolid& x) {
+  hash(h, x.solid);
+  hash(h, x.map);
   h.add(x.lo);
   h.add(x.hi);
 }
@@ -254,6 +258,15 @@ void hash(Hasher& h, const kernel::Instance& x) {
   h.add(x.shift);
   h.add(x.group);
   h.add(x.translation_only);
+}
+static_assert(sizeof(kernel::MovingInstance) == 376, "kernel::MovingInstance changed: hash its new fields here");
+void hash(Hasher& h, const kernel::MovingInstance& x) {
+  hash(h, x.instance);
+  hash(h, x.map);
+  h.add(x.lo);
+  h.add(x.hi);
+  h.add(x.stretch);
+  h.add(x.shift);
 }
 void hash(Hasher& h, const kernel::CsgLeaf& x) {
   hash(h, x.solid);
@@ -292,6 +305,7 @@ std::uint64_t scene_hash(const RenderScene& s) {
   h.add_all(s.csg_leaves);
   h.add_all(s.placed);
   h.add_all(s.moving_solids);
+  h.add_all(s.moving_instances);
   // Instances: each group's own arrays (their hash), the records (the boxes and BVHs follow).
   h.add(std::uint64_t(s.groups.size()));
   for (const RenderScene& g : s.groups) h.add(scene_hash(g));

@@ -9,6 +9,7 @@
 #include "strahl/accel/wide_bvh.h"
 #include "strahl/camera/camera.h"
 #include "strahl/geometry/moving.h"
+#include "strahl/geometry/moving_instance.h"
 #include "strahl/geometry/moving_solid.h"
 #include "strahl/geometry/plane.h"
 #include "strahl/geometry/sphere.h"
@@ -49,15 +50,18 @@ struct SceneView {
   std::uint32_t solid_count = 0;
   std::uint32_t bounded_solid_count = 0;
   // Moving shapes (motion blur), in BVHs of their own over their swept boxes, one per time
-  // segment (accel/motion_bvh.h): primitive i is moving sphere i, moving triangle
-  // i − moving_sphere_count, or moving solid i − moving_sphere_count − moving_triangle_count
-  // (its shape in the solids' arrays, accel.prims.shapes). Empty for static scenes.
+  // segment (accel/motion_bvh.h): primitive i is moving sphere i, then come the moving triangles,
+  // the moving solids (their shapes in the solids' arrays, accel.prims.shapes) and the moving
+  // instances (their groups in `groups`), each numbered on from the kinds before it. Empty for
+  // static scenes.
   const kernel::MovingSphere* moving_spheres = nullptr;
   std::uint32_t moving_sphere_count = 0;
   const kernel::MovingTriangle* moving_triangles = nullptr;
   std::uint32_t moving_triangle_count = 0;
   const kernel::MovingSolid* moving_solids = nullptr;
   std::uint32_t moving_solid_count = 0;
+  const kernel::MovingInstance* moving_instances = nullptr;
+  std::uint32_t moving_instance_count = 0;
   MotionBvhView moving_bvh;
   // Instances (render/instance_queries.h): small records in a BVH of their own over their world
   // boxes, each placing one of the groups. Empty without instances.
@@ -76,7 +80,7 @@ struct SceneView {
 
   // How many shapes move (0: the ray's time matters to nothing).
   STRAHL_HOST_DEVICE std::uint32_t moving_count() const {
-    return moving_sphere_count + moving_triangle_count + moving_solid_count;
+    return moving_sphere_count + moving_triangle_count + moving_solid_count + moving_instance_count;
   }
 };
 

@@ -143,6 +143,15 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void surface_at(const SceneView& s, const
       sp.offset = ray_offset(ray, hit.t, sp.p, is.magnitude);
       break;
     }
+    case ShapeKind::MovingInstance: {
+      const InstanceSurface is = moving_instance_surface(s, shutter_fraction(s, ray.time), sp.p, hit);
+      sp.geometric_normal = is.geometric_normal;
+      sp.normal = is.normal;
+      sp.texcoord = is.texcoord;
+      sp.material = is.material;
+      sp.offset = ray_offset(ray, hit.t, sp.p, is.magnitude);
+      break;
+    }
     case ShapeKind::None:
     default:  // (every kind is above; this tells the compiler so)
       sp.geometric_normal = sp.normal = sp.texcoord = Vec3(0);

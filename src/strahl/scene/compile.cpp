@@ -433,7 +433,7 @@ RenderScene compile(const Scene& scene) {
     out.warnings.push_back(s.loc.str() + (s.loc.file.empty() ? "" : ": ") + "accel embree cannot hold this scene, " +
                            embree_misfit(out.primitives()) + "; rendering with bvh instead");
 #endif
-  out.moving_bvh = build_motion_bvh(out.moving_spheres, out.moving_triangles, out.moving_solids);
+  out.moving_bvh = build_motion_bvh(out.moving_spheres, out.moving_triangles, out.moving_solids, out.moving_instances);
   build_instance_bvh(out);
   return out;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/move_solid.h"
 #include "strahl/scene/shape_bounds.h"
 #include "strahl/scene/validate.h"
 #include "strahl/util/cancel.h"
@@ -69,7 +70,6 @@ void compile_groups(const Scene& scene, RenderScene& out) {
 
 void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) const {
   if (group >= out.groups.size()) throw Error(loc, "instance of group number " + std::to_string(group) + ", which the scene does not have");
-  if (motion.moving()) throw Error(loc, "an instance cannot move");
   validate::finite(placement.translate, loc, "instance translate");
   const Mat3 m = placement.linear();
   const Real det = m.determinant();
@@ -96,8 +96,34 @@ void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) cons
   w.hi = w.hi + Vec3(pad);
   validate::coordinates(w.lo, loc, "instance bounds");
   validate::coordinates(w.hi, loc, "instance bounds");
-  out.instances.push_back(x);
-  out.instance_bounds.push_back(w);
+  if (!motion.moving()) {
+    out.instances.push_back(x);
+    out.instance_bounds.push_back(w);
+    return;
+  }
+  // Moving (geometry/moving_instance.h): carried by the motion's map after its placement, in the
+  // motion BVH with the other moving shapes.
+  kernel::MovingInstance mi;
+  mi.instance = x;
+  mi.map = moving_map(motion, out.camera, loc, "instance");
+  mi.lo = w.lo;
+  mi.hi = w.hi;
+  // Over the shutter the linear part's Frobenius norm is at most the larger of the keys' (a norm
+  // of a blend), which bounds the stretch of A(u) and of its product with the placement; the
+  // translation A(u)·t_placement + t(u) by the same.
+  Real reach = 0, moved = 0;
+  for (int key = 0; key < 2; ++key) {
+    const Vec3* l = key == 0 ? mi.map.linear0 : mi.map.linear1;
+    const Real f = std::sqrt(dot(l[0], l[0]) + dot(l[1], l[1]) + dot(l[2], l[2]));
+    reach = std::fmax(reach, f);
+    moved = std::fmax(moved, max_abs_component(key == 0 ? mi.map.translate0 : mi.map.translate1));
+  }
+  mi.stretch = x.stretch * reach;
+  mi.shift = moved + reach * Real(1.7320508075688772) * x.shift;  // |L·t|∞ ≤ ‖L‖_F·|t|₂ ≤ ‖L‖_F·√3·|t|∞
+  const Bounds swept = kernel::swept_bounds(mi);
+  validate::coordinates(swept.lo, loc, "moving instance bounds");
+  validate::coordinates(swept.hi, loc, "moving instance bounds");
+  out.moving_instances.push_back(mi);
 }
 
 void build_instance_bvh(RenderScene& out) {

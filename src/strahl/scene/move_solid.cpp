@@ -41,7 +41,7 @@ Real det(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross(b, c
 // 0 at any of them: neither flat (|p| against the product of the rows' lengths: a billionth) nor
 // shrunk to a point (|p|^⅓ against the keys' longest row: a millionth; a half turn's chords
 // meet at the axis, where rounding leaves rows of 1e-16).
-bool invertible_throughout(const kernel::MovingSolid& m) {
+bool invertible_throughout(const kernel::MovingMap& m) {
   Real reach = 0;
   for (int i = 0; i < 3; ++i) reach = std::fmax(reach, std::fmax(length(m.linear0[i]), length(m.linear1[i])));
   const Vec3* l = m.linear0;
@@ -79,8 +79,23 @@ bool invertible_throughout(const kernel::MovingSolid& m) {
 
 }  // namespace
 
-void move_last_solid(RenderScene& out, const Motion& motion, const FileLoc& loc) {
+kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what) {
   validate_motion(motion, loc);
+  kernel::MovingMap m;
+  for (int key = 0; key < 2; ++key) {
+    const Affine a = motion_key(motion, camera.shutter_open, camera.shutter_close, key);
+    for (int i = 0; i < 3; ++i) (key == 0 ? m.linear0 : m.linear1)[i] = a.m.row[i];
+    (key == 0 ? m.translate0 : m.translate1) = a.t;
+  }
+  if (!invertible_throughout(m))
+    throw Error(loc, std::string("the motion flattens the ") + what +
+                         " during the shutter: its points move on straight lines between the keyframes, so a half "
+                         "turn (or a scale that changes sign) passes through a flat map; turn it by less within the "
+                         "shutter");
+  return m;
+}
+
+void move_last_solid(RenderScene& out, const Motion& motion, const FileLoc& loc) {
   kernel::MovingSolid m;
   m.solid = out.solids.back();
   const Bounds b = kernel::bounds(out.shapes(), m.solid);
@@ -90,15 +105,7 @@ void move_last_solid(RenderScene& out, const Motion& motion, const FileLoc& loc)
                      "clip it, or intersect it with a box)");
   m.lo = b.lo;
   m.hi = b.hi;
-  for (int key = 0; key < 2; ++key) {
-    const Affine a = motion_key(motion, out.camera.shutter_open, out.camera.shutter_close, key);
-    for (int i = 0; i < 3; ++i) (key == 0 ? m.linear0 : m.linear1)[i] = a.m.row[i];
-    (key == 0 ? m.translate0 : m.translate1) = a.t;
-  }
-  if (!invertible_throughout(m))
-    throw Error(loc, "the motion flattens the solid during the shutter: its points move on straight lines between "
-                     "the keyframes, so a half turn (or a scale that changes sign) passes through a flat map; turn it by "
-                     "less within the shutter");
+  m.map = moving_map(motion, out.camera, loc, "solid");
   const Bounds swept = kernel::swept_bounds(m);
   validate::coordinates(swept.lo, loc, "moving solid's bounds");
   validate::coordinates(swept.hi, loc, "moving solid's bounds");

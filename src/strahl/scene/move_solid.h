@@ -3,6 +3,8 @@
 // RenderScene::moving_solids, carried by the motion's map at shutter open and close
 // (geometry/moving_solid.h). Spheres (scene/compile.cpp) and meshes have motions of their own.
 
+#include "strahl/camera/camera.h"
+#include "strahl/geometry/moving_map.h"
 #include "strahl/scene/place_solid.h"
 #include "strahl/scene/scene.h"
 
@@ -16,6 +18,11 @@ void validate_motion(const Motion& m, const FileLoc& loc);
 // The motion's map at shutter open (key 0) and close (key 1), in world space: a keyframe's
 // transform, or the velocity's displacement at that time of the shutter.
 Affine motion_key(const Motion& m, Real shutter_open, Real shutter_close, int key);
+
+// The motion's map A(u) over the shutter (geometry/moving_solid.h), checked: finite, and
+// invertible at every time of the shutter (else an error at `loc` saying the motion flattens
+// `what`: keyframes a half turn apart, a scale changing sign).
+kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what);
 
 // Moves the last solid of out.solids by `motion` (which moves): after the solid's own placement,
 // its points move on straight lines from where motion_key(0) puts them to where motion_key(1)

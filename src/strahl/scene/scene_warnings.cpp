@@ -18,6 +18,7 @@ Bounds bounded_shapes(const RenderScene& s) {
   for (const kernel::MovingSphere& m : s.moving_spheres) extend(b, kernel::swept_bounds(m));
   for (const kernel::MovingTriangle& m : s.moving_triangles) extend(b, kernel::swept_bounds(m));
   for (const kernel::MovingSolid& m : s.moving_solids) extend(b, kernel::swept_bounds(m));
+  for (const kernel::MovingInstance& m : s.moving_instances) extend(b, kernel::swept_bounds(m));
   for (const Bounds& p : s.instance_bounds) extend(b, p);
   return b;
 }

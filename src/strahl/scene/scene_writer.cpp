@@ -228,11 +228,12 @@ void csg(Writer& w, const Csg& c) {
 void object(Writer& w, const SceneObject& o, const std::vector<ObjectGroup>& groups, const std::string& mesh_stem,
             int& meshes) {
   using W = Writer;
-  if (const auto* in = dynamic_cast<const Instance*>(&o)) {  // (no material, no motion)
+  if (const auto* in = dynamic_cast<const Instance*>(&o)) {  // (no material)
     if (in->group >= groups.size()) throw Error(in->loc, "cannot write an instance of a group the scene does not have");
     w.line(2, "- type: instance");
     w.line(4, "of: " + W::quoted(groups[in->group].name));
     placement(w, *in);
+    motion(w, in->motion);
     return;
   }
   if (const auto* s = dynamic_cast<const Sphere*>(&o)) {

@@ -465,7 +465,7 @@ class Reader {
 
   // `type: instance, of: name` with its own transform.
   SceneObject* instance(const YAML::Node& n, Scene& scene) const {
-    keys(n, {"type", "of", "scale", "rotate", "translate", "matrix", "transform"}, "instance");
+    keys(n, {"type", "of", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "instance");
     const YAML::Node of = required(n, "of", "instance");
     const std::string name = scalar(of, "instance of");
     if (reading_group_) {
