@@ -5,6 +5,7 @@
 // brought to the unmoved object by A(u)⁻¹ (a placement, geometry/placement.h), where its t is the
 // same; normals come back by A(u)⁻ᵀ. scene/move_solid.h checks that A(u) is invertible at every u.
 
+#include <cstdint>
 #include <initializer_list>
 
 #include "strahl/geometry/moving.h"
@@ -16,21 +17,36 @@ namespace strahl::kernel {
 struct MovingMap {
   Vec3 linear0[3], linear1[3];   // A's linear part at shutter open and at close, by rows
   Vec3 translate0, translate1;   // A's translation at shutter open and at close
+  // Where the linear part is the same at both keys (a velocity, keyframes that only translate),
+  // its inverse, the same at every u: the one at_time() would compute, bit for bit.
+  Vec3 fixed_inverse[3];
+  std::uint32_t fixed = 0;
 };
 
-// world → the unmoved object's space at time u: A(u)⁻¹, by cofactors. A velocity's linear part is
-// the identity at both keys, and so exactly the identity here: such an object is met where the
-// ray itself, displaced, meets the unmoved one.
-STRAHL_HOST_DEVICE inline Placement at_time(const MovingMap& m, Real u) {
-  const Vec3 r0 = lerp(m.linear0[0], m.linear1[0], u), r1 = lerp(m.linear0[1], m.linear1[1], u),
-             r2 = lerp(m.linear0[2], m.linear1[2], u);
+// The inverse of the linear part with rows r0, r1, r2, by cofactors.
+STRAHL_HOST_DEVICE inline void inverse_rows(const Vec3& r0, const Vec3& r1, const Vec3& r2, Vec3* out) {
   const Vec3 c0 = cross(r1, r2), c1 = cross(r2, r0), c2 = cross(r0, r1);
   const Real inv_det = 1 / dot(r0, c0);
+  out[0] = Vec3(c0.x, c1.x, c2.x) * inv_det;
+  out[1] = Vec3(c0.y, c1.y, c2.y) * inv_det;
+  out[2] = Vec3(c0.z, c1.z, c2.z) * inv_det;
+}
+
+// world → the unmoved object's space at time u: A(u)⁻¹. A velocity's linear part is the identity
+// at both keys, and so exactly the identity here: such an object is met where the ray itself,
+// displaced, meets the unmoved one.
+STRAHL_HOST_DEVICE inline Placement at_time(const MovingMap& m, Real u) {
   Placement x;
-  x.row[0] = Vec3(c0.x, c1.x, c2.x) * inv_det;
-  x.row[1] = Vec3(c0.y, c1.y, c2.y) * inv_det;
-  x.row[2] = Vec3(c0.z, c1.z, c2.z) * inv_det;
   x.translate = lerp(m.translate0, m.translate1, u);
+  if (m.fixed != 0) {
+    x.row[0] = m.fixed_inverse[0];
+    x.row[1] = m.fixed_inverse[1];
+    x.row[2] = m.fixed_inverse[2];
+    return x;
+  }
+  const Vec3 r0 = lerp(m.linear0[0], m.linear1[0], u), r1 = lerp(m.linear0[1], m.linear1[1], u),
+             r2 = lerp(m.linear0[2], m.linear1[2], u);
+  inverse_rows(r0, r1, r2, x.row);
   return x;
 }
 

@@ -235,7 +235,7 @@ void hash(Hasher& h, const kernel::PlacedSolid& x) {
   h.add(x.hi);
 }
 static_assert(sizeof(kernel::Instance) == 120, "kernel::Instance changed: hash its new fields here");
-static_assert(sizeof(kernel::MovingMap) == 192 && sizeof(kernel::MovingSolid) == 256,
+static_assert(sizeof(kernel::MovingMap) == 272 && sizeof(kernel::MovingSolid) == 336,
               "kernel::MovingMap or MovingSolid changed: hash its new fields here");
 void hash(Hasher& h, const kernel::MovingMap& x) {
   for (int i = 0; i < 3; ++i) {
@@ -244,6 +244,8 @@ void hash(Hasher& h, const kernel::MovingMap& x) {
   }
   h.add(x.translate0);
   h.add(x.translate1);
+  for (const Vec3& r : x.fixed_inverse) h.add(r);
+  h.add(x.fixed);
 }
 void hash(Hasher& h, const kernel::MovingSolid& x) {
   hash(h, x.solid);
@@ -259,7 +261,7 @@ void hash(Hasher& h, const kernel::Instance& x) {
   h.add(x.group);
   h.add(x.translation_only);
 }
-static_assert(sizeof(kernel::MovingInstance) == 376, "kernel::MovingInstance changed: hash its new fields here");
+static_assert(sizeof(kernel::MovingInstance) == 456, "kernel::MovingInstance changed: hash its new fields here");
 void hash(Hasher& h, const kernel::MovingInstance& x) {
   hash(h, x.instance);
   hash(h, x.map);

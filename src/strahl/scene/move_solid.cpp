@@ -87,6 +87,13 @@ kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const F
     for (int i = 0; i < 3; ++i) (key == 0 ? m.linear0 : m.linear1)[i] = a.m.row[i];
     (key == 0 ? m.translate0 : m.translate1) = a.t;
   }
+  // lerp(L, L, u) = L + (L − L)·u = L + 0 is the same at every u ∈ [0, 1] (L itself but for a −0,
+  // which becomes +0): at_time()'s inverse of it too, computed here once.
+  if (m.linear0[0] == m.linear1[0] && m.linear0[1] == m.linear1[1] && m.linear0[2] == m.linear1[2]) {
+    m.fixed = 1;
+    kernel::inverse_rows(kernel::lerp(m.linear0[0], m.linear1[0], 0), kernel::lerp(m.linear0[1], m.linear1[1], 0),
+                         kernel::lerp(m.linear0[2], m.linear1[2], 0), m.fixed_inverse);
+  }
   if (!invertible_throughout(m))
     throw Error(loc, std::string("the motion flattens the ") + what +
                          " during the shutter: its points move on straight lines between the keyframes, so a half "
