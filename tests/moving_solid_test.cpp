@@ -350,6 +350,40 @@ objects:
             std::string::npos);
 }
 
+// A keyframe is any transform, as a placement is: a matrix, a transform list, an axis-and-angle
+// rotation. A sphere's must keep it a sphere (a similarity); its radius scales with it.
+TEST(MovingSolid, KeyframesTakeAnyTransform) {
+  const RenderScene rs = compile(parse_scene(R"(
+objects:
+  - type: box
+    corners: [[0, 0, 0], [1, 1, 1]]
+    motion:
+      from: {matrix: [[1, 0.5, 0, 1], [0, 1, 0, 2], [0, 0, 2, 3]]}
+      to: {transform: [{scale: 2}, {rotate: {axis: [0, 0, 1], angle: 30}}, {translate: [1, 0, 0]}]}
+  - {type: sphere, center: [1, 0, 0], radius: 1, motion: {to: {rotate: {axis: [1, 1, 0], angle: 40}, scale: 3}}}
+)",
+                                             "ok.yaml", "."));
+  ASSERT_EQ(rs.moving_solids.size(), 1u);
+  const kernel::MovingMap& m = rs.moving_solids[0].map;
+  EXPECT_EQ(m.linear0[0], Vec3(1, 0.5, 0));
+  EXPECT_EQ(m.linear0[2], Vec3(0, 0, 2));
+  EXPECT_EQ(m.translate0, Vec3(1, 2, 3));
+  const Mat3 to = Mat3::rotation(Vec3(0, 0, 1), 30) * Mat3::scale(Vec3(2));
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(m.linear1[i], to.row[i]);
+  EXPECT_EQ(m.translate1, Vec3(1, 0, 0));
+  ASSERT_EQ(rs.moving_spheres.size(), 1u);
+  EXPECT_EQ(rs.moving_spheres[0].radius0, 1);
+  EXPECT_NEAR(rs.moving_spheres[0].radius1, 3, 1e-12);
+  EXPECT_TRUE(test::vec_near(rs.moving_spheres[0].center1, Mat3::rotation(Vec3(1, 1, 0), 40) * Vec3(3, 0, 0), 1e-12));
+  EXPECT_EQ(error_of("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, motion: {to: {matrix: [[1, 0.1, 0], "
+                     "[0, 1, 0], [0, 0, 1]]}}}\n"),
+            std::string("bad.yaml:2:5: ") + kNonUniformSphereScale);
+  EXPECT_NE(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {matrix: [[1, 0, 0], "
+                     "[0, 1, 0]]}}}\n")
+                .find("bad.yaml:2:"),
+            std::string::npos);
+}
+
 // A scene of moving solids is written with their motions and reads back to the same scene.
 TEST(MovingSolid, WrittenAndReadBack) {
   const std::string text = R"(
@@ -359,14 +393,17 @@ objects:
   - {type: torus, center: [0, 0, 0], major_radius: 1, minor_radius: 0.2, motion: {from: {translate: [0, 1, 0]}, to: {rotate: [0, 0, 30]}}}
   - {type: difference, objects: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}, {type: sphere, center: [1, 1, 1], radius: 0.5}], motion: {velocity: [0, 0, 1]}}
   - {type: instance, of: g, translate: [2, 0, 0], motion: {from: {rotate: [0, 10, 0]}, to: {translate: [0, 1, 0]}}}
+  - {type: cone, base: [0, 0, 0], cap: [0, 1, 0], base_radius: 1, cap_radius: 0, motion: {from: {matrix: [[1, 0.25, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0.125]]}, to: {rotate: {axis: [1, 2, 3], angle: 20}}}}
+  - {type: sphere, center: [3, 0, 0], radius: 1, motion: {to: {transform: [{rotate: {axis: [1, 1, 0], angle: 40}}, {scale: 3}]}}}
 groups:
   g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]
 )";
   const Scene a = parse_scene(text, "a.yaml", ".");
   const Scene b = parse_scene(scene_to_yaml(a), "b.yaml", ".");
   const RenderScene ra = compile(a), rb = compile(b);
-  ASSERT_EQ(ra.moving_solids.size(), 3u);
+  ASSERT_EQ(ra.moving_solids.size(), 4u);
   ASSERT_EQ(ra.moving_instances.size(), 1u);
+  EXPECT_NE(scene_to_yaml(a).find("to: {matrix: [["), std::string::npos);
   EXPECT_EQ(scene_hash(ra), scene_hash(rb));
 }
 

@@ -96,23 +96,27 @@ Mat3 moved_linear(const Motion& m, int key) {
   return m.kind == Motion::Kind::Keyframes ? (key == 0 ? m.from : m.to).linear() : Mat3{};
 }
 
+// The scale of a map that scales evenly (a similarity: a sphere stays a sphere), else 0.
+Real even_scale(const Transform& x) {
+  if (!x.general()) {
+    const Vec3 s = x.scale;
+    return std::fabs(s.x) == std::fabs(s.y) && std::fabs(s.x) == std::fabs(s.z) ? std::fabs(s.x) : 0;
+  }
+  // Columns of one length, at right angles, to rounding (an axis-and-angle rotation's are).
+  const Mat3 c = x.matrix().transposed();
+  const Real l0 = length(c.row[0]), l1 = length(c.row[1]), l2 = length(c.row[2]);
+  const Real tol = 1e-12 * l0;
+  if (std::fabs(l1 - l0) <= tol && std::fabs(l2 - l0) <= tol && std::fabs(dot(c.row[0], c.row[1])) <= tol * l0 &&
+      std::fabs(dot(c.row[0], c.row[2])) <= tol * l0 && std::fabs(dot(c.row[1], c.row[2])) <= tol * l0)
+    return l0;
+  return 0;
+}
+
 }  // namespace
 
 void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
   if (placed()) {
-    Real even = 0;  // the scale when the map scales evenly (a similarity), else 0
-    if (!placement.general()) {
-      const Vec3 s = placement.scale;
-      if (std::fabs(s.x) == std::fabs(s.y) && std::fabs(s.x) == std::fabs(s.z)) even = std::fabs(s.x);
-    } else {
-      // Columns of one length, at right angles, to rounding (an axis-and-angle rotation's are).
-      const Mat3 c = placement.matrix().transposed();
-      const Real l0 = length(c.row[0]), l1 = length(c.row[1]), l2 = length(c.row[2]);
-      const Real tol = 1e-12 * l0;
-      if (std::fabs(l1 - l0) <= tol && std::fabs(l2 - l0) <= tol && std::fabs(dot(c.row[0], c.row[1])) <= tol * l0 &&
-          std::fabs(dot(c.row[0], c.row[2])) <= tol * l0 && std::fabs(dot(c.row[1], c.row[2])) <= tol * l0)
-        even = l0;
-    }
+    const Real even = even_scale(placement);
     if (even > 0) {
       // Still a sphere: its centre moved, its radius scaled.
       Sphere moved_sphere = *this;
@@ -144,10 +148,9 @@ void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::u
     Real radius_at[2] = {radius, radius};
     if (motion.kind == Motion::Kind::Keyframes) {
       for (int key = 0; key < 2; ++key) {
-        const Vec3 s = (key == 0 ? motion.from : motion.to).scale;
-        if (std::fabs(s.x) != std::fabs(s.y) || std::fabs(s.x) != std::fabs(s.z))
-          throw Error(loc, std::string(kNonUniformSphereScale));
-        radius_at[key] = radius * std::fabs(s.x);
+        const Real s = even_scale(key == 0 ? motion.from : motion.to);
+        if (!(s > 0)) throw Error(loc, std::string(kNonUniformSphereScale));
+        radius_at[key] = radius * s;
         validate::positive(radius_at[key], loc, "sphere radius after the motion scale");
         validate::length(radius_at[key], loc, "sphere radius after the motion scale");
       }

@@ -38,9 +38,10 @@ inline Material material_with_color(const Vec3& color) {
 // How an object moves during the shutter interval (motion blur): not at all, with a linear
 // velocity (units per unit of shutter time: at time τ it is displaced by velocity·τ), or between
 // two keyframed transforms, `from` at shutter open and `to` at shutter close (vertices, or a
-// sphere's centre, move linearly in between). Keyframes act in the object's own coordinates:
-// world space for spheres and triangles, before a mesh's own scale/rotate/translate (so a mesh
-// turns about its own origin). Planes cannot move.
+// sphere's centre, move linearly in between). Keyframes (any transform: scale/rotate/translate
+// or a matrix) act in world space, after the object's own placement, for spheres, triangles,
+// solids and instances; a mesh's act in its own coordinates, before its scale/rotate/translate
+// (so a mesh turns about its own origin). Planes cannot move.
 inline constexpr const char* kNonUniformSphereScale =
     "a sphere's motion scale must be the same on every axis up to sign (a non-uniform scale would make an "
     "ellipsoid, which a sphere cannot be)";

@@ -82,7 +82,10 @@ std::string material_map(const Material& m) {
   return s + "}";
 }
 
+std::string matrix_rows(const Transform& t, const std::string& what);
+
 std::string transform_map(const Transform& t, const std::string& what) {
+  if (t.general()) return "{matrix: " + matrix_rows(t, what + " matrix") + "}";
   return "{scale: " + Writer::vec(t.scale, what + " scale") + ", rotate: " + Writer::vec(t.rotate_degrees, what + " rotate") +
          ", translate: " + Writer::vec(t.translate, what + " translate") + "}";
 }
@@ -98,14 +101,15 @@ void motion(Writer& w, const Motion& m) {
 }
 
 // A general transform (Transform::general) as its 3×4 matrix.
-void matrix(Writer& w, const Transform& t, const std::string& what) {
+std::string matrix_rows(const Transform& t, const std::string& what) {
   const Mat3& m = t.matrix();
   std::string rows;
   for (int r = 0; r < 3; ++r)
     rows += std::string(r ? ", " : "") + "[" + Writer::num(m.row[r].x, what) + ", " + Writer::num(m.row[r].y, what) + ", " +
             Writer::num(m.row[r].z, what) + ", " + Writer::num(t.translate[r], what) + "]";
-  w.line(4, "matrix: [" + rows + "]");
+  return "[" + rows + "]";
 }
+void matrix(Writer& w, const Transform& t, const std::string& what) { w.line(4, "matrix: " + matrix_rows(t, what)); }
 
 void mesh(Writer& w, const Mesh& mesh, const std::string& file) {
   using W = Writer;

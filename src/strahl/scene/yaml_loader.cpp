@@ -413,18 +413,12 @@ class Reader {
     scene.add(l, loc(n));
   }
 
-  // `motion: {velocity: [x, y, z]}` or `motion: {from: {…}, to: {…}}` with scale/rotate/translate.
+  // `motion: {velocity: [x, y, z]}` or `motion: {from: {…}, to: {…}}`, each keyframe a transform
+  // as an object's placement is (scale/rotate/translate, a matrix or a transform list).
   Transform transform(const YAML::Node& n, const std::string& what) const {
     map(n, what);
-    keys(n, {"scale", "rotate", "translate"}, what);
-    Transform t;
-    if (const auto v = n["scale"]) {
-      t.scale = v.IsScalar() ? Vec3(number(v, "scale")) : vec3(v, "scale");
-      if (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0) fail(v, "motion scale must not be zero");
-    }
-    if (const auto v = n["rotate"]) t.rotate_degrees = vec3(v, "rotate");
-    if (const auto v = n["translate"]) t.translate = vec3(v, "translate");
-    return t;
+    keys(n, {"scale", "rotate", "translate", "matrix", "transform"}, what);
+    return placement(n, "motion ");
   }
   Motion motion(const YAML::Node& n) const {
     map(n, "motion");
