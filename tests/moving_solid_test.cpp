@@ -344,6 +344,18 @@ objects:
   EXPECT_NE(error_of(group + "  - {type: instance, of: g, motion: {to: {rotate: [180, 0, 0]}}}\n")
                 .find("bad.yaml:4:5: the motion flattens the instance"),
             std::string::npos);
+  // A group keeps only still shapes: a moving solid in it is refused, not dropped, and a moving
+  // instance in it is a nested instance.
+  EXPECT_EQ(error_of("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {velocity: [1, 0, 0]}}]\n"
+                     "objects:\n  - {type: instance, of: g}\n"),
+            "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to the instances)");
+  EXPECT_EQ(error_of("groups:\n  g: [{type: sphere, center: [0, 0, 0], radius: 1, scale: [1, 2, 1], motion: {velocity: "
+                     "[1, 0, 0]}}]\nobjects:\n  - {type: instance, of: g}\n"),
+            "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to the instances)");
+  EXPECT_NE(error_of("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]\n  h: [{type: instance, of: g, "
+                     "motion: {velocity: [1, 0, 0]}}]\nobjects:\n  - {type: instance, of: h}\n")
+                .find("nest"),
+            std::string::npos);
   // A scale changing sign on one axis passes through 0 there.
   EXPECT_NE(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {scale: [1, -1, 1]}}}\n")
                 .find("flattens"),

@@ -32,15 +32,17 @@ void compile_groups(const Scene& scene, RenderScene& out) {
       validate::material(object->material, object->loc);
       const auto material_index = static_cast<std::uint32_t>(out.materials.size());
       out.materials.push_back(object->material);
-      const std::size_t planes = g.planes.size(), solids = g.solids.size(), instances = g.instances.size();
-      const std::size_t moving = g.moving_spheres.size() + g.moving_triangles.size();
+      // (A group keeps only its static shapes: whatever else an object compiles to is refused.)
+      const auto placed = [&] { return g.instances.size() + g.moving_instances.size(); };
+      const auto moving = [&] { return g.moving_spheres.size() + g.moving_triangles.size() + g.moving_solids.size(); };
+      const std::size_t planes = g.planes.size(), solids = g.solids.size(), instances = placed(), moved = moving();
       object->compile_into(g, material_index, object_id++);
       if (g.planes.size() != planes)
         throw Error(object->loc, "a plane cannot be part of group '" + group.name + "': it is unbounded (place it in objects)");
-      if (g.moving_spheres.size() + g.moving_triangles.size() != moving)
-        throw Error(object->loc, "objects of group '" + group.name + "' cannot move (give the motion to no object of a group)");
-      if (g.instances.size() != instances)
+      if (placed() != instances)
         throw Error(object->loc, "instances cannot be nested: group '" + group.name + "' places an instance");
+      if (moving() != moved)
+        throw Error(object->loc, "objects of group '" + group.name + "' cannot move (give the motion to the instances)");
       for (std::size_t i = solids; i < g.solids.size(); ++i) {
         const kernel::Solid& k = g.solids[i];
         const bool unbounded = (k.kind == kernel::SolidKind::Quadric && !g.quadrics[k.index].clipped) ||
