@@ -13,6 +13,7 @@
 #include "convert.h"
 #include "shape_args.h"
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/instances.h"
 #include "strahl/scene/mesh_file.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/scene_file.h"
@@ -366,6 +367,11 @@ void bind_shapes(py::module_& m) {
       .def_property_readonly("transform", [](const Mesh& mesh) { return mesh.transform; });
 }
 
+void bind_instance(py::module_& m) {
+  py::class_<Instance, SceneObject>(m, "Instance", "A placed group (Scene.add_instance; scene files' `instance`).")
+      .def_readonly("group", &Instance::group, "The group's index in Scene.groups");
+}
+
 void bind_lights(py::module_& m) {
   const auto white = py::make_tuple(1, 1, 1);
   py::class_<Light>(m, "Light", "A light source; made by PointLight, DirectionalLight, RectLight, DiskLight, SphereLight.")
@@ -589,6 +595,38 @@ void bind_scene_class(py::module_& m) {
              validate::finite(position, {}, "light position");
              s.add(point_light(position), caller_loc());
            }, py::arg("position"), "The lecture's addLightSource: a white point light of intensity 1.")
+      .def("add_group", [](Scene& s, const std::string& name, const std::vector<const SceneObject*>& objects) {
+             for (const ObjectGroup& g : s.groups)
+               if (g.name == name) throw Error("group '" + name + "' is defined twice");
+             if (objects.empty()) throw Error("group '" + name + "' has no objects");
+             ObjectGroup g;
+             g.name = name;
+             g.loc = caller_loc();
+             for (const SceneObject* o : objects) {
+               std::unique_ptr<SceneObject> copy = o ? copy_object(*o) : nullptr;
+               if (!copy) throw py::type_error("a group holds shapes (a Sphere, Triangle, Mesh, solid or CSG tree)");
+               g.objects.push_back(std::move(copy));
+             }
+             s.groups.push_back(std::move(g));
+           }, py::arg("name"), py::arg("objects"),
+           "Defines a group (copies of the objects), placed by add_instance as often as you like (scene files' `groups`).")
+      .def_property_readonly("groups", [](const Scene& s) {
+        std::vector<std::string> names;
+        for (const ObjectGroup& g : s.groups) names.push_back(g.name);
+        return names;
+      }, "The groups' names")
+      .def("add_instance", [](Scene& s, const std::string& group, const py::object& scale, const Vec3& rotate,
+                              const Vec3& translate, const std::optional<Motion>& motion) {
+             std::uint32_t index = 0;
+             while (index < s.groups.size() && s.groups[index].name != group) ++index;
+             if (index == s.groups.size()) throw Error("unknown group '" + group + "' (add it with add_group first)");
+             Instance in(index, make_transform(scale, rotate, translate, "instance"));
+             in.loc = caller_loc();
+             if (motion) in.motion = *motion;
+             s.add(std::move(in));
+           }, py::arg("group"), py::kw_only(), py::arg("scale") = 1.0, py::arg("rotate") = py::make_tuple(0, 0, 0),
+           py::arg("translate") = py::make_tuple(0, 0, 0), py::arg("motion") = py::none(),
+           "Places a group (scene files' `type: instance`), moved by `motion` if given.")
       .def("getNumLightSources", &Scene::getNumLightSources)
       .def("getLightSource", [](const Scene& s, int i) {
         if (i < 0 || i >= s.getNumLightSources()) throw py::index_error("no light source " + std::to_string(i));
@@ -637,6 +675,7 @@ void bind_scene(py::module_& m) {
   bind_material(m);
   bind_motion(m);
   bind_shapes(m);
+  bind_instance(m);
   bind_lights(m);
   bind_camera(m);
   bind_settings(m);

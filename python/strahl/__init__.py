@@ -26,6 +26,7 @@ from ._strahl import (  # noqa: F401
     DiskLight,
     Error,
     Implicit,
+    Instance,
     Intersection,
     Inverse,
     Light,
@@ -58,15 +59,16 @@ from ._strahl import _scene_hash  # noqa: F401  (tests: the fingerprint of the c
 
 __all__ = [
     "Box", "Camera", "Cone", "Csg", "Cylinder", "Difference", "DirectionalLight", "Disk", "DiskLight", "Error",
-    "Image", "Implicit", "Intersection", "Inverse", "Light", "Material", "Merge", "Mesh", "Motion", "Plane",
-    "PointLight", "Quadric", "RectLight", "RenderSettings", "Scene", "SceneObject", "Sphere", "SphereLight", "Torus",
-    "Transform", "Triangle", "Union", "lecture_scene", "load", "loads", "read", "render", "version", "write",
+    "Image", "Implicit", "Instance", "Intersection", "Inverse", "Light", "Material", "Merge", "Mesh", "Motion",
+    "Plane", "PointLight", "Quadric", "RectLight", "RenderSettings", "Scene", "SceneObject", "Sphere", "SphereLight",
+    "Torus", "Transform", "Triangle", "Union", "lecture_scene", "load", "loads", "read", "render", "version", "write",
 ]
 
 
 # The compiled classes show as strahl.Sphere, not strahl._strahl.Sphere.
-for _name in ("Box", "Camera", "Cone", "Csg", "Disk", "Implicit", "Light", "Material", "Mesh", "Motion", "Plane",
-              "Quadric", "RenderSettings", "Scene", "SceneObject", "Sphere", "Torus", "Transform", "Triangle"):
+for _name in ("Box", "Camera", "Cone", "Csg", "Disk", "Implicit", "Instance", "Light", "Material", "Mesh", "Motion",
+              "Plane", "Quadric", "RenderSettings", "Scene", "SceneObject", "Sphere", "Torus", "Transform",
+              "Triangle"):
     getattr(_strahl, _name).__module__ = "strahl"
 
 

@@ -131,3 +131,30 @@ def test_solids_render():
     image = strahl.render(scene, width=32, height=24)
     red = image[:, :, 0] - image[:, :, 1]
     assert red.max() > 0.3 and np.count_nonzero(red > 0.3) > 20
+
+
+def test_groups_and_moving_instances_compile_as_in_a_scene_file():
+    built = strahl.Scene()
+    built.camera.shutter = (0, 1)
+    built.add_group("pair", [strahl.Box((0, 0, 0), (1, 1, 1)), strahl.Sphere((2, 0, 0), 0.5, color=(1, 0, 0))])
+    built.add_instance("pair", translate=(0, 0, -3))
+    built.add_instance("pair", scale=0.5, rotate=(0, 45, 0), motion=strahl.Motion.linear((1, 0, 0)))
+    loaded = strahl.loads("""
+camera: {shutter: [0, 1]}
+groups:
+  pair:
+    - {type: box, corners: [[0, 0, 0], [1, 1, 1]]}
+    - {type: sphere, center: [2, 0, 0], radius: 0.5, material: {color: [1, 0, 0]}}
+objects:
+  - {type: instance, of: pair, translate: [0, 0, -3]}
+  - {type: instance, of: pair, scale: 0.5, rotate: [0, 45, 0], motion: {velocity: [1, 0, 0]}}
+""")
+    assert built.groups == ["pair"]
+    assert [type(o).__name__ for o in built.objects] == ["Instance", "Instance"]
+    assert strahl._scene_hash(built) == strahl._scene_hash(loaded)
+    with pytest.raises(strahl.Error, match="unknown group 'trio'"):
+        built.add_instance("trio")
+    with pytest.raises(strahl.Error, match="defined twice"):
+        built.add_group("pair", [strahl.Box((0, 0, 0), (1, 1, 1))])
+    with pytest.raises(TypeError):
+        strahl.Scene().add(built.objects[0])  # an instance belongs to its scene's groups
