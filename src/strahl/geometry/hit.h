@@ -8,7 +8,9 @@
 
 namespace strahl {
 
-enum class ShapeKind : std::uint8_t { None, Sphere, Plane, Triangle, MovingSphere, MovingTriangle, Solid, Instance, MovingSolid, MovingInstance };
+enum class ShapeKind : std::uint8_t {
+  None, Sphere, Plane, Triangle, MovingSphere, MovingTriangle, Solid, Instance, MovingSolid, MovingInstance
+};
 
 struct Hit {
   Real t = kInfinity;

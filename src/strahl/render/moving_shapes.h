@@ -1,8 +1,9 @@
 #pragma once
 // Scene queries against the moving shapes (motion blur): each is intersected where it is at the
-// ray's time (a solid or an instance: the ray brought to where it stands still, geometry/moving_map.h). They sit in BVHs of their own over their swept boxes, one per time segment of the
-// shutter (accel/motion_bvh.h), so static shapes keep their tight tree and a static scene pays
-// nothing (an empty tree is skipped at once).
+// ray's time (a solid or an instance: the ray brought to where it stands still,
+// geometry/moving_map.h). They sit in BVHs of their own over their swept boxes, one per time
+// segment of the shutter (accel/motion_bvh.h), so static shapes keep their tight tree and a
+// static scene pays nothing (an empty tree is skipped at once).
 
 #include "strahl/geometry/hit.h"
 #include "strahl/render/instance_queries.h"
