@@ -134,17 +134,11 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void surface_at(const SceneView& s, const
       sp.offset = ray_offset(ray, hit.t, sp.p, 0);
       break;
     }
-    case ShapeKind::Instance: {
-      const InstanceSurface is = instance_surface(s, sp.p, hit);
-      sp.geometric_normal = is.geometric_normal;
-      sp.normal = is.normal;
-      sp.texcoord = is.texcoord;
-      sp.material = is.material;
-      sp.offset = ray_offset(ray, hit.t, sp.p, is.magnitude);
-      break;
-    }
+    case ShapeKind::Instance:
     case ShapeKind::MovingInstance: {
-      const InstanceSurface is = moving_instance_surface(s, shutter_fraction(s, ray.time), sp.p, hit);
+      const InstanceSurface is = hit.kind == ShapeKind::Instance
+                                     ? instance_surface(s, sp.p, hit)
+                                     : moving_instance_surface(s, shutter_fraction(s, ray.time), sp.p, hit);
       sp.geometric_normal = is.geometric_normal;
       sp.normal = is.normal;
       sp.texcoord = is.texcoord;
