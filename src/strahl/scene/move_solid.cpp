@@ -1,4 +1,4 @@
-// validate_motion, motion_key and move_last_solid (scene/move_solid.h).
+// validate_motion, moving_map and move_last_solid (scene/move_solid.h).
 
 #include "strahl/scene/move_solid.h"
 
@@ -22,6 +22,9 @@ void validate_motion(const Motion& m, const FileLoc& loc) {
   }
 }
 
+namespace {
+
+// The motion's map at shutter open (key 0) and close (key 1), in world space.
 Affine motion_key(const Motion& m, Real shutter_open, Real shutter_close, int key) {
   switch (m.kind) {
     case Motion::Kind::Velocity: return {Mat3{}, m.velocity * (key == 0 ? shutter_open : shutter_close)};
@@ -30,8 +33,6 @@ Affine motion_key(const Motion& m, Real shutter_open, Real shutter_close, int ke
   }
   return {};
 }
-
-namespace {
 
 Real det(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross(b, c)); }
 

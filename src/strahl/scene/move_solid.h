@@ -15,18 +15,15 @@ struct RenderScene;
 // A motion's values: finite, no scale of 0 (an error at `loc`).
 void validate_motion(const Motion& m, const FileLoc& loc);
 
-// The motion's map at shutter open (key 0) and close (key 1), in world space: a keyframe's
-// transform, or the velocity's displacement at that time of the shutter.
-Affine motion_key(const Motion& m, Real shutter_open, Real shutter_close, int key);
-
-// The motion's map A(u) over the shutter (geometry/moving_solid.h), checked: finite, and
+// The motion's map A(u) over the shutter (geometry/moving_map.h): at shutter open a keyframe's
+// `from` (or the velocity's displacement at that time), at close its `to`; checked: finite, and
 // invertible at every time of the shutter (else an error at `loc` saying the motion flattens
 // `what`: keyframes a half turn apart, a scale changing sign).
 kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what);
 
 // Moves the last solid of out.solids by `motion` (which moves): after the solid's own placement,
-// its points move on straight lines from where motion_key(0) puts them to where motion_key(1)
-// does, as a mesh's vertices would. Errors at `loc`: a solid without bounds (an unclipped quadric,
+// its points move on straight lines from where moving_map's A(0) puts them to where A(1) does,
+// as a mesh's vertices would. Errors at `loc`: a solid without bounds (an unclipped quadric,
 // a CSG tree around an inverse), a motion whose map flattens the solid at some time of the
 // shutter (keyframes a half turn apart, a scale changing sign), positions outside the supported
 // coordinates.
