@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "strahl/render/intersect_scene.h"
+#include "strahl/render/surface_point.h"
 #include "strahl/scene/scene_file.h"
 #include "test_helpers.h"
 
@@ -112,8 +114,9 @@ TEST(MotionBlur, KeyframedMeshAndTriangleMove) {
   EXPECT_EQ(transmittance(v, shadow, 10), Vec3(1));
 }
 
-// Keyframes act in the mesh's own coordinates: a half turn about its own y axis, then its
-// placement; vertex normals turn with it.
+// Keyframes act in the mesh's own coordinates: a quarter turn about its own y axis, then its
+// placement. Its points move on arcs (a vertex keeps its distance from the axis: no shrinking
+// midway), and vertex normals turn with it.
 TEST(MotionBlur, KeyframedMeshTurnsAboutItsOwnOrigin) {
   MeshData data;
   data.positions = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -123,21 +126,32 @@ TEST(MotionBlur, KeyframedMeshTurnsAboutItsOwnOrigin) {
   place.translate = {10, 0, 0};
   Mesh mesh(data, Material{}, place);
   Transform to;
-  to.rotate_degrees = {0, 180, 0};
+  to.rotate_degrees = {0, 90, 0};
   mesh.motion = Motion::keyframes(Transform{}, to);
   Scene s;
   s.add(std::move(mesh));
+  s.camera.shutter_open = 0;
+  s.camera.shutter_close = 1;
   const RenderScene rs = compile(s);
-  ASSERT_EQ(rs.moving_triangles.size(), 1u);
-  const kernel::MovingTriangle& t = rs.moving_triangles[0];
-  EXPECT_VEC_NEAR(t.p0[0], Vec3(11, 0, 0), 1e-12);
-  EXPECT_VEC_NEAR(t.p1[0], Vec3(9, 0, 0), 1e-12);
-  EXPECT_VEC_NEAR(t.p1[1], Vec3(10, 1, 0), 1e-12);
-  EXPECT_VEC_NEAR(t.p1[2], Vec3(10, 0, -1), 1e-12);
-  ASSERT_EQ(t.normals, 0);
-  ASSERT_EQ(rs.vertex_normals.size(), 2u);
-  EXPECT_VEC_NEAR(rs.vertex_normals[0].n0, Vec3(0, 0, 1), 1e-12);
-  EXPECT_VEC_NEAR(rs.vertex_normals[1].n0, Vec3(0, 0, -1), 1e-12);
+  ASSERT_TRUE(rs.moving_triangles.empty());
+  ASSERT_EQ(rs.moving_instances.size(), 1u);
+  const kernel::MovingMap& m = rs.moving_instances[0].map;
+  for (const Real u : {0.0, 0.25, 0.5, 1.0}) {
+    const Real a = u * kPi / 2;
+    EXPECT_TRUE(test::vec_near(kernel::moved_point(m, {1, 0, 0}, u), Vec3(10 + std::cos(a), 0, -std::sin(a)), 1e-12)) << u;
+    EXPECT_TRUE(test::vec_near(kernel::moved_point(m, {0, 0, 1}, u), Vec3(10 + std::sin(a), 0, std::cos(a)), 1e-12)) << u;
+  }
+  // Midway the face is turned by 45°: a ray along its normal meets it at the turned centroid,
+  // with the vertex normal turned alike.
+  const SceneView v = rs.view();
+  const Real c = std::sqrt(0.5);
+  const Vec3 centroid = Vec3(10, 0, 0) + Vec3(c * 2 / 3, 1.0 / 3, 0);
+  const Vec3 n = normalize(Vec3(2 * c, 1, 0));
+  const Ray ray{centroid + n * 5, -n, 0.5};
+  const Hit h = closest_hit(v, ray, 0, kInfinity);
+  ASSERT_TRUE(h.found());
+  EXPECT_NEAR(h.t, 5, 1e-12);
+  EXPECT_TRUE(test::vec_near(surface_at(v, ray, h).normal, Vec3(c, 0, c), 1e-12));
   // A velocity moves the placed mesh in world space by velocity × time.
   Mesh fast(data, Material{}, place);
   fast.motion = Motion::linear({0, 2, 0});
@@ -172,7 +186,7 @@ objects:
   EXPECT_EQ(rs.camera.shutter_close, 0.5);
   EXPECT_EQ(rs.materials[0].roughness, 0.2);
   EXPECT_EQ(rs.moving_spheres.at(0).center1, Vec3(0.5, 0, 0));
-  EXPECT_EQ(rs.moving_triangles.size(), 1u);
+  EXPECT_EQ(rs.moving_instances.size(), 1u);  // (the triangle turns: an instance, moving on arcs)
 
   const auto error_of = [](const std::string& text) {
     try {

@@ -213,15 +213,16 @@ TEST(MotionBvh, OneSegmentWhereShapesBarelyMove) {
   EXPECT_GT(scene.bvh.swept_area[1], 0.8 * scene.bvh.swept_area[0]);
 }
 
-// The motion-blur scene's torus turns by 60° during the shutter: its boxes shrink with every
-// segment, and the build takes several.
+// The motion-blur scene's torus (a mesh) turns by 60° during the shutter (a moving instance of
+// itself, one box): its boxes shrink with every segment, and the build takes more than one.
 TEST(MotionBvh, MotionBlurSceneIsCut) {
   const RenderScene rs = compile(load_scene(std::string(STRAHL_SOURCE_DIR) + "/scenes/motion-blur.yaml"));
-  ASSERT_GT(rs.moving_triangles.size(), 100u);
+  ASSERT_EQ(rs.moving_instances.size(), 1u);
+  ASSERT_EQ(rs.groups.size(), 1u);
+  ASSERT_GT(rs.groups[0].triangles.size(), 100u);
   const MotionBvh& bvh = rs.moving_bvh;
   for (int i = 1; (1u << i) <= bvh.segments; ++i) EXPECT_LE(bvh.swept_area[i], 0.8 * bvh.swept_area[i - 1]) << i;
-  EXPECT_GE(bvh.segments, 4u);
-  EXPECT_LT(bvh.swept_area[2], 0.5 * bvh.swept_area[0]);
+  EXPECT_GE(bvh.segments, 2u);
 }
 
 }  // namespace

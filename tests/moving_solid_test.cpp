@@ -16,6 +16,7 @@
 #include "strahl/render/surface_point.h"
 #include "strahl/scene/csg.h"
 #include "strahl/scene/instances.h"
+#include "strahl/scene/move_solid.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
 #include "strahl/scene/solids.h"
@@ -108,7 +109,9 @@ TEST(MovingSolid, BoxIsMetWhereAMovingMeshOfItsFacesIs) {
   const RenderScene a = compile(solid_scene), b = compile(mesh_scene);
   ASSERT_EQ(a.moving_solids.size(), 1u);
   ASSERT_TRUE(a.solids.empty());
-  ASSERT_EQ(b.moving_triangles.size(), 12u);
+  // (the mesh turns: it moves as an instance of a group holding it unmoved, by the same map)
+  ASSERT_EQ(b.moving_instances.size(), 1u);
+  ASSERT_TRUE(b.moving_triangles.empty());
   const int hits = same_hits(a, b, ShapeKind::MovingSolid);
   EXPECT_GT(hits, 2000);
   EXPECT_LT(hits, 18000);
@@ -174,6 +177,93 @@ TEST(MovingSolid, InstanceIsMetWhereTheMovingMeshIs) {
     ASSERT_TRUE(a.instances.empty());
     EXPECT_GT(same_hits(a, b, ShapeKind::MovingInstance), 1000);
   }
+}
+
+// Keyframes that turn carry every point on an arc: keys Rot(a, α)·S₀ and Rot(a, α + θ)·S₁ give
+// Rot(a, α + u·θ)·((1 − u)·S₀ + u·S₁) at shutter fraction u (translations blended). A turning box
+// is met where the still box, so placed, is — past a quarter turn (whose axis the turn's
+// symmetric part gives) and below it, mirrored or not.
+TEST(MovingSolid, TurningBoxIsTheStillBoxTurned) {
+  struct Case {
+    Vec3 axis;
+    Real alpha, theta;
+    Vec3 s0, s1;
+  };
+  for (const Case& c : {Case{{0.3, 1, -0.2}, 20, 130, {1, 1, 1}, {1.5, 1, 0.5}},
+                        Case{{1, -0.4, 0.5}, -35, 50, {0.8, 1.2, 1}, {1, 1, 1}},
+                        Case{{0, 0, 1}, 0, 170, {-1, 1, 1}, {-1.2, 0.9, 1}}}) {
+    const Vec3 t0(0.3, 0, -4), t1(-0.2, 0.4, -4.5);
+    const auto key = [&](Real degrees, const Vec3& scale, const Vec3& t) {
+      return Transform::affine(Mat3::rotation(c.axis, degrees) * Mat3::scale(scale), t);
+    };
+    Scene moving;
+    Box box(kLo, kHi, Material{});
+    box.motion = Motion::keyframes(key(c.alpha, c.s0, t0), key(c.alpha + c.theta, c.s1, t1));
+    moving.add(std::move(box));
+    moving.camera.shutter_open = 0;
+    moving.camera.shutter_close = 1;
+    const RenderScene rs = compile(moving);
+    ASSERT_EQ(rs.moving_solids.size(), 1u);
+    EXPECT_NEAR(rs.moving_solids[0].map.angle, c.theta * kPi / 180, 1e-12);
+    const SceneView v = rs.view();
+    RayMaker rays;
+    int hits = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const Ray ray = rays.next({0, 0.2, -4.3}, 0.8);
+      Scene still;
+      Box turned(kLo, kHi, Material{});
+      const Real u = ray.time;
+      turned.placement = key(c.alpha + u * c.theta, c.s0 * (1 - u) + c.s1 * u, t0 * (1 - u) + t1 * u);
+      still.add(std::move(turned));
+      const RenderScene rs_still = compile(still);
+      const SceneView w = rs_still.view();
+      const Hit a = closest_hit(v, ray, 0, kInfinity), b = closest_hit(w, ray, 0, kInfinity);
+      ASSERT_EQ(a.found(), b.found()) << "ray " << i << " at time " << u;
+      if (!a.found()) continue;
+      ++hits;
+      ASSERT_NEAR(a.t, b.t, 1e-12 * b.t) << "ray " << i;
+      ASSERT_TRUE(test::vec_near(surface_at(v, ray, a).normal, surface_at(w, ray, b).normal, 1e-12)) << "ray " << i;
+    }
+    EXPECT_GT(hits, 300);
+  }
+}
+
+// The box swept by a turning map over a segment of the shutter holds the box's points at every
+// time of the segment (maps with turns up to nearly a half turn, uneven scales, a post map), for
+// the segments the motion BVH cuts.
+TEST(MovingSolid, SweptBoundsOfATurnHoldEveryTime) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Real> u(-1, 1), f(0, 1);
+  Camera camera;
+  camera.shutter_open = 0;
+  camera.shutter_close = 1;
+  int turning = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto key = [&] {
+      return Transform::affine(Mat3::rotation(Vec3(u(rng), u(rng), u(rng)) + Vec3(0.01), u(rng) * 89) *
+                                   Mat3::scale(Vec3(1 + 0.5 * u(rng), 1 + 0.5 * u(rng), 1 + 0.5 * u(rng))),
+                               Vec3(u(rng), u(rng), u(rng)) * 3);
+    };
+    const Affine post{Mat3::rotation(Vec3(1, 2, 3), 25) * Mat3::scale(Vec3(2, 1, 0.5)), Vec3(1, -2, 3)};
+    const kernel::MovingMap m =
+        moving_map(Motion::keyframes(key(), key()), camera, FileLoc{}, "box", trial % 2 == 0 ? &post : nullptr);
+    turning += m.angle != 0;
+    const Vec3 lo(u(rng) - 1, u(rng) - 1, u(rng) - 1), hi(u(rng) + 1, u(rng) + 1, u(rng) + 1);
+    for (const int segments : {1, 2, 4, 8}) {
+      for (int k = 0; k < segments; ++k) {
+        const Real u0 = Real(k) / segments, u1 = Real(k + 1) / segments;
+        const Bounds b = kernel::swept_bounds(m, lo, hi, u0, u1);
+        for (int i = 0; i < 40; ++i) {
+          const Vec3 p(lo.x + (hi.x - lo.x) * f(rng), lo.y + (hi.y - lo.y) * f(rng), lo.z + (hi.z - lo.z) * f(rng));
+          const Real t = i == 0 ? u0 : (i == 1 ? u1 : u0 + (u1 - u0) * f(rng));
+          const Vec3 q = kernel::moved_point(m, p, t);
+          ASSERT_TRUE(q.x >= b.lo.x && q.y >= b.lo.y && q.z >= b.lo.z && q.x <= b.hi.x && q.y <= b.hi.y && q.z <= b.hi.z)
+              << "trial " << trial << ", segment " << k << " of " << segments << ", time " << t;
+        }
+      }
+    }
+  }
+  EXPECT_GT(turning, 290);
 }
 
 // A velocity displaces the solid by velocity·τ at shutter time τ: a torus is met where the still
@@ -322,11 +412,13 @@ objects:
                      "[[0, 0, 0], [1, 1, 1]]}], motion: {velocity: [1, 0, 0]}}\n")
                 .find("bad.yaml:4:"),
             std::string::npos);
-  // A half turn between the keys passes through a flat map (every point on a chord through the
-  // axis); other turns do not (200° moves as −160° does: points on chords).
+  // Keyframes a half turn apart leave open which way the solid turns; other turns take the shorter
+  // way (200° moves as −160° does).
   const std::string turn = "objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {rotate: [0, ";
-  EXPECT_NE(error_of(turn + "180, 0]}}}\n").find("bad.yaml:2:5: the motion flattens the solid"), std::string::npos);
-  EXPECT_NE(error_of(turn + "540, 0]}}}\n").find("flattens"), std::string::npos);
+  EXPECT_EQ(error_of(turn + "180, 0]}}}\n"),
+            "bad.yaml:2:5: the keyframes of the solid are a half turn apart, so which way it turns is open: turn it by "
+            "less within the shutter");
+  EXPECT_NE(error_of(turn + "540, 0]}}}\n").find("half turn"), std::string::npos);
   EXPECT_EQ(error_of(turn + "90, 0]}}}\n"), "no error");
   EXPECT_EQ(error_of(turn + "179, 0]}}}\n"), "no error");
   EXPECT_EQ(error_of(turn + "200, 0]}}}\n"), "no error");
@@ -334,7 +426,7 @@ objects:
   const std::string group = "groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]\nobjects:\n";
   EXPECT_EQ(error_of(group + "  - {type: instance, of: g, motion: {velocity: [1, 0, 0]}}\n"), "no error");
   EXPECT_NE(error_of(group + "  - {type: instance, of: g, motion: {to: {rotate: [180, 0, 0]}}}\n")
-                .find("bad.yaml:4:5: the motion flattens the instance"),
+                .find("bad.yaml:4:5: the keyframes of the instance are a half turn apart"),
             std::string::npos);
   // A group keeps only still shapes: a moving solid in it is refused, not dropped, and a moving
   // instance in it is a nested instance.
@@ -367,18 +459,20 @@ objects:
   - {type: sphere, center: [1, 0, 0], radius: 1, motion: {to: {rotate: {axis: [1, 1, 0], angle: 40}, scale: 3}}}
 )",
                                              "ok.yaml", "."));
-  ASSERT_EQ(rs.moving_solids.size(), 1u);
+  // (the sphere turns: it moves as a solid sphere, its centre on an arc)
+  ASSERT_EQ(rs.moving_solids.size(), 2u);
+  ASSERT_TRUE(rs.moving_spheres.empty());
   const kernel::MovingMap& m = rs.moving_solids[0].map;
-  EXPECT_EQ(m.linear0[0], Vec3(1, 0.5, 0));
-  EXPECT_EQ(m.linear0[2], Vec3(0, 0, 2));
-  EXPECT_EQ(m.translate0, Vec3(1, 2, 3));
+  const Mat3 from{{Vec3(1, 0.5, 0), Vec3(0, 1, 0), Vec3(0, 0, 2)}};
   const Mat3 to = Mat3::rotation(Vec3(0, 0, 1), 30) * Mat3::scale(Vec3(2));
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(m.linear1[i], to.row[i]);
-  EXPECT_EQ(m.translate1, Vec3(1, 0, 0));
-  ASSERT_EQ(rs.moving_spheres.size(), 1u);
-  EXPECT_EQ(rs.moving_spheres[0].radius0, 1);
-  EXPECT_NEAR(rs.moving_spheres[0].radius1, 3, 1e-12);
-  EXPECT_TRUE(test::vec_near(rs.moving_spheres[0].center1, Mat3::rotation(Vec3(1, 1, 0), 40) * Vec3(3, 0, 0), 1e-12));
+  for (const Vec3& p : {Vec3(0), Vec3(1, 0, 0), Vec3(0.3, -2, 5)}) {
+    EXPECT_EQ(kernel::moved_point(m, p, 0), from * p + Vec3(1, 2, 3));
+    EXPECT_TRUE(test::vec_near(kernel::moved_point(m, p, 1), to * p + Vec3(1, 0, 0), 1e-12));
+  }
+  const kernel::MovingMap& s = rs.moving_solids[1].map;
+  const Vec3 c1 = kernel::moved_point(s, Vec3(1, 0, 0), 1), rim = kernel::moved_point(s, Vec3(2, 0, 0), 1);
+  EXPECT_TRUE(test::vec_near(c1, Mat3::rotation(Vec3(1, 1, 0), 40) * Vec3(3, 0, 0), 1e-12));
+  EXPECT_NEAR(length(rim - c1), 3, 1e-12);  // the radius scaled by 3
   EXPECT_EQ(error_of("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, motion: {to: {matrix: [[1, 0.1, 0], "
                      "[0, 1, 0], [0, 0, 1]]}}}\n"),
             std::string("bad.yaml:2:5: ") + kNonUniformSphereScale);
@@ -405,7 +499,7 @@ groups:
   const Scene a = parse_scene(text, "a.yaml", ".");
   const Scene b = parse_scene(scene_to_yaml(a), "b.yaml", ".");
   const RenderScene ra = compile(a), rb = compile(b);
-  ASSERT_EQ(ra.moving_solids.size(), 4u);
+  ASSERT_EQ(ra.moving_solids.size(), 5u);  // (the sphere turns: a solid sphere)
   ASSERT_EQ(ra.moving_instances.size(), 1u);
   EXPECT_NE(scene_to_yaml(a).find("to: {matrix: [["), std::string::npos);
   EXPECT_EQ(scene_hash(ra), scene_hash(rb));

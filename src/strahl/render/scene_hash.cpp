@@ -235,7 +235,7 @@ void hash(Hasher& h, const kernel::PlacedSolid& x) {
   h.add(x.hi);
 }
 static_assert(sizeof(kernel::Instance) == 120, "kernel::Instance changed: hash its new fields here");
-static_assert(sizeof(kernel::MovingMap) == 272 && sizeof(kernel::MovingSolid) == 336,
+static_assert(sizeof(kernel::MovingMap) == 472 && sizeof(kernel::MovingSolid) == 536,
               "kernel::MovingMap or MovingSolid changed: hash its new fields here");
 void hash(Hasher& h, const kernel::MovingMap& x) {
   for (int i = 0; i < 3; ++i) {
@@ -246,6 +246,12 @@ void hash(Hasher& h, const kernel::MovingMap& x) {
   h.add(x.translate1);
   for (const Vec3& r : x.fixed_inverse) h.add(r);
   h.add(x.fixed);
+  h.add(x.post);
+  h.add(x.axis);
+  h.add(x.angle);
+  for (const Vec3& r : x.post_row) h.add(r);
+  for (const Vec3& r : x.post_inverse) h.add(r);
+  h.add(x.post_translate);
 }
 void hash(Hasher& h, const kernel::MovingSolid& x) {
   hash(h, x.solid);
@@ -261,7 +267,7 @@ void hash(Hasher& h, const kernel::Instance& x) {
   h.add(x.group);
   h.add(x.translation_only);
 }
-static_assert(sizeof(kernel::MovingInstance) == 456, "kernel::MovingInstance changed: hash its new fields here");
+static_assert(sizeof(kernel::MovingInstance) == 656, "kernel::MovingInstance changed: hash its new fields here");
 void hash(Hasher& h, const kernel::MovingInstance& x) {
   hash(h, x.instance);
   hash(h, x.map);

@@ -155,6 +155,14 @@ void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::u
         validate::length(radius_at[key], loc, "sphere radius after the motion scale");
       }
     }
+    if (motion_turns(motion, out.camera, loc, "sphere")) {
+      // Keyframes that turn it carry its centre on an arc (a blend of the keyed centres would
+      // cut the arc's chord): it moves as a solid sphere, as an ellipsoid does.
+      out.solid_spheres.push_back({center, radius, material_index});
+      out.solids.push_back({kernel::SolidKind::Sphere, std::uint32_t(out.solid_spheres.size() - 1), material_index});
+      move_last_solid(out, motion, loc);
+      return;
+    }
     for (int key = 0; key < 2; ++key) {
       validate::coordinates(moved(motion, out, center, key), loc, "moving sphere center");
       validate::resolvable(radius_at[key], max_abs_component(moved(motion, out, center, key)), loc, "sphere radius");
@@ -231,6 +239,14 @@ void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std:
     validate::resolvable(longest, std::fmax(max_abs_component(a), std::fmax(max_abs_component(b), max_abs_component(c))),
                          loc, "triangle's longest edge");
   }
+  if (motion.moving() && motion_turns(motion, out.camera, loc, "triangle")) {
+    // Turned by its keyframes: it moves on arcs, as an instance of a group holding it unmoved.
+    RenderScene group;
+    if (!push_triangle(group, a, b, c, material_index, -1, object_id))
+      throw Error(loc, "degenerate triangle (its vertices are collinear)");
+    move_by_instance(out, std::move(group), moving_map(motion, out.camera, loc, "triangle"), loc);
+    return;
+  }
   Vec3 keyed[6];
   for (int key = 0; key < 2; ++key) {
     keyed[3 * key] = moved(motion, out, a, key);
@@ -243,7 +259,11 @@ void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std:
     throw Error(loc, "degenerate triangle (its vertices are collinear)");
 }
 
-void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
+namespace {
+// The mesh `data` placed by `transform` and moved by `motion` (one that does not turn it), its
+// faces as triangles or moving triangles.
+void compile_mesh(const MeshData& data, const Transform& transform, const Motion& motion, const FileLoc& loc,
+                  RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) {
   validate::finite(transform.scale, loc, "mesh scale");
   validate::finite(transform.rotate_degrees, loc, "mesh rotate");
   validate::finite(transform.translate, loc, "mesh translate");
@@ -328,6 +348,25 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   if (kept == 0)
     throw Error(loc, "mesh has no triangle with an area (all " + std::to_string(data.faces.size()) +
                          " are degenerate)");
+}
+}  // namespace
+
+void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
+  validate_motion(motion, loc);
+  if (!(motion.moving() && motion_turns(motion, out.camera, loc, "mesh"))) {
+    compile_mesh(data, transform, motion, loc, out, material_index, object_id);
+    return;
+  }
+  // Keyframes that turn it (in its own coordinates, before its transform P) move its points on
+  // arcs: it becomes an instance of a group holding it unmoved, carried by P·A(u).
+  validate::finite(transform.scale, loc, "mesh scale");
+  validate::finite(transform.rotate_degrees, loc, "mesh rotate");
+  validate::finite(transform.translate, loc, "mesh translate");
+  const Affine post = affine_of(transform);
+  if (!(std::fabs(post.m.determinant()) > 0)) throw Error(loc, "mesh scale must not be zero");
+  RenderScene group;
+  compile_mesh(data, Transform{}, Motion{}, loc, group, material_index, object_id);
+  move_by_instance(out, std::move(group), moving_map(motion, out.camera, loc, "mesh", &post), loc);
 }
 
 // Checks the sampling settings; spp 0 means the N×N grid of `supersample`.

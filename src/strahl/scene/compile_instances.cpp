@@ -19,6 +19,42 @@ bool finite(const Bounds& b) {
          std::isfinite(b.hi.y) && std::isfinite(b.hi.z);
 }
 
+// The instance x (world box w) carried by `map` after its placement: into the motion BVH with
+// the other moving shapes (geometry/moving_instance.h).
+void push_moving_instance(RenderScene& out, const kernel::Instance& x, const Bounds& w, const kernel::MovingMap& map,
+                          const FileLoc& loc) {
+  kernel::MovingInstance mi;
+  mi.instance = x;
+  mi.map = map;
+  mi.lo = w.lo;
+  mi.hi = w.hi;
+  // Over the shutter the linear part's Frobenius norm is at most the larger of the keys' (a norm
+  // of a blend; a turn keeps it), which bounds the stretch of A(u) and of its product with the
+  // placement; the translation A(u)·t_placement + t(u) by the same. A post map P stretches both
+  // by at most its norm and adds its translation.
+  Real reach = 0, moved = 0;
+  for (int key = 0; key < 2; ++key) {
+    const Vec3* l = key == 0 ? mi.map.linear0 : mi.map.linear1;
+    const Real f = std::sqrt(dot(l[0], l[0]) + dot(l[1], l[1]) + dot(l[2], l[2]));
+    reach = std::fmax(reach, f);
+    moved = std::fmax(moved, max_abs_component(key == 0 ? mi.map.translate0 : mi.map.translate1));
+  }
+  Real post = 1, post_shift = 0;
+  if (map.post != 0) {
+    const Vec3* p = map.post_row;
+    post = std::sqrt(dot(p[0], p[0]) + dot(p[1], p[1]) + dot(p[2], p[2]));
+    post_shift = max_abs_component(map.post_translate);
+  }
+  mi.stretch = x.stretch * reach * post;
+  const Real sqrt3 = Real(1.7320508075688772);  // |L·t|∞ ≤ ‖L‖_F·|t|₂ ≤ ‖L‖_F·√3·|t|∞
+  mi.shift = moved + reach * sqrt3 * x.shift;
+  if (map.post != 0) mi.shift = post * sqrt3 * mi.shift + post_shift;
+  const Bounds swept = kernel::swept_bounds(mi);
+  validate::coordinates(swept.lo, loc, "moving instance bounds");
+  validate::coordinates(swept.hi, loc, "moving instance bounds");
+  out.moving_instances.push_back(mi);
+}
+
 }  // namespace
 
 void compile_groups(const Scene& scene, RenderScene& out) {
@@ -39,6 +75,8 @@ void compile_groups(const Scene& scene, RenderScene& out) {
       object->compile_into(g, material_index, object_id++);
       if (g.planes.size() != planes)
         throw Error(object->loc, "a plane cannot be part of group '" + group.name + "': it is unbounded (place it in objects)");
+      if (!g.groups.empty())  // (a sphere, triangle or mesh whose keyframes turn it moves as an instance)
+        throw Error(object->loc, "objects of group '" + group.name + "' cannot move (give the motion to the instances)");
       if (placed() != instances)
         throw Error(object->loc, "instances cannot be nested: group '" + group.name + "' places an instance");
       if (moving() != moved)
@@ -105,27 +143,19 @@ void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) cons
   }
   // Moving (geometry/moving_instance.h): carried by the motion's map after its placement, in the
   // motion BVH with the other moving shapes.
-  kernel::MovingInstance mi;
-  mi.instance = x;
-  mi.map = moving_map(motion, out.camera, loc, "instance");
-  mi.lo = w.lo;
-  mi.hi = w.hi;
-  // Over the shutter the linear part's Frobenius norm is at most the larger of the keys' (a norm
-  // of a blend), which bounds the stretch of A(u) and of its product with the placement; the
-  // translation A(u)·t_placement + t(u) by the same.
-  Real reach = 0, moved = 0;
-  for (int key = 0; key < 2; ++key) {
-    const Vec3* l = key == 0 ? mi.map.linear0 : mi.map.linear1;
-    const Real f = std::sqrt(dot(l[0], l[0]) + dot(l[1], l[1]) + dot(l[2], l[2]));
-    reach = std::fmax(reach, f);
-    moved = std::fmax(moved, max_abs_component(key == 0 ? mi.map.translate0 : mi.map.translate1));
-  }
-  mi.stretch = x.stretch * reach;
-  mi.shift = moved + reach * Real(1.7320508075688772) * x.shift;  // |L·t|∞ ≤ ‖L‖_F·|t|₂ ≤ ‖L‖_F·√3·|t|∞
-  const Bounds swept = kernel::swept_bounds(mi);
-  validate::coordinates(swept.lo, loc, "moving instance bounds");
-  validate::coordinates(swept.hi, loc, "moving instance bounds");
-  out.moving_instances.push_back(mi);
+  push_moving_instance(out, x, w, moving_map(motion, out.camera, loc, "instance"), loc);
+}
+
+void move_by_instance(RenderScene& out, RenderScene&& group, const kernel::MovingMap& map, const FileLoc& loc) {
+  group.bounded_solid_count = static_cast<std::uint32_t>(group.solids.size());
+  group.accel = build_accel(AccelKind::Bvh, group.primitives());
+  const Bounds b = bounds_of(group.primitives());
+  kernel::Instance x;  // in place: the identity
+  x.translation_only = true;
+  x.group = static_cast<std::uint32_t>(out.groups.size());
+  out.groups.push_back(std::move(group));
+  out.group_bounds.push_back(b);
+  push_moving_instance(out, x, b, map, loc);
 }
 
 void build_instance_bvh(RenderScene& out) {

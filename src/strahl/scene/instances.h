@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "strahl/geometry/moving_map.h"
 #include "strahl/scene/scene.h"
 
 namespace strahl {
@@ -22,6 +23,11 @@ class Instance : public SceneObject {
 // that place them: their materials join out.materials. Throws strahl::Error at the object that
 // cannot be in a group (a plane, an unbounded solid, a moving object, an instance).
 void compile_groups(const Scene& scene, RenderScene& out);
+
+// A moving object that turns (scene/move_solid.h: a sphere, triangle or mesh whose keyframes
+// turn it): `group` holds it unmoved, and becomes a group of out's (its BVH built), placed by a
+// moving instance carried by `map` — as a moving instance of a group in the scene file is.
+void move_by_instance(RenderScene& out, RenderScene&& group, const kernel::MovingMap& map, const FileLoc& loc);
 
 // The top-level BVH over the instances' world boxes (after every object is compiled).
 void build_instance_bvh(RenderScene& out);

@@ -78,15 +78,107 @@ bool invertible_throughout(const kernel::MovingMap& m) {
   return true;
 }
 
+Real frobenius(const Mat3& a) { return std::sqrt(dot(a.row[0], a.row[0]) + dot(a.row[1], a.row[1]) + dot(a.row[2], a.row[2])); }
+
+// The orthogonal factor Q of the polar decomposition L = Q·S (S symmetric, positive definite;
+// det Q has det L's sign): Higham's Newton iteration Q ← (γ·Q + Q⁻ᵀ/γ)/2, scaled by
+// γ = (‖Q⁻¹‖/‖Q‖)^½ (Frobenius), which converges in a handful of steps even for long, thin maps.
+Mat3 orthogonal_factor(const Mat3& l) {
+  Mat3 q = l;
+  for (int step = 0; step < 100; ++step) {
+    const Mat3 inv_t = q.inverse().transposed();
+    const Real g = std::sqrt(frobenius(inv_t) / frobenius(q));
+    Mat3 next;
+    Real change = 0;
+    for (int i = 0; i < 3; ++i) {
+      next.row[i] = (q.row[i] * g + inv_t.row[i] / g) * Real(0.5);
+      change = std::fmax(change, max_abs_component(next.row[i] - q.row[i]));
+    }
+    q = next;
+    if (!(change > Real(1e-15))) break;
+  }
+  return q;
+}
+
+// The turn from the orthogonal q0 to q1 (q1·q0ᵀ, whose determinant is 1): its axis (unit
+// length; right-handed) and angle in [0, π]. sin(angle)·axis is the skew part's vector and
+// cos(angle) = (trace − 1)/2; past a quarter turn the axis comes from the symmetric part,
+// (d + dᵀ)/2 − cos·I = (1 − cos)·axis·axisᵀ, where the skew part has become small.
+void turn_between(const Mat3& q0, const Mat3& q1, Vec3& axis, Real& angle) {
+  const Mat3 d = q1 * q0.transposed();
+  const Vec3 v((d.row[2].y - d.row[1].z) / 2, (d.row[0].z - d.row[2].x) / 2, (d.row[1].x - d.row[0].y) / 2);
+  const Real c = (d.row[0].x + d.row[1].y + d.row[2].z - 1) / 2, s = length(v);
+  angle = std::atan2(s, c);
+  axis = s > 0 ? v / s : Vec3(0, 0, 1);
+  if (angle > kPi / 2) {
+    const Mat3 dt = d.transposed();
+    Mat3 sym;
+    for (int i = 0; i < 3; ++i) sym.row[i] = (d.row[i] + dt.row[i]) * Real(0.5);
+    sym.row[0].x -= c;
+    sym.row[1].y -= c;
+    sym.row[2].z -= c;
+    int k = 0;
+    if (sym.row[1].y > sym.row[k][k]) k = 1;
+    if (sym.row[2].z > sym.row[k][k]) k = 2;
+    axis = normalize(sym.row[k]);
+    if (dot(axis, v) < 0) axis = -axis;
+  }
+}
+
+// The turn between keyframes (their linear parts' orthogonal factors differ; both mirror or
+// neither — else there is none, and a blend of them flattens, which moving_map refuses): its axis
+// and angle, and whether there is one (an angle above 1e-9). Keyframes a half turn apart are an
+// error at `loc`: which way they turn is open.
+bool turn_of(const Motion& motion, const Affine* key_map, Vec3& axis, Real& angle, const FileLoc& loc, const char* what) {
+  const Real det0 = key_map[0].m.determinant(), det1 = key_map[1].m.determinant();
+  if (motion.kind != Motion::Kind::Keyframes || (det0 > 0) != (det1 > 0)) return false;
+  turn_between(orthogonal_factor(key_map[0].m), orthogonal_factor(key_map[1].m), axis, angle);
+  if (kPi - angle < Real(1e-6))
+    throw Error(loc, std::string("the keyframes of the ") + what +
+                         " are a half turn apart, so which way it turns is open: turn it by less within the shutter");
+  if (angle > Real(1e-9)) return true;
+  axis = Vec3(0, 0, 1);
+  angle = 0;
+  return false;
+}
+
 }  // namespace
 
-kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what) {
+kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what,
+                             const Affine* post) {
   validate_motion(motion, loc);
   kernel::MovingMap m;
+  Affine key_map[2];
   for (int key = 0; key < 2; ++key) {
-    const Affine a = motion_key(motion, camera.shutter_open, camera.shutter_close, key);
-    for (int i = 0; i < 3; ++i) (key == 0 ? m.linear0 : m.linear1)[i] = a.m.row[i];
-    (key == 0 ? m.translate0 : m.translate1) = a.t;
+    key_map[key] = motion_key(motion, camera.shutter_open, camera.shutter_close, key);
+    for (int i = 0; i < 3; ++i) (key == 0 ? m.linear0 : m.linear1)[i] = key_map[key].m.row[i];
+    (key == 0 ? m.translate0 : m.translate1) = key_map[key].t;
+  }
+  // A turn between the keys: taken out of the second key, and taken uniformly over the shutter by
+  // at_time() (geometry/moving_map.h).
+  if (turn_of(motion, key_map, m.axis, m.angle, loc, what)) {
+    Vec3 turn[3];
+    kernel::turn_rows(m.axis, m.angle, turn);
+    // L₁ = Rot(angle)ᵀ·(the second key's linear part), by rows: row i is Σₖ Rot[k][i]·key row k.
+    const Mat3& l1 = key_map[1].m;
+    for (int i = 0; i < 3; ++i)
+      m.linear1[i] = Vec3(turn[0][i] * l1.row[0].x + turn[1][i] * l1.row[1].x + turn[2][i] * l1.row[2].x,
+                          turn[0][i] * l1.row[0].y + turn[1][i] * l1.row[1].y + turn[2][i] * l1.row[2].y,
+                          turn[0][i] * l1.row[0].z + turn[1][i] * l1.row[1].z + turn[2][i] * l1.row[2].z);
+  }
+  if (post != nullptr) {
+    const Mat3 identity;
+    const bool none = post->m.row[0] == identity.row[0] && post->m.row[1] == identity.row[1] &&
+                      post->m.row[2] == identity.row[2] && post->t == Vec3(0);
+    if (!none) {
+      m.post = 1;
+      const Mat3 inv = post->m.inverse();
+      for (int i = 0; i < 3; ++i) {
+        m.post_row[i] = post->m.row[i];
+        m.post_inverse[i] = inv.row[i];
+      }
+      m.post_translate = post->t;
+    }
   }
   // lerp(L, L, u) = L + (L − L)·u = L + 0 is the same at every u ∈ [0, 1] (L itself but for a −0,
   // which becomes +0): at_time()'s inverse of it too, computed here once.
@@ -97,10 +189,19 @@ kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const F
   }
   if (!invertible_throughout(m))
     throw Error(loc, std::string("the motion flattens the ") + what +
-                         " during the shutter: its points move on straight lines between the keyframes, so a half "
-                         "turn (or a scale that changes sign) passes through a flat map; turn it by less within the "
-                         "shutter");
+                         " during the shutter: a scale that changes sign between the keyframes passes through a "
+                         "flat map (as does one near 0)");
   return m;
+}
+
+bool motion_turns(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what) {
+  if (motion.kind != Motion::Kind::Keyframes) return false;
+  validate_motion(motion, loc);
+  const Affine key_map[2] = {motion_key(motion, camera.shutter_open, camera.shutter_close, 0),
+                             motion_key(motion, camera.shutter_open, camera.shutter_close, 1)};
+  Vec3 axis;
+  Real angle = 0;
+  return turn_of(motion, key_map, axis, angle, loc, what);
 }
 
 void move_last_solid(RenderScene& out, const Motion& motion, const FileLoc& loc) {

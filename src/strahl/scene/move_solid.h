@@ -15,17 +15,24 @@ struct RenderScene;
 // A motion's values: finite, no scale of 0 (an error at `loc`).
 void validate_motion(const Motion& m, const FileLoc& loc);
 
-// The motion's map A(u) over the shutter (geometry/moving_map.h): at shutter open a keyframe's
-// `from` (or the velocity's displacement at that time), at close its `to`; checked: finite, and
-// invertible at every time of the shutter (else an error at `loc` saying the motion flattens
-// `what`: keyframes a half turn apart, a scale changing sign).
-kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what);
+// The motion's map A(u) over the shutter (geometry/moving_map.h), followed by `post` when given
+// (a mesh's transform): at shutter open a keyframe's `from` (or the velocity's displacement at
+// that time), at close its `to`, and between them the turn from one to the other taken uniformly
+// (the keys' linear parts' orthogonal factors, Q₁·Q₀ᵀ, as an axis and an angle below a half
+// turn) with the rest blended. Checked: finite, and invertible at every time of the shutter
+// (else an error at `loc` naming `what`: keyframes a half turn apart, a scale changing sign).
+kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what,
+                             const Affine* post = nullptr);
+
+// Does the motion turn what it moves (keyframes whose rotations differ)? Such spheres, triangles
+// and meshes move as solids or instances do, on arcs (their blends of vertices and centres
+// would move on chords). The errors of moving_map().
+bool motion_turns(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what);
 
 // Moves the last solid of out.solids by `motion` (which moves): after the solid's own placement,
-// its points move on straight lines from where moving_map's A(0) puts them to where A(1) does,
-// as a mesh's vertices would. Errors at `loc`: a solid without bounds (an unclipped quadric,
-// a CSG tree around an inverse), a motion whose map flattens the solid at some time of the
-// shutter (keyframes a half turn apart, a scale changing sign), positions outside the supported
+// by moving_map's A(u). Errors at `loc`: a solid without bounds (an unclipped quadric, a CSG tree
+// around an inverse), a motion whose map flattens the solid at some time of the shutter
+// (keyframes a half turn apart, a scale changing sign), positions outside the supported
 // coordinates.
 void move_last_solid(RenderScene& out, const Motion& motion, const FileLoc& loc);
 
