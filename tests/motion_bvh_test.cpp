@@ -170,6 +170,25 @@ TEST(MotionBvh, FewShapesAreOneLeafWithoutNodes) {
   }
 }
 
+// A moving solid or instance costs more than a box test (at_time(), then its own test): it is
+// never visited without one. One turning solid alone is a root node over its leaf in each
+// segment; with spheres beside it, each sits in a leaf of its own.
+TEST(MotionBvh, SolidsAndInstancesAreBehindABox) {
+  const auto tree_of = [](const std::string& objects) {
+    return compile(parse_scene("camera: {shutter: [0, 1]}\nobjects:\n" + objects, "t.yaml", ".")).moving_bvh;
+  };
+  const std::string torus =
+      "  - {type: torus, center: [0, 0, 0], major_radius: 1, minor_radius: 0.2, motion: {to: {rotate: [0, 0, 60]}}}\n";
+  const std::string sphere = "  - {type: sphere, center: [3, 0, 0], radius: 1, motion: {velocity: [0, 1, 0]}}\n";
+  const MotionBvh one = tree_of(torus);
+  EXPECT_EQ(one.trees.root_leaf_count, 0u);
+  EXPECT_EQ(one.trees.nodes.size(), one.segments);  // a root node in each segment
+  const MotionBvh three = tree_of(torus + sphere + sphere);
+  EXPECT_EQ(three.trees.root_leaf_count, 0u);
+  EXPECT_FALSE(three.trees.nodes.empty());
+  EXPECT_EQ(tree_of(sphere + sphere).trees.root_leaf_count, 2u);  // cheap shapes: one leaf, as before
+}
+
 // The trees are 8-wide: their nodes hold far fewer than the binary tree's 2·leaves − 1, and
 // every shape sits in exactly one leaf of each segment's tree.
 TEST(MotionBvh, SegmentTreesAreWideAndHoldEveryShapeOnce) {

@@ -254,8 +254,9 @@ Bvh build_bvh(const Bounds* bounds, std::uint32_t n, AccelBuildStats* stats_out,
 
 }  // namespace
 
-Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, const BvhBuildOptions& options) {
-  return build_bvh(bounds.data(), static_cast<std::uint32_t>(bounds.size()), stats_out, options, ~std::uint32_t(0),
+Bvh build_bvh(const std::vector<Bounds>& bounds, AccelBuildStats* stats_out, const BvhBuildOptions& options,
+              std::uint32_t first_costly) {
+  return build_bvh(bounds.data(), static_cast<std::uint32_t>(bounds.size()), stats_out, options, first_costly,
                    std::chrono::steady_clock::now());
 }
 

@@ -43,8 +43,10 @@ struct BvhBuildOptions {
 struct AccelBuildStats;
 Bvh build_bvh(const PrimitiveSet& prims, AccelBuildStats* stats = nullptr, const BvhBuildOptions& options = {});
 // The same over arbitrary boxes (primitive i has box i), e.g. the swept boxes of moving shapes;
-// traverse() then reports indices into `boxes`.
-Bvh build_bvh(const std::vector<Bounds>& boxes, AccelBuildStats* stats = nullptr, const BvhBuildOptions& options = {});
+// traverse() then reports indices into `boxes`. Primitives from first_costly on each cost a test
+// of their own (as solids do in a scene's tree).
+Bvh build_bvh(const std::vector<Bounds>& boxes, AccelBuildStats* stats = nullptr, const BvhBuildOptions& options = {},
+              std::uint32_t first_costly = ~std::uint32_t(0));
 
 // Calls visitor(prim, leaf_t_lo, leaf_t_hi, t_max) for every primitive in a leaf the ray reaches
 // within (t_min, t_max), nearer leaves first; see traversal.h for the visitor contract.

@@ -38,7 +38,7 @@ double mean_swept_area(std::uint32_t count, const SweptBox& box, std::uint32_t s
 
 }  // namespace
 
-MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32_t segments) {
+MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32_t segments, std::uint32_t first_costly) {
   MotionBvh out;
   if (count == 0) return out;
   assert(segments <= kMaxMotionSegments && (segments & (segments - 1)) == 0);
@@ -58,9 +58,10 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
   // children before the node. A tree of one leaf (a few shapes) stays one: no box test.
   std::vector<Bounds> boxes(count);
   for (std::uint32_t i = 0; i < count; ++i) boxes[i] = box(i, Real(0.5), Real(0.5));
-  const Bvh tree = build_bvh(boxes);
+  const Bvh tree = build_bvh(boxes, nullptr, {}, first_costly);
   out.trees.prims.assign(tree.prims.begin(), tree.prims.end());
-  if (tree.nodes[0].count > 0) out.trees.root_leaf_count = tree.nodes[0].count;
+  const bool one_leaf = tree.nodes[0].count > 0, costly = first_costly < count;
+  if (one_leaf && !costly) out.trees.root_leaf_count = tree.nodes[0].count;
   LargeArray<BvhNode> refit;
   for (std::uint32_t k = 0; k < k_chosen; ++k) {
     segment_boxes(count, box, k, k_chosen, boxes);
@@ -76,7 +77,8 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
       n.bounds = b;
     }
     widen_extent(out.trees.extent, refit[0].bounds);
-    if (out.trees.root_leaf_count == 0) out.first_node[k] = append_wide_nodes(refit.data(), out.trees.nodes);
+    if (one_leaf && costly) out.first_node[k] = append_wide_leaf_root(refit[0].bounds, refit[0].count, out.trees.nodes);
+    else if (!one_leaf) out.first_node[k] = append_wide_nodes(refit.data(), out.trees.nodes);
   }
   return out;
 }
@@ -96,7 +98,7 @@ MotionBvh build_motion_bvh(const std::vector<kernel::MovingSphere>& spheres,
                : i < k ? kernel::swept_bounds(solids[i - m], u0, u1)
                        : kernel::swept_bounds(instances[i - k], u0, u1);
       },
-      segments);
+      segments, m);
 }
 
 }  // namespace strahl

@@ -71,7 +71,11 @@ using SweptBox = std::function<Bounds(std::uint32_t prim, Real u0, Real u1)>;
 // by at least a fifth (the expected box and primitive tests of a ray fall with it), up to
 // kMaxMotionSegments and to K·count ≤ 2^20 (the K trees' nodes: about 40 bytes for each shape
 // in each segment). `segments` > 0 forces K (a power of two ≤ kMaxMotionSegments; the tests).
-MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32_t segments = 0);
+// Primitives from first_costly on (solids, instances: each brings the ray to where it stands
+// still, at_time(), before its own test) are leaves the SAH weighs one by one, and are never
+// visited without a box test (a tree of one leaf holding one gets a root node).
+MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32_t segments = 0,
+                           std::uint32_t first_costly = ~std::uint32_t(0));
 
 // The same over a scene's moving shapes: the spheres, then the triangles, the solids and the
 // instances, numbered on (render/moving_shapes.h).

@@ -184,6 +184,16 @@ std::uint32_t append_wide_nodes(const BvhNode* binary, LargeArray<WideBvhNode>& 
   return root;
 }
 
+std::uint32_t append_wide_leaf_root(const Bounds& box, std::uint32_t count, LargeArray<WideBvhNode>& out) {
+  const auto root = static_cast<std::uint32_t>(out.size());
+  out.emplace_back();
+  set_box(out[root], 0, box);
+  out[root].child[0] = 0;
+  out[root].count[0] = count;
+  for (int k = 1; k < kWideBvhWidth; ++k) set_empty(out[root], k);
+  return root;
+}
+
 void widen_extent(float extent[3], const Bounds& box) {
   for (int a = 0; a < 3; ++a)
     extent[a] = std::max(extent[a], wide_bvh_detail::round_up(std::max(std::fabs(box.lo[a]), std::fabs(box.hi[a]))));

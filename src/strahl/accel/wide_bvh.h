@@ -111,6 +111,11 @@ void widen_extent(float extent[3], const Bounds& box);
 struct BvhNode;
 std::uint32_t append_wide_nodes(const BvhNode* binary, LargeArray<WideBvhNode>& out);
 
+// Appends a wide root whose one child is the leaf of `count` primitives from offset 0 in `box`
+// (a tree that is one leaf, when its box test pays: the primitives cost more than it); returns
+// its index in `out`.
+std::uint32_t append_wide_leaf_root(const Bounds& box, std::uint32_t count, LargeArray<WideBvhNode>& out);
+
 namespace wide_bvh_detail {
 
 // The float nearest x from below / above.

@@ -165,6 +165,15 @@ kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const F
       m.linear1[i] = Vec3(turn[0][i] * l1.row[0].x + turn[1][i] * l1.row[1].x + turn[2][i] * l1.row[2].x,
                           turn[0][i] * l1.row[0].y + turn[1][i] * l1.row[1].y + turn[2][i] * l1.row[2].y,
                           turn[0][i] * l1.row[0].z + turn[1][i] * l1.row[1].z + turn[2][i] * l1.row[2].z);
+    // A pure turn (the keys' linear parts the same but for it) leaves L₁ = L₀ up to rounding:
+    // made exact, so that the inverse is computed once (below) and at_time() only turns it.
+    Real off = 0, size = 0;
+    for (int i = 0; i < 3; ++i) {
+      off = std::fmax(off, max_abs_component(m.linear1[i] - m.linear0[i]));
+      size = std::fmax(size, max_abs_component(m.linear0[i]));
+    }
+    if (off <= Real(1e-13) * size)
+      for (int i = 0; i < 3; ++i) m.linear1[i] = m.linear0[i];
   }
   if (post != nullptr) {
     const Mat3 identity;
