@@ -493,6 +493,7 @@ objects:
   - {type: instance, of: g, translate: [2, 0, 0], motion: {from: {rotate: [0, 10, 0]}, to: {translate: [0, 1, 0]}}}
   - {type: cone, base: [0, 0, 0], cap: [0, 1, 0], base_radius: 1, cap_radius: 0, motion: {from: {matrix: [[1, 0.25, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0.125]]}, to: {rotate: {axis: [1, 2, 3], angle: 20}}}}
   - {type: sphere, center: [3, 0, 0], radius: 1, motion: {to: {transform: [{rotate: {axis: [1, 1, 0], angle: 40}}, {scale: 3}]}}}
+  - {type: triangle, vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], motion: {to: {rotate: [0, 0, 40]}}}
 groups:
   g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]
 )";
@@ -500,7 +501,7 @@ groups:
   const Scene b = parse_scene(scene_to_yaml(a), "b.yaml", ".");
   const RenderScene ra = compile(a), rb = compile(b);
   ASSERT_EQ(ra.moving_solids.size(), 5u);  // (the sphere turns: a solid sphere)
-  ASSERT_EQ(ra.moving_instances.size(), 1u);
+  ASSERT_EQ(ra.moving_instances.size(), 2u);  // (the turning triangle: an instance of itself)
   EXPECT_NE(scene_to_yaml(a).find("to: {matrix: [["), std::string::npos);
   EXPECT_EQ(scene_hash(ra), scene_hash(rb));
 }
