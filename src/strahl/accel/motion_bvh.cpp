@@ -16,6 +16,7 @@ MotionBvhView MotionBvh::view() const {
 namespace {
 
 constexpr std::uint64_t kMaxSegmentPrimitives = std::uint64_t(1) << 20;
+constexpr std::uint64_t kFewSegmentPrimitives = 4096;
 
 // The boxes of segment k of K into `boxes` (count of them; the caller's array, reused: fresh
 // memory costs page faults).
@@ -43,11 +44,16 @@ MotionBvh build_motion_bvh(std::uint32_t count, const SweptBox& box, std::uint32
   if (count == 0) return out;
   assert(segments <= kMaxMotionSegments && (segments & (segments - 1)) == 0);
   std::uint32_t k_chosen = segments != 0 ? segments : 1;
-  if (segments == 0) {
+  // A few cheap shapes are one leaf without a box (bvh.cpp), the same in every segment: K = 1.
+  const bool one_cheap_leaf = first_costly >= count && count <= BvhBuildOptions{}.max_leaf;
+  if (segments == 0 && !one_cheap_leaf) {
     out.swept_area[0] = mean_swept_area(count, box, 1);
     for (int i = 1; (1u << i) <= kMaxMotionSegments && (std::uint64_t(count) << i) <= kMaxSegmentPrimitives; ++i) {
       out.swept_area[i] = mean_swept_area(count, box, 1u << i);
-      if (!(out.swept_area[i] <= 0.8 * out.swept_area[i - 1])) break;
+      // A few shapes' trees cost next to nothing: they take any halving that cuts the area by a
+      // twentieth (one large box shrinking slowly beside small fast ones, whose boxes halve).
+      const double cut = (std::uint64_t(count) << i) <= kFewSegmentPrimitives ? 0.95 : 0.8;
+      if (!(out.swept_area[i] <= cut * out.swept_area[i - 1])) break;
       k_chosen = 1u << i;
     }
   }

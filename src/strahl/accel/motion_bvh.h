@@ -68,7 +68,9 @@ using SweptBox = std::function<Bounds(std::uint32_t prim, Real u0, Real u1)>;
 // Builds the trees over `count` primitives: one tree over the shapes where they are at
 // mid-shutter, its boxes refitted to each segment (one SAH build, K passes over the nodes; the
 // shapes' order is shared). K doubles from 1 while that cuts the summed surface area of the boxes
-// by at least a fifth (the expected box and primitive tests of a ray fall with it), up to
+// by at least a fifth (the expected box and primitive tests of a ray fall with it; a twentieth
+// while K·count ≤ 4096, whose trees cost next to nothing; K = 1 where the tree is one leaf without
+// a box, as a few spheres and triangles are), up to
 // kMaxMotionSegments and to K·count ≤ 2^20 (the K trees' nodes: about 40 bytes for each shape
 // in each segment). `segments` > 0 forces K (a power of two ≤ kMaxMotionSegments; the tests).
 // Primitives from first_costly on (solids, instances: each brings the ray to where it stands
