@@ -417,7 +417,7 @@ objects:
   const std::string turn = "objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {rotate: [0, ";
   EXPECT_EQ(error_of(turn + "180, 0]}}}\n"),
             "bad.yaml:2:5: the keyframes of the solid are a half turn apart, so which way it turns is open: turn it by "
-            "less within the shutter");
+            "less within the shutter, or give the turn as a spin");
   EXPECT_NE(error_of(turn + "540, 0]}}}\n").find("half turn"), std::string::npos);
   EXPECT_EQ(error_of(turn + "90, 0]}}}\n"), "no error");
   EXPECT_EQ(error_of(turn + "179, 0]}}}\n"), "no error");

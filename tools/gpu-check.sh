@@ -160,10 +160,11 @@ run() {
   # Instances: 1,024 placements of groups, each with its own structure.
   cp "$bundle/scenes/instances.yaml" "$out/" && cp -r "$bundle/scenes/meshes" "$out/"
   cases+=("instances|--sampler grid|exact")
-  # Motion blur: moving spheres, a turning mesh (an instance of itself) and moving solids, whose
-  # turns take a sine and a cosine (which may round differently on the device).
-  cp "$bundle/scenes/motion-blur.yaml" "$bundle/scenes/motion-solids.yaml" "$out/"
-  cases+=("motion-blur|--spp 4|rmse" "motion-solids|--spp 4|rmse")
+  # Motion blur: moving spheres, a turning mesh (an instance of itself), moving solids and spins
+  # (about a centre, several turns), whose turns take a sine and a cosine (which may round
+  # differently on the device).
+  cp "$bundle/scenes/motion-blur.yaml" "$bundle/scenes/motion-solids.yaml" "$bundle/scenes/motion-spin.yaml" "$out/"
+  cases+=("motion-blur|--spp 4|rmse" "motion-solids|--spp 4|rmse" "motion-spin|--spp 4|rmse")
   [[ " ${scenes[*]} " == *" bunny "* ]] && cases+=("bunny|--sampler grid --accel kdtree|exact" "bunny|--sampler grid --accel octree|exact")
   local c name opts mode i=0
   for c in "${cases[@]}"; do

@@ -15,6 +15,7 @@
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/instances.h"
 #include "strahl/scene/mesh_file.h"
+#include "strahl/scene/move_solid.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
@@ -250,18 +251,40 @@ void bind_motion(py::module_& m) {
       .def_readwrite("scale", &Transform::scale)
       .def_readwrite("rotate", &Transform::rotate_degrees)
       .def_readwrite("translate", &Transform::translate);
-  py::class_<Motion>(m, "Motion", "Motion blur: Motion.linear(velocity) or Motion.keyframes(from_, to).")
-      .def_static("linear", [](const Vec3& v) {
+  py::class_<Spin>(m, "Spin",
+                   "A turn by `angle` degrees (any size: 1080 is three turns) over the shutter, about the line "
+                   "along `axis` through `center`, carried by the rest of the motion.")
+      .def(py::init([](const Vec3& axis, Real angle, const Vec3& center) {
+             Spin s{axis, angle, center};
+             validate_motion(Motion::spinning(s), {});
+             if (s.axis == Vec3(0)) throw Error("motion spin axis must not be zero");
+             return s;
+           }),
+           py::arg("axis"), py::arg("angle"), py::arg("center") = py::make_tuple(0, 0, 0))
+      .def_readonly("axis", &Spin::axis)
+      .def_readonly("angle", &Spin::angle)
+      .def_readonly("center", &Spin::center);
+  py::class_<Motion>(m, "Motion",
+                     "Motion blur: Motion.linear(velocity), Motion.keyframes(from_, to) or Motion.spinning(spin); "
+                     "the first two take a spin= too.")
+      .def_static("linear", [](const Vec3& v, const std::optional<Spin>& spin) {
         validate::finite(v, {}, "motion velocity");
-        return Motion::linear(v);
-      }, py::arg("velocity"))
-      .def_static("keyframes", &Motion::keyframes, py::arg("from_"), py::arg("to"))
+        return Motion::linear(v).with_spin(spin.value_or(Spin{}));
+      }, py::arg("velocity"), py::arg("spin") = py::none())
+      .def_static("keyframes", [](const Transform& from, const Transform& to, const std::optional<Spin>& spin) {
+        return Motion::keyframes(from, to).with_spin(spin.value_or(Spin{}));
+      }, py::arg("from_"), py::arg("to"), py::arg("spin") = py::none())
+      .def_static("spinning", &Motion::spinning, py::arg("spin"))
       .def_property_readonly("kind", [](const Motion& mo) {
         return mo.kind == Motion::Kind::None ? "none" : mo.kind == Motion::Kind::Velocity ? "velocity" : "keyframes";
       })
-      .def_readonly("velocity", &Motion::velocity)
-      .def_readonly("from_", &Motion::from)
-      .def_readonly("to", &Motion::to);
+      .def_property_readonly("velocity", &Motion::velocity)
+      .def_property_readonly("from_", &Motion::from)
+      .def_property_readonly("to", &Motion::to)
+      .def_property_readonly("spin", [](const Motion& mo) -> std::optional<Spin> {
+        if (mo.spins()) return mo.spin();
+        return std::nullopt;
+      }, "The motion's Spin, or None");
 }
 
 void bind_shapes(py::module_& m) {

@@ -43,6 +43,7 @@ from ._strahl import (  # noqa: F401
     SceneObject,
     Sphere,
     SphereLight,
+    Spin,
     Torus,
     Transform,
     Triangle,
@@ -61,13 +62,13 @@ __all__ = [
     "Box", "Camera", "Cone", "Csg", "Cylinder", "Difference", "DirectionalLight", "Disk", "DiskLight", "Error",
     "Image", "Implicit", "Instance", "Intersection", "Inverse", "Light", "Material", "Merge", "Mesh", "Motion",
     "Plane", "PointLight", "Quadric", "RectLight", "RenderSettings", "Scene", "SceneObject", "Sphere", "SphereLight",
-    "Torus", "Transform", "Triangle", "Union", "lecture_scene", "load", "loads", "read", "render", "version", "write",
+    "Spin", "Torus", "Transform", "Triangle", "Union", "lecture_scene", "load", "loads", "read", "render", "version", "write",
 ]
 
 
 # The compiled classes show as strahl.Sphere, not strahl._strahl.Sphere.
 for _name in ("Box", "Camera", "Cone", "Csg", "Disk", "Implicit", "Instance", "Light", "Material", "Mesh", "Motion",
-              "Plane", "Quadric", "RenderSettings", "Scene", "SceneObject", "Sphere", "Torus", "Transform",
+              "Plane", "Quadric", "RenderSettings", "Scene", "SceneObject", "Sphere", "Spin", "Torus", "Transform",
               "Triangle"):
     getattr(_strahl, _name).__module__ = "strahl"
 

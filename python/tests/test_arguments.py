@@ -32,6 +32,9 @@ nan, inf = math.nan, math.inf
     (lambda: strahl.Camera(fov_axis="diagonal"), "fov_axis must be 'horizontal' or 'vertical'"),
     (lambda: strahl.Transform(scale=0), "transform scale must not be zero"),
     (lambda: strahl.Motion.linear((nan, 0, 0)), "motion velocity must have finite components"),
+    (lambda: strahl.Spin((0, 0, 0), 90), "motion spin axis must not be zero"),
+    (lambda: strahl.Spin((0, 1, 0), inf), "motion spin angle must be a finite number"),
+    (lambda: strahl.Spin((0, 1, 0), 90, center=(nan, 0, 0)), "motion spin center must have finite components"),
 ])
 def test_impossible_values_raise_strahl_error(make, message):
     with pytest.raises(strahl.Error, match=message) as info:

@@ -45,6 +45,11 @@ CASES = [
      "{type: intersection, rotate: [0, 45, 0], objects: [{type: box, corners: [[-1, -1, -1], [1, 1, 1]]}, "
      "{type: sphere, center: [0, 0, 0], radius: 1.3}]}, "
      "{type: cylinder, base: [-2, 0, 0], cap: [2, 0, 0], radius: 0.5}]}"),
+    (lambda: strahl.Box((0, 0, 0), (1, 1, 1), motion=strahl.Motion.spinning(strahl.Spin((0, 1, 0), 720, (0.5, 0, 0.5)))),
+     "{type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 1, 0], angle: 720, center: [0.5, 0, 0.5]}}}"),
+    (lambda: strahl.Torus((0, 0, 0), 1, 0.25, motion=strahl.Motion.linear((1, 0, 0), spin=strahl.Spin((0, 0, 1), -400))),
+     "{type: torus, center: [0, 0, 0], major_radius: 1, minor_radius: 0.25, "
+     "motion: {velocity: [1, 0, 0], spin: {axis: [0, 0, 1], angle: -400}}}"),
     (lambda: strahl.Merge([strahl.Sphere((0, 0, 0), 1), strahl.Sphere((1, 0, 0), 1)]),
      "{type: merge, objects: [{type: sphere, center: [0, 0, 0], radius: 1}, {type: sphere, center: [1, 0, 0], "
      "radius: 1}]}"),
@@ -158,3 +163,12 @@ objects:
         built.add_group("pair", [strahl.Box((0, 0, 0), (1, 1, 1))])
     with pytest.raises(TypeError):
         strahl.Scene().add(built.objects[0])  # an instance belongs to its scene's groups
+
+
+def test_a_motion_shows_its_spin():
+    spin = strahl.Spin((0, 1, 0), 1080, center=(1, 0, 0))
+    assert (spin.axis, spin.angle, spin.center) == ((0, 1, 0), 1080, (1, 0, 0))
+    moving = strahl.Motion.keyframes(strahl.Transform(), strahl.Transform(translate=(0, 1, 0)), spin=spin)
+    assert moving.kind == "keyframes" and moving.spin.angle == 1080 and moving.to.translate == (0, 1, 0)
+    assert strahl.Motion.linear((1, 0, 0)).spin is None
+    assert strahl.Motion.spinning(spin).kind == "none" and strahl.Motion.spinning(spin).spin.center == (1, 0, 0)

@@ -2,17 +2,21 @@
 // The map that carries a moving solid or instance (motion blur; geometry/moving_solid.h,
 // geometry/moving_instance.h) over the shutter fraction u ∈ [0, 1]:
 //
-//   A(u) = Post ∘ [Rot(axis, u·angle)·L(u) | t(u)],  L(u) = (1 − u)·L₀ + u·L₁,  t(u) = (1 − u)·t₀ + u·t₁.
+//   A(u)·x = Post(Rot(axis, u·angle)·(L(u)·x − c(u)) + t(u)),
+//   L(u) = (1 − u)·L₀ + u·L₁,  c(u) = (1 − u)·c₀ + u·c₁,  t(u) = (1 − u)·t₀ + u·t₁.
 //
-// Without a turn (angle 0: a velocity, keyframes that scale and translate) A(u) is the blend of
-// the keys, and every point moves on a segment. Keyframes that turn are split (scene/move_solid.h)
-// into the turn between them, taken uniformly over the shutter about a fixed axis (its angle
-// below a half turn), and the rest, blended: L₀ is the first key's linear part, L₁ the second's
-// with the turn taken out — every point then moves on an arc, and the object keeps its shape.
-// Post is a fixed map after the motion (a mesh's own transform: its keyframes act before it),
-// or none. A ray at time u is brought to the unmoved object by A(u)⁻¹ (a placement,
-// geometry/placement.h), where its t is the same; normals come back by A(u)⁻ᵀ.
-// scene/move_solid.h checks that A(u) is invertible at every u.
+// Without a turn (angle 0: a velocity, keyframes that scale and translate) c is 0 and A(u) is the
+// blend of the keys: every point moves on a segment. Keyframes that turn are split
+// (scene/move_solid.h) into the turn between them, taken uniformly over the shutter about a fixed
+// axis (its angle below a half turn), and the rest, blended: L₀ is the first key's linear part,
+// L₁ the second's with the turn taken out — every point then moves on an arc, and the object keeps
+// its shape. A spin is such a turn of any angle about the line through a centre p: cᵢ = Lᵢ·p is
+// where the keys' linear parts take that centre, and tᵢ where the keys take it, so the points on
+// the line stay on it (elsewhere c is 0: the turn is about the keys' origin). Post is a fixed map
+// after the motion (a mesh's own transform: its keyframes act before it), or none. A ray at time u
+// is brought to the unmoved object by A(u)⁻¹ (a placement, geometry/placement.h), where its t is
+// the same; normals come back by A(u)⁻ᵀ. scene/move_solid.h checks that A(u) is invertible at
+// every u.
 
 #include <cmath>
 #include <cstdint>
@@ -32,6 +36,8 @@ struct MovingMap {
   Vec3 fixed_inverse[3];
   std::uint32_t fixed = 0;
   std::uint32_t post = 0;        // 1: A(u) is followed by the fixed map below
+  std::uint32_t pivot = 0;       // 1: the turn is about a spin's centre (c₀, c₁ below), 0: c is 0
+  Vec3 pivot0{0}, pivot1{0};     // c₀, c₁
   Vec3 axis{0, 0, 1};            // the turn's axis (unit length), and its angle (radians; 0: none)
   Real angle = 0;
   Vec3 post_row[3];              // Post's linear part, by rows, and its inverse
@@ -75,6 +81,10 @@ STRAHL_HOST_DEVICE inline Placement at_time(const MovingMap& m, Real u) {
     Vec3 turn[3];
     turn_rows(m.axis, m.angle * u, turn);
     for (Vec3& row : x.row) row = Vec3(dot(row, turn[0]), dot(row, turn[1]), dot(row, turn[2]));
+    if (m.pivot != 0) {  // A(u)·x = Rot·L(u)·x + (t(u) − Rot·c(u))
+      const Vec3 c = lerp(m.pivot0, m.pivot1, u);
+      x.translate = x.translate - Vec3(dot(turn[0], c), dot(turn[1], c), dot(turn[2], c));
+    }
   }
   if (m.post != 0) {  // A(u)⁻¹(p) = B⁻¹·(P⁻¹·(p − p_t) − t(u)) = B⁻¹·P⁻¹·(p − (p_t + P·t(u)))
     x.translate = m.post_translate + Vec3(dot(m.post_row[0], x.translate), dot(m.post_row[1], x.translate),
@@ -90,6 +100,7 @@ inline Vec3 moved_point(const MovingMap& m, const Vec3& p, Real u) {
   const Vec3 r0 = lerp(m.linear0[0], m.linear1[0], u), r1 = lerp(m.linear0[1], m.linear1[1], u),
              r2 = lerp(m.linear0[2], m.linear1[2], u);
   Vec3 q(dot(r0, p), dot(r1, p), dot(r2, p));
+  if (m.pivot != 0) q = q - lerp(m.pivot0, m.pivot1, u);
   if (m.angle != 0) {
     Vec3 turn[3];
     turn_rows(m.axis, m.angle * u, turn);
@@ -103,12 +114,14 @@ inline Vec3 moved_point(const MovingMap& m, const Vec3& p, Real u) {
 // The box holding everything within the box [lo, hi] at every time of [u0, u1]. Without a turn
 // each point moves on a segment between where A(u0) and A(u1) put it, and lies in the hull of
 // the moved corners (up to rounding, as a placed solid's box: geometry/solid_leaf.h). With one,
-// a point x is at t(u) + Rot(u)·L(u)·x; with s the fraction of the segment, L(u)·x =
-// (1 − s)·y₀ + s·y₁ (y at u0 and u1) and t(u) likewise, so the point is (1 − s)·(t(u0) + Rot(u)·y₀)
-// + s·(t(u1) + Rot(u)·y₁); Rot(u)·y lies on an arc through the segment's turn δ, within
-// |y|·(1 − cos(δ/2)) of its chord. So it lies in the hull of the four points t(uᵢ) + Rot(uⱼ)·yᵢ,
-// widened by that; Post carries the hull to the hull of its image and stretches the widening
-// by at most its Frobenius norm. Widened by a little more than rounding.
+// a point x is at t(u) + Rot(u)·y(u), y(u) = L(u)·x − c(u); with s the fraction of the segment,
+// y(u) = (1 − s)·y₀ + s·y₁ (y at u0 and u1) and t(u) likewise, so the point is (1 − s)·(t(u0) +
+// Rot(u)·y₀) + s·(t(u1) + Rot(u)·y₁), in the hull of the arcs tᵢ + Rot(φ)·yᵢ over the segment's
+// angles φ. The arcs are cut into pieces of at most an eighth of a turn (a whole turn at most:
+// beyond it they close), and a piece of turn δ lies within |y|·(1 − cos(δ/2)) of its chord. So
+// the point lies in the hull of the points tᵢ + Rot(φₖ)·yᵢ at the pieces' ends, widened by that;
+// Post carries the hull to the hull of its image and stretches the widening by at most its
+// Frobenius norm. Widened by a little more than rounding.
 inline Bounds swept_bounds(const MovingMap& m, const Vec3& lo, const Vec3& hi, Real u0, Real u1) {
   Bounds box;
   if (m.angle == 0 && m.post == 0) {
@@ -117,21 +130,28 @@ inline Bounds swept_bounds(const MovingMap& m, const Vec3& lo, const Vec3& hi, R
         box.extend(moved_point(m, Vec3((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z), u));
     return box;
   }
-  Vec3 turn[2][3];
-  turn_rows(m.axis, m.angle * u0, turn[0]);
-  turn_rows(m.axis, m.angle * u1, turn[1]);
-  const Real half = std::fabs(m.angle * (u1 - u0)) / 4, sag_per_length = 2 * std::sin(half) * std::sin(half);
+  constexpr int kMostPieces = 8;
+  const Real sweep = m.angle * (u1 - u0);
+  const bool whole = std::fabs(sweep) >= 2 * kPi;
+  const Real span = whole ? std::copysign(2 * kPi, sweep) : sweep;
+  const int pieces = whole ? kMostPieces : std::fabs(sweep) > kPi / 4 ? int(std::ceil(std::fabs(sweep) / (kPi / 4))) : 1;
+  Vec3 turn[kMostPieces + 1][3];
+  for (int k = 0; k <= pieces; ++k)
+    turn_rows(m.axis, k == pieces && !whole ? m.angle * u1 : m.angle * u0 + span * k / pieces, turn[k]);
+  const Real half = std::fabs(span / pieces) / 4, sag_per_length = 2 * std::sin(half) * std::sin(half);
   Real reach = 0;
   const Real us[2] = {u0, u1};
   for (int c = 0; c < 8; ++c) {
     const Vec3 x((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-    for (int i = 0; i < 2; ++i) {
-      const Real u = us[i];
+    for (const Real u : us) {
       const Vec3 r0 = lerp(m.linear0[0], m.linear1[0], u), r1 = lerp(m.linear0[1], m.linear1[1], u),
                  r2 = lerp(m.linear0[2], m.linear1[2], u);
-      const Vec3 y(dot(r0, x), dot(r1, x), dot(r2, x)), t = lerp(m.translate0, m.translate1, u);
+      Vec3 y(dot(r0, x), dot(r1, x), dot(r2, x));
+      if (m.pivot != 0) y = y - lerp(m.pivot0, m.pivot1, u);
+      const Vec3 t = lerp(m.translate0, m.translate1, u);
       reach = std::fmax(reach, length(y));
-      for (const Vec3* r : {turn[0], turn[1]}) {
+      for (int k = 0; k <= pieces; ++k) {
+        const Vec3* r = turn[k];
         Vec3 q = Vec3(dot(r[0], y), dot(r[1], y), dot(r[2], y)) + t;
         if (m.post != 0) q = Vec3(dot(m.post_row[0], q), dot(m.post_row[1], q), dot(m.post_row[2], q)) + m.post_translate;
         box.extend(q);

@@ -235,7 +235,7 @@ void hash(Hasher& h, const kernel::PlacedSolid& x) {
   h.add(x.hi);
 }
 static_assert(sizeof(kernel::Instance) == 120, "kernel::Instance changed: hash its new fields here");
-static_assert(sizeof(kernel::MovingMap) == 472 && sizeof(kernel::MovingSolid) == 536,
+static_assert(sizeof(kernel::MovingMap) == 528 && sizeof(kernel::MovingSolid) == 592,
               "kernel::MovingMap or MovingSolid changed: hash its new fields here");
 void hash(Hasher& h, const kernel::MovingMap& x) {
   for (int i = 0; i < 3; ++i) {
@@ -247,6 +247,9 @@ void hash(Hasher& h, const kernel::MovingMap& x) {
   for (const Vec3& r : x.fixed_inverse) h.add(r);
   h.add(x.fixed);
   h.add(x.post);
+  h.add(x.pivot);
+  h.add(x.pivot0);
+  h.add(x.pivot1);
   h.add(x.axis);
   h.add(x.angle);
   for (const Vec3& r : x.post_row) h.add(r);
@@ -267,7 +270,7 @@ void hash(Hasher& h, const kernel::Instance& x) {
   h.add(x.group);
   h.add(x.translation_only);
 }
-static_assert(sizeof(kernel::MovingInstance) == 656, "kernel::MovingInstance changed: hash its new fields here");
+static_assert(sizeof(kernel::MovingInstance) == 712, "kernel::MovingInstance changed: hash its new fields here");
 void hash(Hasher& h, const kernel::MovingInstance& x) {
   hash(h, x.instance);
   hash(h, x.map);

@@ -84,8 +84,8 @@ Vec3 apply(const Transform& t, const Vec3& p) { return t.linear() * p + t.transl
 // Where point p is at shutter open (key 0) and close (key 1).
 Vec3 moved(const Motion& m, const RenderScene& out, const Vec3& p, int key) {
   switch (m.kind) {
-    case Motion::Kind::Velocity: return p + m.velocity * (key == 0 ? out.camera.shutter_open : out.camera.shutter_close);
-    case Motion::Kind::Keyframes: return apply(key == 0 ? m.from : m.to, p);
+    case Motion::Kind::Velocity: return p + m.velocity() * (key == 0 ? out.camera.shutter_open : out.camera.shutter_close);
+    case Motion::Kind::Keyframes: return apply(key == 0 ? m.from() : m.to(), p);
     case Motion::Kind::None: break;
   }
   return p;
@@ -93,7 +93,7 @@ Vec3 moved(const Motion& m, const RenderScene& out, const Vec3& p, int key) {
 
 // The linear part of the motion at a key, for normals (identity for a velocity).
 Mat3 moved_linear(const Motion& m, int key) {
-  return m.kind == Motion::Kind::Keyframes ? (key == 0 ? m.from : m.to).linear() : Mat3{};
+  return m.kind == Motion::Kind::Keyframes ? (key == 0 ? m.from() : m.to()).linear() : Mat3{};
 }
 
 // The scale of a map that scales evenly (a similarity: a sphere stays a sphere), else 0.
@@ -148,7 +148,7 @@ void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::u
     Real radius_at[2] = {radius, radius};
     if (motion.kind == Motion::Kind::Keyframes) {
       for (int key = 0; key < 2; ++key) {
-        const Real s = even_scale(key == 0 ? motion.from : motion.to);
+        const Real s = even_scale(key == 0 ? motion.from() : motion.to());
         if (!(s > 0)) throw Error(loc, std::string(kNonUniformSphereScale));
         radius_at[key] = radius * s;
         validate::positive(radius_at[key], loc, "sphere radius after the motion scale");

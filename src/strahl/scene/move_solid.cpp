@@ -12,9 +12,13 @@
 namespace strahl {
 
 void validate_motion(const Motion& m, const FileLoc& loc) {
-  if (m.kind == Motion::Kind::Velocity) validate::finite(m.velocity, loc, "motion velocity");
+  validate::finite(m.spin().axis, loc, "motion spin axis");
+  validate::finite(m.spin().angle, loc, "motion spin angle");
+  validate::finite(m.spin().center, loc, "motion spin center");
+  if (m.spins() && m.spin().axis == Vec3(0)) throw Error(loc, "motion spin axis must not be zero");
+  if (m.kind == Motion::Kind::Velocity) validate::finite(m.velocity(), loc, "motion velocity");
   if (m.kind != Motion::Kind::Keyframes) return;
-  for (const Transform* t : {&m.from, &m.to}) {
+  for (const Transform* t : {&m.from(), &m.to()}) {
     validate::finite(t->scale, loc, "motion scale");
     validate::finite(t->rotate_degrees, loc, "motion rotate");
     validate::finite(t->translate, loc, "motion translate");
@@ -27,8 +31,8 @@ namespace {
 // The motion's map at shutter open (key 0) and close (key 1), in world space.
 Affine motion_key(const Motion& m, Real shutter_open, Real shutter_close, int key) {
   switch (m.kind) {
-    case Motion::Kind::Velocity: return {Mat3{}, m.velocity * (key == 0 ? shutter_open : shutter_close)};
-    case Motion::Kind::Keyframes: return affine_of(key == 0 ? m.from : m.to);
+    case Motion::Kind::Velocity: return {Mat3{}, m.velocity() * (key == 0 ? shutter_open : shutter_close)};
+    case Motion::Kind::Keyframes: return affine_of(key == 0 ? m.from() : m.to());
     case Motion::Kind::None: break;
   }
   return {};
@@ -129,17 +133,30 @@ void turn_between(const Mat3& q0, const Mat3& q1, Vec3& axis, Real& angle) {
 // neither — else there is none, and a blend of them flattens, which moving_map refuses): its axis
 // and angle, and whether there is one (an angle above 1e-9). Keyframes a half turn apart are an
 // error at `loc`: which way they turn is open.
-bool turn_of(const Motion& motion, const Affine* key_map, Vec3& axis, Real& angle, const FileLoc& loc, const char* what) {
+bool keys_turn(const Motion& motion, const Affine* key_map, Vec3& axis, Real& angle, const FileLoc& loc, const char* what) {
   const Real det0 = key_map[0].m.determinant(), det1 = key_map[1].m.determinant();
   if (motion.kind != Motion::Kind::Keyframes || (det0 > 0) != (det1 > 0)) return false;
   turn_between(orthogonal_factor(key_map[0].m), orthogonal_factor(key_map[1].m), axis, angle);
   if (kPi - angle < Real(1e-6))
     throw Error(loc, std::string("the keyframes of the ") + what +
-                         " are a half turn apart, so which way it turns is open: turn it by less within the shutter");
+                         " are a half turn apart, so which way it turns is open: turn it by less within the shutter, "
+                         "or give the turn as a spin");
   if (angle > Real(1e-9)) return true;
   axis = Vec3(0, 0, 1);
   angle = 0;
   return false;
+}
+
+// The motion's turn: its spin's, or the keyframes' (above) — not both (an error at `loc`).
+bool turn_of(const Motion& motion, const Affine* key_map, Vec3& axis, Real& angle, const FileLoc& loc, const char* what) {
+  const bool keys = keys_turn(motion, key_map, axis, angle, loc, what);
+  if (!motion.spins()) return keys;
+  if (keys)
+    throw Error(loc, std::string("the keyframes of the ") + what +
+                         " turn, and so does its spin: give the keyframes the same rotation and the whole turn to the spin");
+  axis = normalize(motion.spin().axis);
+  angle = motion.spin().angle * kPi / 180;
+  return true;
 }
 
 }  // namespace
@@ -156,7 +173,17 @@ kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const F
   }
   // A turn between the keys: taken out of the second key, and taken uniformly over the shutter by
   // at_time() (geometry/moving_map.h).
-  if (turn_of(motion, key_map, m.axis, m.angle, loc, what)) {
+  if (turn_of(motion, key_map, m.axis, m.angle, loc, what) && motion.spins()) {
+    // About the spin's centre p: cᵢ = Lᵢ·p, and tᵢ is where the key takes p.
+    m.pivot = 1;
+    const Vec3 p = motion.spin().center;
+    for (int key = 0; key < 2; ++key) {
+      const Mat3& l = key_map[key].m;
+      const Vec3 c(dot(l.row[0], p), dot(l.row[1], p), dot(l.row[2], p));
+      (key == 0 ? m.pivot0 : m.pivot1) = c;
+      (key == 0 ? m.translate0 : m.translate1) = key_map[key].t + c;
+    }
+  } else if (m.angle != 0) {
     Vec3 turn[3];
     kernel::turn_rows(m.axis, m.angle, turn);
     // L₁ = Rot(angle)ᵀ·(the second key's linear part), by rows: row i is Σₖ Rot[k][i]·key row k.
@@ -204,7 +231,7 @@ kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const F
 }
 
 bool motion_turns(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what) {
-  if (motion.kind != Motion::Kind::Keyframes) return false;
+  if (motion.kind != Motion::Kind::Keyframes && !motion.spins()) return false;
   validate_motion(motion, loc);
   const Affine key_map[2] = {motion_key(motion, camera.shutter_open, camera.shutter_close, 0),
                              motion_key(motion, camera.shutter_open, camera.shutter_close, 1)};

@@ -12,19 +12,20 @@ namespace strahl {
 
 struct RenderScene;
 
-// A motion's values: finite, no scale of 0 (an error at `loc`).
+// A motion's values: finite, no scale of 0, no spin about a zero axis (an error at `loc`).
 void validate_motion(const Motion& m, const FileLoc& loc);
 
 // The motion's map A(u) over the shutter (geometry/moving_map.h), followed by `post` when given
 // (a mesh's transform): at shutter open a keyframe's `from` (or the velocity's displacement at
 // that time), at close its `to`, and between them the turn from one to the other taken uniformly
 // (the keys' linear parts' orthogonal factors, Q₁·Q₀ᵀ, as an axis and an angle below a half
-// turn) with the rest blended. Checked: finite, and invertible at every time of the shutter
-// (else an error at `loc` naming `what`: keyframes a half turn apart, a scale changing sign).
+// turn) with the rest blended — or, with a spin, the spin's turn about its centre (the keys may
+// then not turn). Checked: finite, and invertible at every time of the shutter (else an error at
+// `loc` naming `what`: keyframes a half turn apart, turning beside a spin, a scale changing sign).
 kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what,
                              const Affine* post = nullptr);
 
-// Does the motion turn what it moves (keyframes whose rotations differ)? Such spheres, triangles
+// Does the motion turn what it moves (keyframes whose rotations differ, a spin)? Such spheres, triangles
 // and meshes move as solids or instances do, on arcs (their blends of vertices and centres
 // would move on chords). The errors of moving_map().
 bool motion_turns(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what);

@@ -37,24 +37,60 @@ inline Material material_with_color(const Vec3& color) {
 
 // How an object moves during the shutter interval (motion blur): not at all, with a linear
 // velocity (units per unit of shutter time: at time τ it is displaced by velocity·τ), or between
-// two keyframed transforms, `from` at shutter open and `to` at shutter close (vertices, or a
-// sphere's centre, move linearly in between). Keyframes (any transform: scale/rotate/translate
+// two keyframed transforms, `from` at shutter open and `to` at shutter close (in between on
+// straight lines, or on arcs where the keys turn: scene/move_solid.h). Keyframes (any transform: scale/rotate/translate
 // or a matrix) act in world space, after the object's own placement, for spheres, triangles,
 // solids and instances; a mesh's act in its own coordinates, before its scale/rotate/translate
-// (so a mesh turns about its own origin). Planes cannot move.
+// (so a mesh turns about its own origin). A Spin may come with either, or alone. Planes cannot
+// move.
 inline constexpr const char* kNonUniformSphereScale =
     "a sphere's motion scale must be the same on every axis up to sign (a non-uniform scale would make an "
     "ellipsoid, which a sphere cannot be)";
 
-struct Motion {
+// A spin: the object turns by `angle` degrees (any size, either sign: 1080 is three turns,
+// right-handed about `axis`) from shutter open to close, uniformly, about the line along `axis`
+// through `center` — both in the coordinates the motion acts in (world space; a mesh's own) —
+// while the motion's velocity or keyframes carry the centre along; the axis keeps its direction.
+struct Spin {
+  Vec3 axis{0, 0, 1};
+  Real angle = 0;
+  Vec3 center{0};
+};
+
+// (One shared, immutable record behind each motion: most objects have none, and a scene file's
+// many objects must stay small — docs/scene-format.md, "Memory bound".)
+class Motion {
+ public:
   enum class Kind { None, Velocity, Keyframes };
   Kind kind = Kind::None;
-  Vec3 velocity{0};
-  Transform from, to;
 
-  static Motion linear(const Vec3& v) { return {Kind::Velocity, v, {}, {}}; }
-  static Motion keyframes(const Transform& a, const Transform& b) { return {Kind::Keyframes, Vec3(0), a, b}; }
-  bool moving() const { return kind != Kind::None; }
+  static Motion linear(const Vec3& v) { return Motion(Kind::Velocity, {v, {}, {}, {}}); }
+  static Motion keyframes(const Transform& a, const Transform& b) { return Motion(Kind::Keyframes, {Vec3(0), a, b, {}}); }
+  static Motion spinning(const Spin& s) { return Motion(Kind::None, {Vec3(0), {}, {}, s}); }
+  // This motion with a spin (none while its angle is 0); with keyframes, theirs may not turn as well.
+  Motion with_spin(const Spin& s) const { return Motion(kind, {velocity(), from(), to(), s}); }
+
+  const Vec3& velocity() const { return data().velocity; }
+  const Transform& from() const { return data().from; }
+  const Transform& to() const { return data().to; }
+  const Spin& spin() const { return data().spin; }
+  bool spins() const { return spin().angle != 0; }
+  bool moving() const { return kind != Kind::None || spins(); }
+
+  Motion() = default;
+
+ private:
+  struct Data {
+    Vec3 velocity{0};
+    Transform from, to;
+    Spin spin;
+  };
+  Motion(Kind k, Data d) : kind(k), data_(std::make_shared<const Data>(std::move(d))) {}
+  const Data& data() const {
+    static const Data none;
+    return data_ ? *data_ : none;
+  }
+  std::shared_ptr<const Data> data_;
 };
 
 class SceneObject {

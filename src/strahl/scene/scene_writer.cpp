@@ -91,13 +91,19 @@ std::string transform_map(const Transform& t, const std::string& what) {
 }
 
 void motion(Writer& w, const Motion& m) {
+  std::string keys;
   switch (m.kind) {
-    case Motion::Kind::None: return;
-    case Motion::Kind::Velocity: w.line(4, "motion: {velocity: " + Writer::vec(m.velocity, "motion velocity") + "}"); return;
+    case Motion::Kind::None: break;
+    case Motion::Kind::Velocity: keys = "velocity: " + Writer::vec(m.velocity(), "motion velocity"); break;
     case Motion::Kind::Keyframes:
-      w.line(4, "motion: {from: " + transform_map(m.from, "motion") + ", to: " + transform_map(m.to, "motion") + "}");
-      return;
+      keys = "from: " + transform_map(m.from(), "motion") + ", to: " + transform_map(m.to(), "motion");
+      break;
   }
+  if (m.spins())
+    keys += std::string(keys.empty() ? "" : ", ") + "spin: {axis: " + Writer::vec(m.spin().axis, "motion spin axis") +
+            ", angle: " + Writer::num(m.spin().angle, "motion spin angle") +
+            ", center: " + Writer::vec(m.spin().center, "motion spin center") + "}";
+  if (!keys.empty()) w.line(4, "motion: {" + keys + "}");
 }
 
 // A general transform (Transform::general) as its 3×4 matrix.

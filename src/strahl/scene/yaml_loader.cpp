@@ -420,17 +420,34 @@ class Reader {
     keys(n, {"scale", "rotate", "translate", "matrix", "transform"}, what);
     return placement(n, "motion ");
   }
+  // `spin: {axis: [x, y, z], angle: degrees, center: [x, y, z]}` (center optional) beside either,
+  // or alone.
   Motion motion(const YAML::Node& n) const {
     map(n, "motion");
-    keys(n, {"velocity", "from", "to"}, "motion");
+    keys(n, {"velocity", "from", "to", "spin"}, "motion");
+    const Spin s = n["spin"] ? spin(n["spin"]) : Spin{};
     if (const auto v = n["velocity"]) {
       if (n["from"] || n["to"]) fail(v, "give either velocity or from/to keyframes, not both");
-      return Motion::linear(vec3(v, "velocity"));
+      return Motion::linear(vec3(v, "velocity")).with_spin(s);
     }
-    if (!n["from"] && !n["to"]) fail(n, "motion needs 'velocity' or 'from'/'to' keyframes");
+    if (!n["from"] && !n["to"]) {
+      if (n["spin"]) return Motion::spinning(s);
+      fail(n, "motion needs 'velocity', 'from'/'to' keyframes or a 'spin'");
+    }
     const Transform from = n["from"] ? transform(n["from"], "motion from") : Transform{};
     const Transform to = n["to"] ? transform(n["to"], "motion to") : Transform{};
-    return Motion::keyframes(from, to);
+    return Motion::keyframes(from, to).with_spin(s);
+  }
+  Spin spin(const YAML::Node& n) const {
+    map(n, "motion spin");
+    keys(n, {"axis", "angle", "center"}, "motion spin");
+    Spin s;
+    const YAML::Node axis = required(n, "axis", "motion spin");
+    s.axis = vec3(axis, "spin axis");
+    if (s.axis == Vec3(0)) fail(axis, "spin axis must not be zero");
+    s.angle = number(required(n, "angle", "motion spin"), "spin angle");
+    if (const auto c = n["center"]) s.center = vec3(c, "spin center");
+    return s;
   }
 
   // `groups: {name: [objects…], …}` (docs/scene-format.md, "Instances"), read before the objects
