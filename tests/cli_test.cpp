@@ -72,6 +72,21 @@ TEST_F(Cli, RendersTheBuiltInLectureSceneWithoutAFile) {
   EXPECT_NE(log().find("rays"), std::string::npos) << "the summary is printed unless --quiet";
 }
 
+// The summary names the time segments of the moving shapes' BVH beside the moving shapes, or,
+// where only instances move (a spinning triangle is an instance of itself), beside those.
+TEST_F(Cli, SummaryNamesTheTimeSegmentsWhereTheMovingThingsAre) {
+  test::write_text(dir_ / "spin.yaml", std::string(kGoodScene) +
+                                           "  - {type: triangle, vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], motion: "
+                                           "{spin: {axis: [0, 0, 1], angle: 120}}}\n");
+  ASSERT_EQ(run("spin.yaml --width 8 --height 8 -o spin.png"), 0) << log();
+  EXPECT_NE(log().find("lights\ninstances   1 instances (1 moving, their BVH cut into "), std::string::npos) << log();
+  test::write_text(dir_ / "spin.yaml", std::string(kGoodScene) +
+                                           "  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: "
+                                           "[0, 0, 1], angle: 120}}}\n");
+  ASSERT_EQ(run("spin.yaml --width 8 --height 8 -o spin.png"), 0) << log();
+  EXPECT_NE(log().find("1 solids, 1 lights (1 of the shapes moving, their BVH cut into "), std::string::npos) << log();
+}
+
 TEST_F(Cli, DefaultOutputNameFollowsTheScene) {
   ASSERT_EQ(run("scene.yaml --width 8 --height 8 -q"), 0) << log();
   EXPECT_TRUE(fs::exists(dir_ / "scene.png"));

@@ -15,17 +15,15 @@ std::string summary(const std::string& output, int width, int height, int thread
                      sampler_name(sm.sampler), sm.spp, filter_name(sm.filter.kind), sm.filter.radius, threads);
   const AccelBuildStats& a = scene.accel.stats;
   // Moving shapes count with the others (and are named, as the accelerator line leaves them out),
-  // with the time segments their BVH was cut into (accel/motion_bvh.h) where more than one.
+  // moving instances with the instances; the time segments their BVH was cut into
+  // (accel/motion_bvh.h), where more than one, are named beside the first of the two.
   const std::size_t moving = scene.moving_spheres.size() + scene.moving_triangles.size() + scene.moving_solids.size();
   const std::uint32_t segments = scene.moving_bvh.segments;
+  const std::string cut = segments > 1 ? fmt::format(", their BVH cut into {} time segments", segments) : std::string();
   out += fmt::format("scene       {} spheres, {} planes, {} triangles, {} solids, {} lights{}\n",
                      scene.spheres.size() + scene.moving_spheres.size(), scene.planes.size(),
                      scene.triangles.size() + scene.moving_triangles.size(), scene.solids.size() + scene.moving_solids.size(),
-                     scene.lights.size(),
-                     moving == 0     ? std::string()
-                     : segments > 1 ? fmt::format(" ({} of the shapes moving, their BVH cut into {} time segments)",
-                                                  moving, segments)
-                                    : fmt::format(" ({} of the shapes moving)", moving));
+                     scene.lights.size(), moving == 0 ? std::string() : fmt::format(" ({} of the shapes moving{})", moving, cut));
   if (!scene.instances.empty() || !scene.moving_instances.empty()) {
     std::size_t triangles = 0, spheres = 0, solids = 0, bytes = 0;
     for (const RenderScene& g : scene.groups) {
@@ -37,7 +35,8 @@ std::string summary(const std::string& output, int width, int height, int thread
     const std::size_t moving_instances = scene.moving_instances.size();
     out += fmt::format("instances   {} instances{} of {} groups ({} spheres, {} triangles, {} solids, once; their {}: {:.1f} MiB)\n",
                        scene.instances.size() + moving_instances,
-                       moving_instances > 0 ? fmt::format(" ({} moving)", moving_instances) : std::string(),
+                       moving_instances > 0 ? fmt::format(" ({} moving{})", moving_instances, moving == 0 ? cut : std::string())
+                                            : std::string(),
                        scene.groups.size(), spheres, triangles, solids, accel_name(scene.groups.front().accel.kind),
                        double(bytes) / (1 << 20));
   }
