@@ -20,6 +20,7 @@
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
 #include "strahl/scene/solids.h"
+#include "swept_bounds_check.h"
 #include "test_helpers.h"
 
 namespace strahl::moving_solid_test {
@@ -233,7 +234,7 @@ TEST(MovingSolid, TurningBoxIsTheStillBoxTurned) {
 // the segments the motion BVH cuts.
 TEST(MovingSolid, SweptBoundsOfATurnHoldEveryTime) {
   std::mt19937_64 rng(11);
-  std::uniform_real_distribution<Real> u(-1, 1), f(0, 1);
+  std::uniform_real_distribution<Real> u(-1, 1);
   Camera camera;
   camera.shutter_open = 0;
   camera.shutter_close = 1;
@@ -249,19 +250,8 @@ TEST(MovingSolid, SweptBoundsOfATurnHoldEveryTime) {
         moving_map(Motion::keyframes(key(), key()), camera, FileLoc{}, "box", trial % 2 == 0 ? &post : nullptr);
     turning += m.angle != 0;
     const Vec3 lo(u(rng) - 1, u(rng) - 1, u(rng) - 1), hi(u(rng) + 1, u(rng) + 1, u(rng) + 1);
-    for (const int segments : {1, 2, 4, 8}) {
-      for (int k = 0; k < segments; ++k) {
-        const Real u0 = Real(k) / segments, u1 = Real(k + 1) / segments;
-        const Bounds b = kernel::swept_bounds(m, lo, hi, u0, u1);
-        for (int i = 0; i < 40; ++i) {
-          const Vec3 p(lo.x + (hi.x - lo.x) * f(rng), lo.y + (hi.y - lo.y) * f(rng), lo.z + (hi.z - lo.z) * f(rng));
-          const Real t = i == 0 ? u0 : (i == 1 ? u1 : u0 + (u1 - u0) * f(rng));
-          const Vec3 q = kernel::moved_point(m, p, t);
-          ASSERT_TRUE(q.x >= b.lo.x && q.y >= b.lo.y && q.z >= b.lo.z && q.x <= b.hi.x && q.y <= b.hi.y && q.z <= b.hi.z)
-              << "trial " << trial << ", segment " << k << " of " << segments << ", time " << t;
-        }
-      }
-    }
+    const std::string miss = test::swept_bounds_miss(m, lo, hi, {1, 2, 4, 8}, 40, rng);
+    ASSERT_TRUE(miss.empty()) << "trial " << trial << ", " << miss;
   }
   EXPECT_GT(turning, 290);
 }
@@ -375,15 +365,6 @@ TEST(MovingSolid, ZeroLengthShutterFreezesTheSolidAtOpen) {
   EXPECT_EQ(test::pixel(s), Vec3(0));
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    compile(parse_scene(text, "bad.yaml", "."));
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 TEST(MovingSolid, SceneKeysAndErrors) {
   // Every solid takes `motion`, as does the outermost CSG node and an ellipsoid.
   const std::string ok = R"(
@@ -401,47 +382,47 @@ objects:
   const RenderScene rs = compile(parse_scene(ok, "ok.yaml", "."));
   EXPECT_EQ(rs.moving_solids.size(), 9u);
   EXPECT_TRUE(rs.solids.empty());
-  EXPECT_EQ(error_of("objects:\n  - {type: quadric, coefficients: [1, 1, 0, 0, 0, 0, 0, 0, 0, -1], motion: {velocity: "
+  EXPECT_EQ(test::compile_error("objects:\n  - {type: quadric, coefficients: [1, 1, 0, 0, 0, 0, 0, 0, 0, -1], motion: {velocity: "
                      "[1, 0, 0]}}\n"),
             "bad.yaml:2:5: a solid without bounds cannot move (an unclipped quadric, or a CSG tree around an inverse: "
             "clip it, or intersect it with a box)");
-  EXPECT_EQ(error_of("objects:\n  - type: union\n    objects:\n      - {type: box, corners: [[0, 0, 0], [1, 1, 1]], "
+  EXPECT_EQ(test::compile_error("objects:\n  - type: union\n    objects:\n      - {type: box, corners: [[0, 0, 0], [1, 1, 1]], "
                      "motion: {velocity: [1, 0, 0]}}\n"),
             "bad.yaml:4:9: an operand of union cannot move on its own (give the motion to the outermost CSG node)");
-  EXPECT_NE(error_of("objects:\n  - type: union\n    objects:\n      - {type: intersection, objects: [{type: box, corners: "
+  EXPECT_NE(test::compile_error("objects:\n  - type: union\n    objects:\n      - {type: intersection, objects: [{type: box, corners: "
                      "[[0, 0, 0], [1, 1, 1]]}], motion: {velocity: [1, 0, 0]}}\n")
                 .find("bad.yaml:4:"),
             std::string::npos);
   // Keyframes a half turn apart leave open which way the solid turns; other turns take the shorter
   // way (200° moves as −160° does).
   const std::string turn = "objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {rotate: [0, ";
-  EXPECT_EQ(error_of(turn + "180, 0]}}}\n"),
+  EXPECT_EQ(test::compile_error(turn + "180, 0]}}}\n"),
             "bad.yaml:2:5: the keyframes of the solid are a half turn apart, so which way it turns is open: turn it by "
             "less within the shutter, or give the turn as a spin");
-  EXPECT_NE(error_of(turn + "540, 0]}}}\n").find("half turn"), std::string::npos);
-  EXPECT_EQ(error_of(turn + "90, 0]}}}\n"), "no error");
-  EXPECT_EQ(error_of(turn + "179, 0]}}}\n"), "no error");
-  EXPECT_EQ(error_of(turn + "200, 0]}}}\n"), "no error");
+  EXPECT_NE(test::compile_error(turn + "540, 0]}}}\n").find("half turn"), std::string::npos);
+  EXPECT_EQ(test::compile_error(turn + "90, 0]}}}\n"), "no error");
+  EXPECT_EQ(test::compile_error(turn + "179, 0]}}}\n"), "no error");
+  EXPECT_EQ(test::compile_error(turn + "200, 0]}}}\n"), "no error");
   // Instances move too, under the same rule.
   const std::string group = "groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]\nobjects:\n";
-  EXPECT_EQ(error_of(group + "  - {type: instance, of: g, motion: {velocity: [1, 0, 0]}}\n"), "no error");
-  EXPECT_NE(error_of(group + "  - {type: instance, of: g, motion: {to: {rotate: [180, 0, 0]}}}\n")
+  EXPECT_EQ(test::compile_error(group + "  - {type: instance, of: g, motion: {velocity: [1, 0, 0]}}\n"), "no error");
+  EXPECT_NE(test::compile_error(group + "  - {type: instance, of: g, motion: {to: {rotate: [180, 0, 0]}}}\n")
                 .find("bad.yaml:4:5: the keyframes of the instance are a half turn apart"),
             std::string::npos);
   // A group keeps only still shapes: a moving solid in it is refused, not dropped, and a moving
   // instance in it is a nested instance.
-  EXPECT_EQ(error_of("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {velocity: [1, 0, 0]}}]\n"
+  EXPECT_EQ(test::compile_error("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {velocity: [1, 0, 0]}}]\n"
                      "objects:\n  - {type: instance, of: g}\n"),
             "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to the instances)");
-  EXPECT_EQ(error_of("groups:\n  g: [{type: sphere, center: [0, 0, 0], radius: 1, scale: [1, 2, 1], motion: {velocity: "
+  EXPECT_EQ(test::compile_error("groups:\n  g: [{type: sphere, center: [0, 0, 0], radius: 1, scale: [1, 2, 1], motion: {velocity: "
                      "[1, 0, 0]}}]\nobjects:\n  - {type: instance, of: g}\n"),
             "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to the instances)");
-  EXPECT_NE(error_of("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]\n  h: [{type: instance, of: g, "
+  EXPECT_NE(test::compile_error("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]\n  h: [{type: instance, of: g, "
                      "motion: {velocity: [1, 0, 0]}}]\nobjects:\n  - {type: instance, of: h}\n")
                 .find("nest"),
             std::string::npos);
   // A scale changing sign on one axis passes through 0 there.
-  EXPECT_NE(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {scale: [1, -1, 1]}}}\n")
+  EXPECT_NE(test::compile_error("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {scale: [1, -1, 1]}}}\n")
                 .find("flattens"),
             std::string::npos);
 }
@@ -473,10 +454,10 @@ objects:
   const Vec3 c1 = kernel::moved_point(s, Vec3(1, 0, 0), 1), rim = kernel::moved_point(s, Vec3(2, 0, 0), 1);
   EXPECT_TRUE(test::vec_near(c1, Mat3::rotation(Vec3(1, 1, 0), 40) * Vec3(3, 0, 0), 1e-12));
   EXPECT_NEAR(length(rim - c1), 3, 1e-12);  // the radius scaled by 3
-  EXPECT_EQ(error_of("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, motion: {to: {matrix: [[1, 0.1, 0], "
+  EXPECT_EQ(test::compile_error("objects:\n  - {type: sphere, center: [0, 0, 0], radius: 1, motion: {to: {matrix: [[1, 0.1, 0], "
                      "[0, 1, 0], [0, 0, 1]]}}}\n"),
             std::string("bad.yaml:2:5: ") + kNonUniformSphereScale);
-  EXPECT_NE(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {matrix: [[1, 0, 0], "
+  EXPECT_NE(test::compile_error("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {matrix: [[1, 0, 0], "
                      "[0, 1, 0]]}}}\n")
                 .find("bad.yaml:2:"),
             std::string::npos);

@@ -16,6 +16,7 @@
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
 #include "strahl/scene/solids.h"
+#include "swept_bounds_check.h"
 #include "test_helpers.h"
 
 namespace strahl::spin_test {
@@ -113,25 +114,14 @@ TEST(Spin, WholeTurnsEndWhereTheyBegan) {
 // the segments the motion BVH cuts (a segment turning by several turns, by less than one, by a sliver).
 TEST(Spin, SweptBoundsHoldEveryTime) {
   std::mt19937_64 rng(13);
-  std::uniform_real_distribution<Real> s(-1, 1), f(0, 1);
+  std::uniform_real_distribution<Real> s(-1, 1);
   const Camera cam = shutter(0, 1);
   const Affine post{Mat3::rotation(Vec3(1, 2, 3), 25) * Mat3::scale(Vec3(2, 1, 0.5)), Vec3(1, -2, 3)};
   for (int trial = 0; trial < 200; ++trial) {
     const kernel::MovingMap m = moving_map(motion_of(trial % 3, rng), cam, FileLoc{}, "box", trial % 2 ? &post : nullptr);
     const Vec3 lo(s(rng) - 1, s(rng) - 1, s(rng) - 1), hi(s(rng) + 1, s(rng) + 1, s(rng) + 1);
-    for (const int segments : {1, 3, 16, 64}) {
-      for (int k = 0; k < segments; ++k) {
-        const Real u0 = Real(k) / segments, u1 = Real(k + 1) / segments;
-        const Bounds b = kernel::swept_bounds(m, lo, hi, u0, u1);
-        for (int i = 0; i < 30; ++i) {
-          const Vec3 p(lo.x + (hi.x - lo.x) * f(rng), lo.y + (hi.y - lo.y) * f(rng), lo.z + (hi.z - lo.z) * f(rng));
-          const Real t = i == 0 ? u0 : (i == 1 ? u1 : u0 + (u1 - u0) * f(rng));
-          const Vec3 q = kernel::moved_point(m, p, t);
-          ASSERT_TRUE(q.x >= b.lo.x && q.y >= b.lo.y && q.z >= b.lo.z && q.x <= b.hi.x && q.y <= b.hi.y && q.z <= b.hi.z)
-              << "trial " << trial << ", segment " << k << " of " << segments << ", time " << t;
-        }
-      }
-    }
+    const std::string miss = test::swept_bounds_miss(m, lo, hi, {1, 3, 16, 64}, 30, rng);
+    ASSERT_TRUE(miss.empty()) << "trial " << trial << ", " << miss;
   }
 }
 
@@ -199,15 +189,6 @@ TEST(Spin, SpinningShapesAreTheStillShapesTurned) {
   }
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    compile(parse_scene(text, "bad.yaml", "."));
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 TEST(Spin, SceneKeysAndErrors) {
   const RenderScene rs = compile(parse_scene(R"(
 camera: {shutter: [0, 1]}
@@ -226,24 +207,24 @@ objects:
   EXPECT_EQ(rs.spheres.size(), 1u);           // a spin by 0 stands still
   const kernel::MovingMap& m = rs.moving_solids[1].map;
   EXPECT_TRUE(test::vec_near(kernel::moved_point(m, Vec3(2, 0, 0), 1), Vec3(1, 0, -2), 1e-15));
-  EXPECT_EQ(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 0, 0], "
+  EXPECT_EQ(test::compile_error("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 0, 0], "
                      "angle: 90}}}\n"),
             "bad.yaml:2:72: spin axis must not be zero");
-  EXPECT_EQ(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 1, 0]}}}\n"),
+  EXPECT_EQ(test::compile_error("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 1, 0]}}}\n"),
             "bad.yaml:2:65: motion spin needs 'angle'");
-  EXPECT_NE(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 1, 0], "
+  EXPECT_NE(test::compile_error("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 1, 0], "
                      "angle: 9, speed: 1}}}\n")
                 .find("bad.yaml:2:"),
             std::string::npos);
   // The keyframes may scale and translate, but the turn is the spin's alone.
-  EXPECT_EQ(error_of("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {rotate: [0, 30, 0]}, "
+  EXPECT_EQ(test::compile_error("objects:\n  - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {to: {rotate: [0, 30, 0]}, "
                      "spin: {axis: [0, 1, 0], angle: 90}}}\n"),
             "bad.yaml:2:5: the keyframes of the solid turn, and so does its spin: give the keyframes the same rotation "
             "and the whole turn to the spin");
-  EXPECT_EQ(error_of("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 1, 0], "
+  EXPECT_EQ(test::compile_error("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 1, 0], "
                      "angle: 90}}}]\nobjects:\n  - {type: instance, of: g}\n"),
             "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to the instances)");
-  EXPECT_NE(error_of("objects:\n  - {type: plane, normal: [0, 1, 0], distance: 0, motion: {spin: {axis: [0, 1, 0], "
+  EXPECT_NE(test::compile_error("objects:\n  - {type: plane, normal: [0, 1, 0], distance: 0, motion: {spin: {axis: [0, 1, 0], "
                      "angle: 90}}}\n"),
             "no error");
 }

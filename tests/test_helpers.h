@@ -18,6 +18,7 @@
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
 #include "strahl/scene/scene.h"
+#include "strahl/scene/scene_file.h"
 
 namespace strahl {
 namespace fs = std::filesystem;
@@ -168,5 +169,15 @@ inline std::string read_text(const fs::path& path) {
 }
 
 inline Real deg(Real degrees) { return degrees * kPi / 180; }
+
+// The error a scene file's text (read as "bad.yaml") gives when parsed and compiled, or "no error".
+inline std::string compile_error(const std::string& text) {
+  try {
+    compile(parse_scene(text, "bad.yaml", "."));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
 
 }  // namespace strahl::test
