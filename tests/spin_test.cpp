@@ -64,8 +64,8 @@ Motion motion_of(int kind, std::mt19937_64& rng) {
   return Motion::keyframes(from, to).with_spin(spin);
 }
 
-// The map is the spin followed by the motion, at every time (five turns either way), and its inverse
-// (the placement at_time gives) undoes it; the spin's centre goes where the motion takes it (and
+// The map is the spin followed by the motion (and a post map, where given), at every time (five
+// turns either way), and its inverse (the placement at_time gives) undoes it; the spin's centre goes where the motion takes it (and
 // with a velocity, every point on the spin's line).
 TEST(Spin, MapIsTheTurnAboutTheLineThenTheMotion) {
   std::mt19937_64 rng(7);
@@ -74,19 +74,23 @@ TEST(Spin, MapIsTheTurnAboutTheLineThenTheMotion) {
   for (int trial = 0; trial < 300; ++trial) {
     const Motion motion = motion_of(trial % 3, rng);
     const Motion unturned = motion.with_spin({motion.spin().axis, 0, motion.spin().center});
-    const kernel::MovingMap m = moving_map(motion, cam, FileLoc{}, "box");
+    // (every other map followed by a post map, as a mesh's motion is by its transform)
+    const Affine post{Mat3::rotation(Vec3(1, -2, 1), 35) * Mat3::scale(Vec3(1.5, 1, 0.75)), Vec3(-1, 2, 0.5)};
+    const bool posted = trial % 2 == 1;
+    const auto after = [&](const Vec3& p) { return posted ? post.m * p + post.t : p; };
+    const kernel::MovingMap m = moving_map(motion, cam, FileLoc{}, "box", posted ? &post : nullptr);
     ASSERT_EQ(m.pivot, 1u);
     EXPECT_EQ(m.angle, motion.spin().angle * kPi / 180);
     for (int i = 0; i < 20; ++i) {
       const Vec3 x = Vec3(s(rng), s(rng), s(rng)) * 2;
       const Real u = i == 0 ? 0 : i == 1 ? 1 : f(rng);
       const Vec3 q = kernel::moved_point(m, x, u);
-      ASSERT_TRUE(test::vec_near(q, spun(motion, cam, x, u), 1e-12)) << "trial " << trial << " at " << u;
+      ASSERT_TRUE(test::vec_near(q, after(spun(motion, cam, x, u)), 1e-12)) << "trial " << trial << " at " << u;
       ASSERT_TRUE(test::vec_near(kernel::object_point(kernel::at_time(m, u), q), x, 1e-12)) << "trial " << trial;
       // (keys that scale take the line's direction away from the axis: their centre is on it)
       const Vec3 on_line =
           motion.spin().center + normalize(motion.spin().axis) * (motion.kind == Motion::Kind::Keyframes ? 0 : s(rng));
-      ASSERT_TRUE(test::vec_near(kernel::moved_point(m, on_line, u), spun(unturned, cam, on_line, u), 1e-12))
+      ASSERT_TRUE(test::vec_near(kernel::moved_point(m, on_line, u), after(spun(unturned, cam, on_line, u)), 1e-12))
           << "trial " << trial;
     }
   }
@@ -227,6 +231,26 @@ objects:
   EXPECT_NE(test::compile_error("objects:\n  - {type: plane, normal: [0, 1, 0], distance: 0, motion: {spin: {axis: [0, 1, 0], "
                      "angle: 90}}}\n"),
             "no error");
+}
+
+// A moving instance's shift (the largest coordinate its map's translation reaches, which sizes its
+// hits' ray offsets) holds at every time, where a spin about a far centre swings the group's
+// origin twice that far out.
+TEST(Spin, InstanceShiftHoldsAtEveryTime) {
+  const RenderScene rs = compile(parse_scene(R"(
+groups:
+  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]
+objects:
+  - {type: instance, of: g, translate: [3, 0, 0], motion: {velocity: [0, 1, 0], spin: {axis: [0, 0, 1], angle: 300, center: [100, 0, 0]}}}
+)",
+                                             "ok.yaml", "."));
+  ASSERT_EQ(rs.moving_instances.size(), 1u);
+  const kernel::MovingInstance& mi = rs.moving_instances[0];
+  Real reached = 0;
+  for (int i = 0; i <= 100; ++i)
+    reached = std::fmax(reached, max_abs_component(kernel::moved_point(mi.map, mi.instance.to_object.translate, i / 100.0)));
+  EXPECT_GT(reached, 190);
+  EXPECT_GE(mi.shift, reached);
 }
 
 // A scene with spins is written with them and reads back to the same scene, bit for bit.

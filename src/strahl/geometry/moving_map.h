@@ -45,6 +45,11 @@ struct MovingMap {
   Vec3 post_translate{0};
 };
 
+// The Frobenius norm of the 3×3 map with these rows: it bounds how far the map stretches.
+STRAHL_HOST_DEVICE inline Real frobenius(const Vec3* rows) {
+  return std::sqrt(dot(rows[0], rows[0]) + dot(rows[1], rows[1]) + dot(rows[2], rows[2]));
+}
+
 // The turn by `angle` about the unit `axis` (Rodrigues), by rows.
 STRAHL_HOST_DEVICE inline void turn_rows(const Vec3& a, Real angle, Vec3* r) {
   const Real c = std::cos(angle), s = std::sin(angle), k = 1 - c;
@@ -158,10 +163,7 @@ inline Bounds swept_bounds(const MovingMap& m, const Vec3& lo, const Vec3& hi, R
       }
     }
   }
-  Real stretch = 1;
-  if (m.post != 0)
-    stretch = std::sqrt(dot(m.post_row[0], m.post_row[0]) + dot(m.post_row[1], m.post_row[1]) +
-                        dot(m.post_row[2], m.post_row[2]));
+  const Real stretch = m.post != 0 ? frobenius(m.post_row) : 1;
   const Real pad = reach * stretch * sag_per_length * Real(1.000001) +
                    Real(1e-9) * std::fmax(std::fmax(max_abs_component(box.lo), max_abs_component(box.hi)), reach * stretch);
   box.lo = box.lo - Vec3(pad);

@@ -30,19 +30,19 @@ void push_moving_instance(RenderScene& out, const kernel::Instance& x, const Bou
   mi.hi = w.hi;
   // Over the shutter the linear part's Frobenius norm is at most the larger of the keys' (a norm
   // of a blend; a turn keeps it), which bounds the stretch of A(u) and of its product with the
-  // placement; the translation A(u)·t_placement + t(u) by the same. A post map P stretches both
-  // by at most its norm and adds its translation.
-  Real reach = 0, moved = 0;
+  // placement; the translation A(u)·t_placement + t(u) − Rot(u)·c(u) by the same, plus the
+  // larger of the keys' |c| about a spin's centre (a turn keeps its length). A post map P
+  // stretches both by at most its norm and adds its translation.
+  Real reach = 0, moved = 0, pivot = 0;
   for (int key = 0; key < 2; ++key) {
-    const Vec3* l = key == 0 ? mi.map.linear0 : mi.map.linear1;
-    const Real f = std::sqrt(dot(l[0], l[0]) + dot(l[1], l[1]) + dot(l[2], l[2]));
-    reach = std::fmax(reach, f);
+    reach = std::fmax(reach, kernel::frobenius(key == 0 ? mi.map.linear0 : mi.map.linear1));
     moved = std::fmax(moved, max_abs_component(key == 0 ? mi.map.translate0 : mi.map.translate1));
+    if (map.pivot != 0) pivot = std::fmax(pivot, length(key == 0 ? map.pivot0 : map.pivot1));
   }
+  moved += pivot;
   Real post = 1, post_shift = 0;
   if (map.post != 0) {
-    const Vec3* p = map.post_row;
-    post = std::sqrt(dot(p[0], p[0]) + dot(p[1], p[1]) + dot(p[2], p[2]));
+    post = kernel::frobenius(map.post_row);
     post_shift = max_abs_component(map.post_translate);
   }
   mi.stretch = x.stretch * reach * post;
@@ -121,7 +121,7 @@ void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) cons
   const Mat3 identity;
   x.translation_only = m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2];
   // The Frobenius norm bounds the map's largest stretch.
-  x.stretch = std::sqrt(dot(m.row[0], m.row[0]) + dot(m.row[1], m.row[1]) + dot(m.row[2], m.row[2]));
+  x.stretch = kernel::frobenius(m.row);
   x.shift = max_abs_component(placement.translate);
   x.group = group;
   const Bounds& b = out.group_bounds[group];

@@ -82,7 +82,7 @@ bool invertible_throughout(const kernel::MovingMap& m) {
   return true;
 }
 
-Real frobenius(const Mat3& a) { return std::sqrt(dot(a.row[0], a.row[0]) + dot(a.row[1], a.row[1]) + dot(a.row[2], a.row[2])); }
+Real frobenius(const Mat3& a) { return kernel::frobenius(a.row); }
 
 // The orthogonal factor Q of the polar decomposition L = Q·S (S symmetric, positive definite;
 // det Q has det L's sign): Higham's Newton iteration Q ← (γ·Q + Q⁻ᵀ/γ)/2, scaled by
