@@ -55,6 +55,17 @@ void push_moving_instance(RenderScene& out, const kernel::Instance& x, const Bou
   out.moving_instances.push_back(mi);
 }
 
+// Group g, its shapes all compiled, built with the structure `kind` and appended to out.groups
+// (its box to out.group_bounds); returns its box.
+Bounds push_group(RenderScene& out, RenderScene&& g, AccelKind kind) {
+  g.bounded_solid_count = static_cast<std::uint32_t>(g.solids.size());
+  g.accel = build_accel(kind, g.primitives());
+  const Bounds b = bounds_of(g.primitives());
+  out.groups.push_back(std::move(g));
+  out.group_bounds.push_back(b);
+  return b;
+}
+
 }  // namespace
 
 void compile_groups(const Scene& scene, RenderScene& out) {
@@ -90,7 +101,6 @@ void compile_groups(const Scene& scene, RenderScene& out) {
                                        group.name + "'");
       }
     }
-    g.bounded_solid_count = static_cast<std::uint32_t>(g.solids.size());
     // The scene's structure inside each group; Embree (no visitor traversal, float) gets the BVH.
     AccelKind kind = scene.settings.accel;
 #if defined(STRAHL_HAVE_EMBREE)
@@ -101,10 +111,7 @@ void compile_groups(const Scene& scene, RenderScene& out) {
                                "accel embree: the groups of instances are built as bvh");
     }
 #endif
-    g.accel = build_accel(kind, g.primitives());
-    const Bounds b = bounds_of(g.primitives());
-    out.groups.push_back(std::move(g));
-    out.group_bounds.push_back(b);
+    push_group(out, std::move(g), kind);
   }
 }
 
@@ -147,14 +154,10 @@ void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) cons
 }
 
 void move_by_instance(RenderScene& out, RenderScene&& group, const kernel::MovingMap& map, const FileLoc& loc) {
-  group.bounded_solid_count = static_cast<std::uint32_t>(group.solids.size());
-  group.accel = build_accel(AccelKind::Bvh, group.primitives());
-  const Bounds b = bounds_of(group.primitives());
   kernel::Instance x;  // in place: the identity
   x.translation_only = true;
   x.group = static_cast<std::uint32_t>(out.groups.size());
-  out.groups.push_back(std::move(group));
-  out.group_bounds.push_back(b);
+  const Bounds b = push_group(out, std::move(group), AccelKind::Bvh);
   push_moving_instance(out, x, b, map, loc);
 }
 
