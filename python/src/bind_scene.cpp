@@ -263,7 +263,12 @@ void bind_motion(py::module_& m) {
            py::arg("axis"), py::arg("angle"), py::arg("center") = py::make_tuple(0, 0, 0))
       .def_readonly("axis", &Spin::axis)
       .def_readonly("angle", &Spin::angle)
-      .def_readonly("center", &Spin::center);
+      .def_readonly("center", &Spin::center)
+      .def("__repr__", [](const Spin& s) {
+        std::ostringstream out;
+        out << "strahl.Spin(" << repr(s.axis) << ", " << s.angle << ", center=" << repr(s.center) << ")";
+        return out.str();
+      });
   py::class_<Motion>(m, "Motion",
                      "Motion blur: Motion.linear(velocity), Motion.keyframes(from_, to) or Motion.spinning(spin); "
                      "the first two take a spin= too.")

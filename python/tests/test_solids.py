@@ -168,6 +168,7 @@ objects:
 def test_a_motion_shows_its_spin():
     spin = strahl.Spin((0, 1, 0), 1080, center=(1, 0, 0))
     assert (spin.axis, spin.angle, spin.center) == ((0, 1, 0), 1080, (1, 0, 0))
+    assert repr(spin) == "strahl.Spin((0, 1, 0), 1080, center=(1, 0, 0))"
     moving = strahl.Motion.keyframes(strahl.Transform(), strahl.Transform(translate=(0, 1, 0)), spin=spin)
     assert moving.kind == "keyframes" and moving.spin.angle == 1080 and moving.to.translate == (0, 1, 0)
     assert strahl.Motion.linear((1, 0, 0)).spin is None
