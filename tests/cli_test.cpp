@@ -87,6 +87,19 @@ TEST_F(Cli, SummaryNamesTheTimeSegmentsWhereTheMovingThingsAre) {
   EXPECT_NE(log().find("1 solids, 1 lights (1 of the shapes moving, their BVH cut into "), std::string::npos) << log();
 }
 
+// Nested instances are counted as the records they unfold into, and the line says so.
+TEST_F(Cli, SummarySaysTheInstancesWereUnfolded) {
+  test::write_text(dir_ / "nested.yaml", std::string(kGoodScene) +
+                                             "  - {type: instance, of: pair, translate: [0, 0, -2]}\n"
+                                             "groups:\n  ball: [{type: sphere, center: [0, 0, 0], radius: 0.2}]\n"
+                                             "  pair: [{type: instance, of: ball}, {type: instance, of: ball, "
+                                             "translate: [1, 0, 0]}]\n");
+  ASSERT_EQ(run("nested.yaml --width 8 --height 8 -o nested.png"), 0) << log();
+  EXPECT_NE(log().find("lights\ninstances   2 instances (unfolded from nested groups) of 2 groups (1 spheres"),
+            std::string::npos)
+      << log();
+}
+
 TEST_F(Cli, DefaultOutputNameFollowsTheScene) {
   ASSERT_EQ(run("scene.yaml --width 8 --height 8 -q"), 0) << log();
   EXPECT_TRUE(fs::exists(dir_ / "scene.png"));

@@ -33,10 +33,16 @@ std::string summary(const std::string& output, int width, int height, int thread
       bytes += g.accel.stats.bytes;
     }
     const std::size_t moving_instances = scene.moving_instances.size();
+    std::string notes;  // nested groups unfolded (scene/instances.h); how many move
+    for (const RenderScene::GroupNesting& n : scene.group_nesting)
+      if (!n.places.empty()) {
+        notes = "unfolded from nested groups";
+        break;
+      }
+    if (moving_instances > 0)
+      notes += fmt::format("{}{} moving{}", notes.empty() ? "" : "; ", moving_instances, moving == 0 ? cut : std::string());
     out += fmt::format("instances   {} instances{} of {} groups ({} spheres, {} triangles, {} solids, once; their {}: {:.1f} MiB)\n",
-                       scene.instances.size() + moving_instances,
-                       moving_instances > 0 ? fmt::format(" ({} moving{})", moving_instances, moving == 0 ? cut : std::string())
-                                            : std::string(),
+                       scene.instances.size() + moving_instances, notes.empty() ? std::string() : " (" + notes + ")",
                        scene.groups.size(), spheres, triangles, solids, accel_name(scene.groups.front().accel.kind),
                        double(bytes) / (1 << 20));
   }

@@ -626,7 +626,6 @@ void bind_scene_class(py::module_& m) {
       .def("add_group", [](Scene& s, const std::string& name, const std::vector<const SceneObject*>& objects) {
              for (const ObjectGroup& g : s.groups)
                if (g.name == name) throw Error("group '" + name + "' is defined twice");
-             if (objects.empty()) throw Error("group '" + name + "' has no objects");
              ObjectGroup g;
              g.name = name;
              g.loc = caller_loc();
@@ -636,25 +635,41 @@ void bind_scene_class(py::module_& m) {
                g.objects.push_back(std::move(copy));
              }
              s.groups.push_back(std::move(g));
-           }, py::arg("name"), py::arg("objects"),
-           "Defines a group (copies of the objects), placed by add_instance as often as you like (scene files' `groups`).")
+           }, py::arg("name"), py::arg("objects") = std::vector<const SceneObject*>{},
+           "Defines a group (copies of the objects), placed by add_instance as often as you like (scene files' `groups`); "
+           "add_instance(..., into=name) places earlier groups in it (it must hold something when the scene compiles).")
       .def_property_readonly("groups", [](const Scene& s) {
         std::vector<std::string> names;
         for (const ObjectGroup& g : s.groups) names.push_back(g.name);
         return names;
       }, "The groups' names")
       .def("add_instance", [](Scene& s, const std::string& group, const py::object& scale, const Vec3& rotate,
-                              const Vec3& translate, const std::optional<Motion>& motion) {
-             std::uint32_t index = 0;
-             while (index < s.groups.size() && s.groups[index].name != group) ++index;
-             if (index == s.groups.size()) throw Error("unknown group '" + group + "' (add it with add_group first)");
+                              const Vec3& translate, const std::optional<Motion>& motion,
+                              const std::optional<std::string>& into) {
+             const auto find = [&](const std::string& name) {
+               std::uint32_t index = 0;
+               while (index < s.groups.size() && s.groups[index].name != name) ++index;
+               if (index == s.groups.size()) throw Error("unknown group '" + name + "' (add it with add_group first)");
+               return index;
+             };
+             const std::uint32_t index = find(group);
              Instance in(index, make_transform(scale, rotate, translate, "instance"));
              in.loc = caller_loc();
              if (motion) in.motion = *motion;
-             s.add(std::move(in));
+             if (!into) {
+               s.add(std::move(in));
+               return;
+             }
+             // Nested: into a group added after `group`, standing still there.
+             const std::uint32_t outer = find(*into);
+             if (outer <= index)
+               throw Error("group '" + *into + "' can place only the groups added before it ('" + group + "' is not)");
+             if (motion) throw Error("an instance inside group '" + *into + "' cannot move (give the motion to its instances)");
+             s.groups[outer].objects.push_back(std::make_unique<Instance>(std::move(in)));
            }, py::arg("group"), py::kw_only(), py::arg("scale") = 1.0, py::arg("rotate") = py::make_tuple(0, 0, 0),
-           py::arg("translate") = py::make_tuple(0, 0, 0), py::arg("motion") = py::none(),
-           "Places a group (scene files' `type: instance`), moved by `motion` if given.")
+           py::arg("translate") = py::make_tuple(0, 0, 0), py::arg("motion") = py::none(), py::arg("into") = py::none(),
+           "Places a group (scene files' `type: instance`), moved by `motion` if given; with `into`, inside that "
+           "group (added after this one: nested instances) instead of the scene.")
       .def("getNumLightSources", &Scene::getNumLightSources)
       .def("getLightSource", [](const Scene& s, int i) {
         if (i < 0 || i >= s.getNumLightSources()) throw py::index_error("no light source " + std::to_string(i));

@@ -165,6 +165,39 @@ objects:
         strahl.Scene().add(built.objects[0])  # an instance belongs to its scene's groups
 
 
+def test_nested_instances_compile_as_in_a_scene_file():
+    built = strahl.Scene()
+    built.add_group("pair", [strahl.Box((0, 0, 0), (1, 1, 1)), strahl.Sphere((2, 0, 0), 0.5, color=(1, 0, 0))])
+    built.add_group("row")
+    built.add_instance("pair", translate=(0, 0, -3), into="row")
+    built.add_instance("pair", rotate=(0, 45, 0), scale=0.5, into="row")
+    built.add_instance("row", translate=(1, 0, 0))
+    loaded = strahl.loads("""
+groups:
+  pair:
+    - {type: box, corners: [[0, 0, 0], [1, 1, 1]]}
+    - {type: sphere, center: [2, 0, 0], radius: 0.5, material: {color: [1, 0, 0]}}
+  row:
+    - {type: instance, of: pair, translate: [0, 0, -3]}
+    - {type: instance, of: pair, scale: 0.5, rotate: [0, 45, 0]}
+objects:
+  - {type: instance, of: row, translate: [1, 0, 0]}
+""")
+    assert built.groups == ["pair", "row"] and len(built.objects) == 1
+    assert strahl._scene_hash(built) == strahl._scene_hash(loaded)
+    with pytest.raises(strahl.Error, match="group 'pair' can place only the groups added before it"):
+        built.add_instance("row", into="pair")
+    with pytest.raises(strahl.Error, match="cannot move"):
+        built.add_instance("pair", into="row", motion=strahl.Motion.linear((1, 0, 0)))
+    with pytest.raises(strahl.Error, match="unknown group 'trio'"):
+        built.add_instance("pair", into="trio")
+    empty = strahl.Scene()
+    empty.add_group("nothing")
+    empty.add_instance("nothing")
+    with pytest.raises(strahl.Error, match="group 'nothing' has no objects"):
+        strahl.render(empty, width=4, height=4)
+
+
 def test_a_motion_shows_its_spin():
     spin = strahl.Spin((0, 1, 0), 1080, center=(1, 0, 0))
     assert (spin.axis, spin.angle, spin.center) == ((0, 1, 0), 1080, (1, 0, 0))

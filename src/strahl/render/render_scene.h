@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "strahl/math/transform.h"
 #include "strahl/render/scene_view.h"
 #include "strahl/sampling/pixel_sampler.h"
 #include "strahl/util/error.h"
@@ -79,6 +80,19 @@ struct RenderScene {
   // world boxes and the BVH over them.
   InstanceGroups groups;
   std::vector<Bounds> group_bounds;  // object space
+  // What each group places beside its own shapes (nested instances; host only: an instance of the
+  // group unfolds them into `instances`, scene/instances.h).
+  struct GroupPlacement {
+    std::uint32_t group = 0;  // an earlier group
+    Mat3 linear;
+    Vec3 translate;
+  };
+  struct GroupNesting {
+    std::vector<GroupPlacement> places;
+    bool own = true;             // the group has shapes of its own (a record of it is placed)
+    std::uint64_t unfolded = 0;  // instance records one placement of the group makes (saturated)
+  };
+  std::vector<GroupNesting> group_nesting;  // one per group
   std::vector<kernel::Instance> instances;
   std::vector<Bounds> instance_bounds;
   IndexTree instance_bvh;

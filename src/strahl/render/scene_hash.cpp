@@ -54,9 +54,10 @@ static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof
               "a solid's struct changed: hash its new fields in scene_hash.cpp and update the size here");
 // A new array in the render-ready scene must be hashed too (with Embree: its scene handle).
 // (Not `warnings`: messages for the user, they change no pixel; nor the structure's arrays,
-// built from the primitives hashed here, such as accel.sphere_quads.)
+// built from the primitives hashed here, such as accel.sphere_quads; nor group_nesting, which the
+// instances unfold into the records hashed here.)
 #if defined(STRAHL_HAVE_EMBREE)
-static_assert(sizeof(RenderScene) == 1816, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+static_assert(sizeof(RenderScene) == 1840, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
 #endif
 
 void hash(Hasher& h, const Material& m) {

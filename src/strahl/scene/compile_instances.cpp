@@ -2,6 +2,7 @@
 
 #include "strahl/scene/instances.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -66,6 +67,78 @@ Bounds push_group(RenderScene& out, RenderScene&& g, AccelKind kind) {
   return b;
 }
 
+void check_invertible(const Mat3& m, const FileLoc& loc) {
+  const Real det = m.determinant();
+  if (!(std::fabs(det) > 0) || !std::isfinite(det)) throw Error(loc, "the instance's transform is singular (it flattens the group)");
+}
+
+// What a group places: `inner`, an instance among group number `index`'s objects, which must
+// place an earlier group and stand still.
+RenderScene::GroupPlacement nested_placement(const Scene& scene, std::uint32_t index, const Instance& inner) {
+  const std::string& name = scene.groups[index].name;
+  if (inner.group == index) throw Error(inner.loc, "group '" + name + "' places an instance of itself (a cycle)");
+  if (inner.group >= scene.groups.size())
+    throw Error(inner.loc, "instance of group number " + std::to_string(inner.group) + ", which the scene does not have");
+  const std::string& placed = scene.groups[inner.group].name;
+  if (inner.group > index)
+    throw Error(inner.loc, "group '" + name + "' places '" + placed + "', which is defined after it (define '" + placed +
+                               "' above '" + name + "')");
+  if (inner.motion.moving())
+    throw Error(inner.loc, "an instance inside group '" + name + "' cannot move (give the motion to the instances of '" +
+                               name + "')");
+  validate::finite(inner.placement.translate, inner.loc, "instance translate");
+  const Mat3 m = inner.placement.linear();
+  check_invertible(m, inner.loc);
+  return {inner.group, m, inner.placement.translate};
+}
+
+// The instance record of group `group`'s own shapes placed by x ↦ m·x + t (moving with *map
+// when given), with its world box.
+void place(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, const kernel::MovingMap* map,
+           const FileLoc& loc) {
+  check_invertible(m, loc);  // (a product of invertible maps may still round to a singular one)
+  const Mat3 inv = m.inverse();
+  kernel::Instance x;
+  for (int i = 0; i < 3; ++i) x.to_object.row[i] = inv.row[i];
+  x.to_object.translate = t;
+  const Mat3 identity;
+  x.translation_only = m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2];
+  // The Frobenius norm bounds the map's largest stretch.
+  x.stretch = kernel::frobenius(m.row);
+  x.shift = max_abs_component(t);
+  x.group = group;
+  const Bounds& b = out.group_bounds[group];
+  Bounds w;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z);
+    w.extend(m * corner + t);
+  }
+  // Widened by a little more than the corners' rounding, so the box holds every transformed point.
+  const Real pad = 1e-9 * std::fmax(max_abs_component(w.lo), max_abs_component(w.hi));
+  w.lo = w.lo - Vec3(pad);
+  w.hi = w.hi + Vec3(pad);
+  validate::coordinates(w.lo, loc, "instance bounds");
+  validate::coordinates(w.hi, loc, "instance bounds");
+  if (map == nullptr) {
+    out.instances.push_back(x);
+    out.instance_bounds.push_back(w);
+  } else {
+    push_moving_instance(out, x, w, *map, loc);
+  }
+}
+
+// One placement of group `group` by x ↦ m·x + t: the record of its own shapes (when it has any)
+// and, in turn, those of the groups it places, each by the composed map m·(m'·x + t') + t.
+void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, const kernel::MovingMap* map,
+            const FileLoc& loc) {
+  const RenderScene::GroupNesting& nesting = out.group_nesting[group];
+  if (nesting.own) place(out, group, m, t, map, loc);
+  for (const RenderScene::GroupPlacement& p : nesting.places) {
+    check_cancelled("build");
+    unfold(out, p.group, m * p.linear, m * p.translate + t, map, loc);
+  }
+}
+
 }  // namespace
 
 void compile_groups(const Scene& scene, RenderScene& out) {
@@ -75,7 +148,13 @@ void compile_groups(const Scene& scene, RenderScene& out) {
     RenderScene g;
     g.camera = out.camera;
     std::uint32_t object_id = 0;
+    const auto index = static_cast<std::uint32_t>(out.groups.size());
+    RenderScene::GroupNesting nesting;
     for (const auto& object : group.objects) {
+      if (const auto* inner = dynamic_cast<const Instance*>(object.get())) {
+        nesting.places.push_back(nested_placement(scene, index, *inner));
+        continue;
+      }
       validate::material(object->material, object->loc);
       const auto material_index = static_cast<std::uint32_t>(out.materials.size());
       out.materials.push_back(object->material);
@@ -88,8 +167,8 @@ void compile_groups(const Scene& scene, RenderScene& out) {
         throw Error(object->loc, "a plane cannot be part of group '" + group.name + "': it is unbounded (place it in objects)");
       if (!g.groups.empty())  // (a sphere, triangle or mesh whose keyframes turn it moves as an instance)
         throw Error(object->loc, "objects of group '" + group.name + "' cannot move (give the motion to the instances)");
-      if (placed() != instances)
-        throw Error(object->loc, "instances cannot be nested: group '" + group.name + "' places an instance");
+      if (placed() != instances)  // (an Instance is taken above: nothing else compiles to one)
+        throw Error(object->loc, "group '" + group.name + "' places an instance");
       if (moving() != moved)
         throw Error(object->loc, "objects of group '" + group.name + "' cannot move (give the motion to the instances)");
       for (std::size_t i = solids; i < g.solids.size(); ++i) {
@@ -111,7 +190,12 @@ void compile_groups(const Scene& scene, RenderScene& out) {
                                "accel embree: the groups of instances are built as bvh");
     }
 #endif
+    nesting.own = !g.spheres.empty() || !g.triangles.empty() || !g.solids.empty();  // (a group's solids are bounded)
+    nesting.unfolded = nesting.own ? 1 : 0;
+    for (const RenderScene::GroupPlacement& p : nesting.places)
+      nesting.unfolded = std::min(nesting.unfolded + out.group_nesting[p.group].unfolded, kMaxInstanceRecords + 1);
     push_group(out, std::move(g), kind);
+    out.group_nesting.push_back(std::move(nesting));
   }
 }
 
@@ -119,38 +203,24 @@ void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) cons
   if (group >= out.groups.size()) throw Error(loc, "instance of group number " + std::to_string(group) + ", which the scene does not have");
   validate::finite(placement.translate, loc, "instance translate");
   const Mat3 m = placement.linear();
-  const Real det = m.determinant();
-  if (!(std::fabs(det) > 0) || !std::isfinite(det)) throw Error(loc, "the instance's transform is singular (it flattens the group)");
-  const Mat3 inv = m.inverse();
-  kernel::Instance x;
-  for (int i = 0; i < 3; ++i) x.to_object.row[i] = inv.row[i];
-  x.to_object.translate = placement.translate;
-  const Mat3 identity;
-  x.translation_only = m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2];
-  // The Frobenius norm bounds the map's largest stretch.
-  x.stretch = kernel::frobenius(m.row);
-  x.shift = max_abs_component(placement.translate);
-  x.group = group;
-  const Bounds& b = out.group_bounds[group];
-  Bounds w;
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 corner((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z);
-    w.extend(m * corner + placement.translate);
+  check_invertible(m, loc);
+  const std::uint64_t records = out.instances.size() + out.moving_instances.size() + out.group_nesting[group].unfolded;
+  if (records > kMaxInstanceRecords) {
+    const std::uint64_t unfolded = out.group_nesting[group].unfolded;
+    throw Error(loc, "too many instances: this one unfolds into " +
+                         (unfolded > kMaxInstanceRecords ? "more than " + std::to_string(kMaxInstanceRecords)
+                                                         : std::to_string(unfolded)) +
+                         " records through nested groups, and a scene holds at most " +
+                         std::to_string(kMaxInstanceRecords));
   }
-  // Widened by a little more than the corners' rounding, so the box holds every transformed point.
-  const Real pad = 1e-9 * std::fmax(max_abs_component(w.lo), max_abs_component(w.hi));
-  w.lo = w.lo - Vec3(pad);
-  w.hi = w.hi + Vec3(pad);
-  validate::coordinates(w.lo, loc, "instance bounds");
-  validate::coordinates(w.hi, loc, "instance bounds");
   if (!motion.moving()) {
-    out.instances.push_back(x);
-    out.instance_bounds.push_back(w);
+    unfold(out, group, m, placement.translate, nullptr, loc);
     return;
   }
-  // Moving (geometry/moving_instance.h): carried by the motion's map after its placement, in the
-  // motion BVH with the other moving shapes.
-  push_moving_instance(out, x, w, moving_map(motion, out.camera, loc, "instance"), loc);
+  // Moving (geometry/moving_instance.h): every record carried by the motion's map after its
+  // placement, in the motion BVH with the other moving shapes.
+  const kernel::MovingMap map = moving_map(motion, out.camera, loc, "instance");
+  unfold(out, group, m, placement.translate, &map, loc);
 }
 
 void move_by_instance(RenderScene& out, RenderScene&& group, const kernel::MovingMap& map, const FileLoc& loc) {

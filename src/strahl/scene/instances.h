@@ -1,7 +1,9 @@
 #pragma once
 // Instances (docs/scene-format.md, "Instances"): a group of objects (Scene::groups) compiled once
 // into its own primitive arrays and acceleration structure, and placed any number of times by
-// `type: instance` objects, each a small record (geometry/instance.h) with its own transform.
+// `type: instance` objects, each a small record (geometry/instance.h) with its own transform. A
+// group may place earlier groups (nesting): compiling an instance unfolds them into one record
+// per group reached, each with the composed transform, so the kernels see one level only.
 
 #include <cstdint>
 
@@ -9,6 +11,10 @@
 #include "strahl/scene/scene.h"
 
 namespace strahl {
+
+// The most instance records a scene may hold once nested groups are unfolded (each instance of a
+// group that places others becomes one record per group it reaches; about 200 bytes each).
+inline constexpr std::uint64_t kMaxInstanceRecords = std::uint64_t(1) << 24;
 
 // One placement of group number `group` of the scene (Scene::groups), by `placement`.
 class Instance : public SceneObject {
@@ -19,9 +25,11 @@ class Instance : public SceneObject {
   std::uint32_t group;
 };
 
-// Compiles every group of `scene` into out.groups (with out.group_bounds), before the objects
-// that place them: their materials join out.materials. Throws strahl::Error at the object that
-// cannot be in a group (a plane, an unbounded solid, a moving object, an instance).
+// Compiles every group of `scene` into out.groups (with out.group_bounds and out.group_nesting),
+// before the objects that place them: their materials join out.materials. A group may place
+// instances of the groups defined before it (nested; they stand still in it). Throws strahl::Error
+// at the object that cannot be in a group (a plane, an unbounded solid, a moving object, an
+// instance of itself or of a later group).
 void compile_groups(const Scene& scene, RenderScene& out);
 
 // A moving object that turns (scene/move_solid.h: a sphere, triangle or mesh whose keyframes

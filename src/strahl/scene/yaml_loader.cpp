@@ -479,16 +479,15 @@ class Reader {
     keys(n, {"type", "of", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "instance");
     const YAML::Node of = required(n, "of", "instance");
     const std::string name = scalar(of, "instance of");
-    if (reading_group_) {
-      if (name == *reading_group_)
-        fail(of, "group '" + name + "' places an instance of itself (a cycle)");
-      fail(n["type"], "instances cannot be nested: group '" + *reading_group_ + "' places an instance of '" + name +
-                          "' (place the objects of '" + name + "' in it, or the instances side by side in objects)");
-    }
+    // A group places the groups defined above it (nested instances), never itself.
+    if (reading_group_ && name == *reading_group_) fail(of, "group '" + name + "' places an instance of itself (a cycle)");
     const auto it = group_index_.find(name);
     if (it == group_index_.end()) {
       std::string known;
       for (const auto& [k, v] : group_index_) known += (known.empty() ? "" : ", ") + k;
+      if (reading_group_)
+        fail(of, "unknown group '" + name + "': group '" + *reading_group_ + "' can place the groups defined above it" +
+                     (known.empty() ? std::string(" (none is)") : " (" + known + ")"));
       fail(of, "unknown group '" + name + "'" + (known.empty() ? std::string(" (the scene defines no groups)") : " (groups: " + known + ")"));
     }
     return &scene.add(Instance(it->second));
