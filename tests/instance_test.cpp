@@ -375,6 +375,56 @@ TEST(Instance, DeepNestingUnfoldsEveryPlacement) {
   }
 }
 
+// An instance inside a group may move (when nothing placing it does): its records are carried by
+// its motion and then by the placements above it (the motion map's post map). Under the identity
+// that is the moving instance written at the top, bit for bit; under x ↦ M·x + t it is the moving
+// instance placed by M·P, M·t_P + t and moving by M·v, at every time of the shutter.
+TEST(Instance, MovingInstancesInsideGroupsMoveUnderTheOuterPlacement) {
+  std::string head = kHead;
+  head.replace(head.find("fov: 45}"), 8, "fov: 45, shutter: [0, 1]}");
+  const std::string g = "groups:\n  g:\n" + group_objects("    ", "");
+  const std::string inner = "transform: [{rotate: {axis: [1, 2, 0.5], angle: 37}}, {translate: [0.25, -0.5, 0.75]}]";
+  const auto scene_of = [&](const std::string& text) { return compile(parse_scene(head + text, "moving.yaml", ".")); };
+  const RenderScene top = scene_of(g + "objects:\n" + kFloor + "  - {type: instance, of: g, " + inner +
+                                   ", motion: {velocity: [0.5, 0.25, -1]}}\n");
+  const RenderScene nested_identity =
+      scene_of(g + "  outer: [{type: instance, of: g, " + inner + ", motion: {velocity: [0.5, 0.25, -1]}}]\nobjects:\n" +
+               kFloor + "  - {type: instance, of: outer}\n");
+  ASSERT_EQ(nested_identity.moving_instances.size(), 1u);
+  EXPECT_EQ(nested_identity.moving_instances[0].map.post, 0u);
+  const Image it = render_of(top), in = render_of(nested_identity);
+  EXPECT_TRUE(it == in) << "max difference " << test::max_abs_diff(it, in);
+  // M: a quarter turn about z (exact entries) and a stretch in z; t = (1, 0, -1).
+  const RenderScene nested_placed = scene_of(g + "  outer: [{type: instance, of: g, " + inner +
+                                             ", motion: {velocity: [0.5, 0.25, -1]}}]\nobjects:\n" + kFloor +
+                                             "  - {type: instance, of: outer, matrix: [[0, -1, 0, 1], [1, 0, 0, 0], [0, 0, 2, -1]]}\n");
+  ASSERT_EQ(nested_placed.moving_instances.size(), 1u);
+  EXPECT_EQ(nested_placed.moving_instances[0].map.post, 1u);
+  // The same, flat: the group placed by M·P (its transform list then M) and moving by M·v.
+  const RenderScene flat = scene_of(g + "objects:\n" + kFloor + "  - {type: instance, of: g, transform: [" +
+                                    inner.substr(12, inner.size() - 13) +
+                                    ", {matrix: [[0, -1, 0, 1], [1, 0, 0, 0], [0, 0, 2, -1]]}], motion: {velocity: [-0.25, 0.5, -2]}}\n");
+  const SceneView vn = nested_placed.view(), vf = flat.view();
+  test::Random rng(29);
+  int both = 0, disagree = 0;
+  Real max_t = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 o = Vec3(1, 0.5, -1) + rng.direction() * 9;
+    const Ray ray{o, normalize(Vec3(1, 0.5, -1) + rng.point(-3, 3) - o), rng.uniform()};
+    const Hit a = closest_hit(vn, ray, 0, kInfinity), b = closest_hit(vf, ray, 0, kInfinity);
+    if (a.found() != b.found() || (a.found() && std::fabs(a.t - b.t) > 1e-6 * a.t)) {
+      ++disagree;
+      continue;
+    }
+    if (!a.found()) continue;
+    both += a.kind != ShapeKind::Plane;
+    max_t = std::fmax(max_t, std::fabs(a.t - b.t) / a.t);
+  }
+  EXPECT_GT(both, 300);
+  EXPECT_LE(disagree, 4);
+  EXPECT_LT(max_t, 1e-9);
+}
+
 TEST(Instance, NestedGroupsAreWrittenAndReadBack) {
   const Scene a = parse_scene(kHead + "groups:\n  g:\n" + group_objects("    ", "") +
                                   "  outer:\n    - {type: instance, of: g, rotate: [0, 30, 0]}\n"
@@ -388,6 +438,22 @@ TEST(Instance, NestedGroupsAreWrittenAndReadBack) {
   EXPECT_EQ(scene_hash(ca), scene_hash(compile(b))) << text;
 }
 
+// A spinning triangle moves as an instance of a group of its own, which the compiled scene holds
+// after the scene's groups: an instance (built in code) cannot name it.
+TEST(Instance, AnInstanceNamesOnlyTheScenesGroups) {
+  Scene s;
+  Triangle spinning({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, Vec3(1));
+  spinning.motion = Motion::spinning(Spin{{0, 0, 1}, 90, {}});
+  s.add(spinning);
+  s.add(Instance(0));
+  try {
+    compile(s);
+    ADD_FAILURE() << "compiled";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "instance of group number 0, which the scene does not have");
+  }
+}
+
 TEST(Instance, BadNestingIsAnErrorAtItsPlace) {
   const std::string sphere = "[{type: sphere, center: [0, 0, 0], radius: 1}]";
   EXPECT_EQ(error_of("groups:\n  a: [{type: instance, of: b}]\n  b: " + sphere + "\nobjects:\n  - {type: instance, of: a}\n"),
@@ -395,9 +461,11 @@ TEST(Instance, BadNestingIsAnErrorAtItsPlace) {
   EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: c}]\n  c: " + sphere +
                      "\nobjects:\n  - {type: instance, of: a}\n"),
             "bad.yaml:11:28: unknown group 'c': group 'a' can place the groups defined above it (b)");
-  EXPECT_EQ(error_of("groups:\n  b: " + sphere +
-                     "\n  a: [{type: instance, of: b, motion: {velocity: [1, 0, 0]}}]\nobjects:\n  - {type: instance, of: a}\n"),
-            "bad.yaml:11:7: an instance inside group 'a' cannot move (give the motion to the instances of 'a')");
+  EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: b, motion: {velocity: [1, 0, 0]}}]\n" +
+                     "  c: [{type: instance, of: a}]\nobjects:\n  - {type: instance, of: c}\n"
+                     "  - {type: instance, of: c, motion: {velocity: [0, 1, 0]}}\n"),
+            "bad.yaml:15:5: this instance moves, and so does the instance at bad.yaml:11:7 inside group 'a': a placed "
+            "object has one motion (give it to the one or the other)");
   EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: b, scale: [1, 0, 1]}]\nobjects:\n"
                      "  - {type: instance, of: a}\n"),
             "bad.yaml:11:38: scale must not be zero");

@@ -660,11 +660,10 @@ void bind_scene_class(py::module_& m) {
                s.add(std::move(in));
                return;
              }
-             // Nested: into a group added after `group`, standing still there.
+             // Nested: into a group added after `group`.
              const std::uint32_t outer = find(*into);
              if (outer <= index)
                throw Error("group '" + *into + "' can place only the groups added before it ('" + group + "' is not)");
-             if (motion) throw Error("an instance inside group '" + *into + "' cannot move (give the motion to its instances)");
              s.groups[outer].objects.push_back(std::make_unique<Instance>(std::move(in)));
            }, py::arg("group"), py::kw_only(), py::arg("scale") = 1.0, py::arg("rotate") = py::make_tuple(0, 0, 0),
            py::arg("translate") = py::make_tuple(0, 0, 0), py::arg("motion") = py::none(), py::arg("into") = py::none(),

@@ -187,8 +187,10 @@ objects:
     assert strahl._scene_hash(built) == strahl._scene_hash(loaded)
     with pytest.raises(strahl.Error, match="group 'pair' can place only the groups added before it"):
         built.add_instance("row", into="pair")
-    with pytest.raises(strahl.Error, match="cannot move"):
-        built.add_instance("pair", into="row", motion=strahl.Motion.linear((1, 0, 0)))
+    built.add_instance("pair", into="row", motion=strahl.Motion.linear((1, 0, 0)))  # moving inside a group
+    built.add_instance("row", translate=(0, 1, 0), motion=strahl.Motion.linear((0, 1, 0)))
+    with pytest.raises(strahl.Error, match="and so does the instance at .* inside group 'row'"):
+        strahl.render(built, width=4, height=4)
     with pytest.raises(strahl.Error, match="unknown group 'trio'"):
         built.add_instance("pair", into="trio")
     empty = strahl.Scene()

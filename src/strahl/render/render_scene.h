@@ -86,13 +86,17 @@ struct RenderScene {
     std::uint32_t group = 0;  // an earlier group
     Mat3 linear;
     Vec3 translate;
+    bool moving = false;      // then carried by `motion` after its placement (and before the outer ones)
+    kernel::MovingMap motion;
+    FileLoc loc;
   };
   struct GroupNesting {
+    std::string name;
     std::vector<GroupPlacement> places;
     bool own = true;             // the group has shapes of its own (a record of it is placed)
     std::uint64_t unfolded = 0;  // instance records one placement of the group makes (saturated)
   };
-  std::vector<GroupNesting> group_nesting;  // one per group
+  std::vector<GroupNesting> group_nesting;  // one per group of the scene's (not per turning shape's group)
   std::vector<kernel::Instance> instances;
   std::vector<Bounds> instance_bounds;
   IndexTree instance_bvh;

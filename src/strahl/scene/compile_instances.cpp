@@ -73,8 +73,10 @@ void check_invertible(const Mat3& m, const FileLoc& loc) {
 }
 
 // What a group places: `inner`, an instance among group number `index`'s objects, which must
-// place an earlier group and stand still.
-RenderScene::GroupPlacement nested_placement(const Scene& scene, std::uint32_t index, const Instance& inner) {
+// place an earlier group (and may move: its motion's map, followed by the outer placements when
+// an instance unfolds it).
+RenderScene::GroupPlacement nested_placement(const Scene& scene, const RenderScene& out, std::uint32_t index,
+                                             const Instance& inner) {
   const std::string& name = scene.groups[index].name;
   if (inner.group == index) throw Error(inner.loc, "group '" + name + "' places an instance of itself (a cycle)");
   if (inner.group >= scene.groups.size())
@@ -83,13 +85,18 @@ RenderScene::GroupPlacement nested_placement(const Scene& scene, std::uint32_t i
   if (inner.group > index)
     throw Error(inner.loc, "group '" + name + "' places '" + placed + "', which is defined after it (define '" + placed +
                                "' above '" + name + "')");
-  if (inner.motion.moving())
-    throw Error(inner.loc, "an instance inside group '" + name + "' cannot move (give the motion to the instances of '" +
-                               name + "')");
   validate::finite(inner.placement.translate, inner.loc, "instance translate");
-  const Mat3 m = inner.placement.linear();
-  check_invertible(m, inner.loc);
-  return {inner.group, m, inner.placement.translate};
+  RenderScene::GroupPlacement p;
+  p.group = inner.group;
+  p.linear = inner.placement.linear();
+  p.translate = inner.placement.translate;
+  p.loc = inner.loc;
+  check_invertible(p.linear, inner.loc);
+  if (inner.motion.moving()) {
+    p.moving = true;
+    p.motion = moving_map(inner.motion, out.camera, inner.loc, "instance");
+  }
+  return p;
 }
 
 // The instance record of group `group`'s own shapes placed by x ↦ m·x + t (moving with *map
@@ -127,15 +134,37 @@ void place(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, 
   }
 }
 
-// One placement of group `group` by x ↦ m·x + t: the record of its own shapes (when it has any)
-// and, in turn, those of the groups it places, each by the composed map m·(m'·x + t') + t.
+// One placement of group `group` by x ↦ m·x + t, moving with *map after it where given (the
+// instance at `loc`): the record of its own shapes (when it has any) and, in turn, those of the
+// groups it places, each by the composed map m·(m'·x + t') + t — or, where the placement inside
+// moves, by its own placement, carried by its motion A(u) and then by x ↦ m·x + t (A's post map:
+// a record has one motion).
 void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, const kernel::MovingMap* map,
             const FileLoc& loc) {
   const RenderScene::GroupNesting& nesting = out.group_nesting[group];
   if (nesting.own) place(out, group, m, t, map, loc);
   for (const RenderScene::GroupPlacement& p : nesting.places) {
     check_cancelled("build");
-    unfold(out, p.group, m * p.linear, m * p.translate + t, map, loc);
+    if (!p.moving) {
+      unfold(out, p.group, m * p.linear, m * p.translate + t, map, loc);
+      continue;
+    }
+    if (map != nullptr)
+      throw Error(loc, "this instance moves, and so does the instance at " + p.loc.str() + " inside group '" +
+                           nesting.name + "': a placed object has one motion (give it to the one or the other)");
+    kernel::MovingMap moved = p.motion;
+    const Mat3 identity;
+    if (!(m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2] && t == Vec3(0))) {
+      check_invertible(m, loc);
+      const Mat3 inv = m.inverse();
+      moved.post = 1;
+      for (int i = 0; i < 3; ++i) {
+        moved.post_row[i] = m.row[i];
+        moved.post_inverse[i] = inv.row[i];
+      }
+      moved.post_translate = t;
+    }
+    unfold(out, p.group, p.linear, p.translate, &moved, loc);
   }
 }
 
@@ -150,9 +179,10 @@ void compile_groups(const Scene& scene, RenderScene& out) {
     std::uint32_t object_id = 0;
     const auto index = static_cast<std::uint32_t>(out.groups.size());
     RenderScene::GroupNesting nesting;
+    nesting.name = group.name;
     for (const auto& object : group.objects) {
       if (const auto* inner = dynamic_cast<const Instance*>(object.get())) {
-        nesting.places.push_back(nested_placement(scene, index, *inner));
+        nesting.places.push_back(nested_placement(scene, out, index, *inner));
         continue;
       }
       validate::material(object->material, object->loc);
@@ -200,7 +230,9 @@ void compile_groups(const Scene& scene, RenderScene& out) {
 }
 
 void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) const {
-  if (group >= out.groups.size()) throw Error(loc, "instance of group number " + std::to_string(group) + ", which the scene does not have");
+  // (group_nesting: the scene's groups, compiled first; out.groups may hold turning shapes' after them)
+  if (group >= out.group_nesting.size())
+    throw Error(loc, "instance of group number " + std::to_string(group) + ", which the scene does not have");
   validate::finite(placement.translate, loc, "instance translate");
   const Mat3 m = placement.linear();
   check_invertible(m, loc);
