@@ -413,10 +413,12 @@ objects:
   // instance in it is a nested instance.
   EXPECT_EQ(test::compile_error("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {velocity: [1, 0, 0]}}]\n"
                      "objects:\n  - {type: instance, of: g}\n"),
-            "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to the instances)");
+            "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to its instances, or put the object in a "
+            "group of its own and place that in 'g' by a moving instance)");
   EXPECT_EQ(test::compile_error("groups:\n  g: [{type: sphere, center: [0, 0, 0], radius: 1, scale: [1, 2, 1], motion: {velocity: "
                      "[1, 0, 0]}}]\nobjects:\n  - {type: instance, of: g}\n"),
-            "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to the instances)");
+            "bad.yaml:2:7: objects of group 'g' cannot move (give the motion to its instances, or put the object in a "
+            "group of its own and place that in 'g' by a moving instance)");
   EXPECT_EQ(test::compile_error("groups:\n  g: [{type: box, corners: [[0, 0, 0], [1, 1, 1]]}]\n  h: [{type: instance, of: g, "
                      "motion: {velocity: [1, 0, 0]}}]\nobjects:\n  - {type: instance, of: h, motion: {velocity: [0, 1, 0]}}\n"),
             "bad.yaml:5:5: this instance moves, and so does the instance at bad.yaml:3:7 inside group 'h': a placed object "

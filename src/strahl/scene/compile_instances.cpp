@@ -195,12 +195,17 @@ void compile_groups(const Scene& scene, RenderScene& out) {
       object->compile_into(g, material_index, object_id++);
       if (g.planes.size() != planes)
         throw Error(object->loc, "a plane cannot be part of group '" + group.name + "': it is unbounded (place it in objects)");
+      const auto cannot_move = [&] {
+        return Error(object->loc, "objects of group '" + group.name +
+                                      "' cannot move (give the motion to its instances, or put the object in a group "
+                                      "of its own and place that in '" + group.name + "' by a moving instance)");
+      };
       if (!g.groups.empty())  // (a sphere, triangle or mesh whose keyframes turn it moves as an instance)
-        throw Error(object->loc, "objects of group '" + group.name + "' cannot move (give the motion to the instances)");
+        throw cannot_move();
       if (placed() != instances)  // (an Instance is taken above: nothing else compiles to one)
         throw Error(object->loc, "group '" + group.name + "' places an instance");
       if (moving() != moved)
-        throw Error(object->loc, "objects of group '" + group.name + "' cannot move (give the motion to the instances)");
+        throw cannot_move();
       for (std::size_t i = solids; i < g.solids.size(); ++i) {
         const kernel::Solid& k = g.solids[i];
         const bool unbounded = (k.kind == kernel::SolidKind::Quadric && !g.quadrics[k.index].clipped) ||
