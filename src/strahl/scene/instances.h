@@ -13,7 +13,8 @@
 namespace strahl {
 
 // The most instance records a scene may hold once nested groups are unfolded (each instance of a
-// group that places others becomes one record per group it reaches; about 200 bytes each).
+// group that places others becomes one record per group it reaches; about 400 bytes each at the
+// peak of the build).
 inline constexpr std::uint64_t kMaxInstanceRecords = std::uint64_t(1) << 24;
 
 // One placement of group number `group` of the scene (Scene::groups), by `placement`.
