@@ -144,20 +144,23 @@ void Sphere::compile_into(RenderScene& out, std::uint32_t material_index, std::u
   if (motion.moving()) {
     validate_motion(motion, loc);
     // Keyframes transform the sphere in world space: its centre moves, and its radius scales
-    // with the keyframe's uniform scale (a non-uniform one would make an ellipsoid: refused).
+    // with the keyframe's even scale; an uneven one makes it an ellipsoid (below).
     Real radius_at[2] = {radius, radius};
+    bool uneven = false;
     if (motion.kind == Motion::Kind::Keyframes) {
-      for (int key = 0; key < 2; ++key) {
+      for (int key = 0; key < 2 && !uneven; ++key) {
         const Real s = even_scale(key == 0 ? motion.from() : motion.to());
-        if (!(s > 0)) throw Error(loc, std::string(kNonUniformSphereScale));
+        uneven = !(s > 0);
         radius_at[key] = radius * s;
+        if (uneven) break;
         validate::positive(radius_at[key], loc, "sphere radius after the motion scale");
         validate::length(radius_at[key], loc, "sphere radius after the motion scale");
       }
     }
-    if (motion_turns(motion, out.camera, loc, "sphere")) {
+    if (uneven || motion_turns(motion, out.camera, loc, "sphere")) {
       // Keyframes that turn it carry its centre on an arc (a blend of the keyed centres would
-      // cut the arc's chord): it moves as a solid sphere, as an ellipsoid does.
+      // cut the arc's chord), and keys that scale it unevenly make an ellipsoid: it moves as a
+      // solid sphere, as an ellipsoid does.
       out.solid_spheres.push_back({center, radius, material_index});
       out.solids.push_back({kernel::SolidKind::Sphere, std::uint32_t(out.solid_spheres.size() - 1), material_index});
       move_last_solid(out, motion, loc);

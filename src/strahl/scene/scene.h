@@ -43,9 +43,6 @@ inline Material material_with_color(const Vec3& color) {
 // solids and instances; a mesh's act in its own coordinates, before its scale/rotate/translate
 // (so a mesh turns about its own origin). A Spin may come with either, or alone. Planes cannot
 // move.
-inline constexpr const char* kNonUniformSphereScale =
-    "a sphere's motion scale must be the same on every axis up to sign (a non-uniform scale would make an "
-    "ellipsoid, which a sphere cannot be)";
 
 // A spin: the object turns by `angle` degrees (any size, either sign: 1080 is three turns,
 // right-handed about `axis`) from shutter open to close, uniformly, about the line along `axis`

@@ -503,14 +503,6 @@ class Reader {
       keys(n, {"type", "center", "radius", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, "sphere");
       const Vec3 center = vec3(required(n, "center", "sphere"), "sphere center");
       const Real radius = positive(required(n, "radius", "sphere"), "sphere radius");
-      // A keyframe's scale acts on the radius too; one that differs between axes would make an ellipsoid.
-      if (const YAML::Node m = n["motion"]; m && m.IsMap())
-        for (const char* key : {"from", "to"})
-          if (const YAML::Node k = m[key]; k && k.IsMap())
-            if (const YAML::Node s = k["scale"]; s && s.IsSequence()) {
-              const Vec3 v = vec3(s, "scale");
-              if (std::fabs(v.x) != std::fabs(v.y) || std::fabs(v.x) != std::fabs(v.z)) fail(s, kNonUniformSphereScale);
-            }
       added = &scene.add(Sphere(center, radius, object_material(n)));
     } else if (type == "plane") {
       keys(n, {"type", "normal", "distance", "material", "scale", "rotate", "translate", "matrix", "transform"}, "plane");
