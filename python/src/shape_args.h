@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "convert.h"
+#include "strahl/scene/copy_object.h"  // copy_object: Scene.add, groups and CSG operands copy
 #include "strahl/scene/scene.h"
 
 namespace strahl::python {
@@ -19,9 +20,5 @@ Material object_material(const py::object& color, const std::optional<Material>&
 
 // scale (one number or three), rotate (degrees about x, y, z), translate; `what` names the shape.
 Transform make_transform(const py::object& scale, const Vec3& rotate, const Vec3& translate, const char* what);
-
-// A copy of any shape the module makes or a scene file holds (a CSG tree with copies of its
-// operands); nullptr for one it cannot copy (an instance: its group belongs to its scene).
-std::unique_ptr<SceneObject> copy_object(const SceneObject& object);
 
 }  // namespace strahl::python

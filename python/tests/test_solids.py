@@ -189,7 +189,7 @@ objects:
         built.add_instance("row", into="pair")
     built.add_instance("pair", into="row", motion=strahl.Motion.linear((1, 0, 0)))  # moving inside a group
     built.add_instance("row", translate=(0, 1, 0), motion=strahl.Motion.linear((0, 1, 0)))
-    with pytest.raises(strahl.Error, match="and so does the instance at .* inside group 'row'"):
+    with pytest.raises(strahl.Error, match="and so does the object at .* in group 'row'"):
         strahl.render(built, width=4, height=4)
     with pytest.raises(strahl.Error, match="unknown group 'trio'"):
         built.add_instance("pair", into="trio")
@@ -198,6 +198,29 @@ objects:
     empty.add_instance("nothing")
     with pytest.raises(strahl.Error, match="group 'nothing' has no objects"):
         strahl.render(empty, width=4, height=4)
+
+
+def test_moving_shapes_of_a_group_compile_as_in_a_scene_file():
+    built = strahl.Scene()
+    built.camera.shutter = (0, 1)
+    spin = strahl.Motion.spinning(strahl.Spin((0, 1, 0), 720, center=(0.5, 0, 0.5)))
+    built.add_group("rotor", [strahl.Box((0, 0, 0), (1, 0.1, 1), motion=spin), strahl.Sphere((2, 0, 0), 0.5)])
+    built.add_instance("rotor", translate=(0, 1, 0))
+    loaded = strahl.loads("""
+camera: {shutter: [0, 1]}
+groups:
+  rotor:
+    - {type: box, corners: [[0, 0, 0], [1, 0.1, 1]], motion: {spin: {axis: [0, 1, 0], angle: 720, center: [0.5, 0, 0.5]}}}
+    - {type: sphere, center: [2, 0, 0], radius: 0.5}
+objects:
+  - {type: instance, of: rotor, translate: [0, 1, 0]}
+""")
+    assert strahl._scene_hash(built) == strahl._scene_hash(loaded)
+    built.add_light((1, 3, 2))
+    built.camera = strahl.Camera(position=(0, 3, 6), look_at=(1, 1, 0))
+    built.camera.shutter = (0, 1)
+    image = strahl.render(built, width=16, height=12, spp=4)
+    assert image.max() > 0.1
 
 
 def test_a_motion_shows_its_spin():

@@ -94,6 +94,7 @@ struct RenderScene {
     std::string name;
     std::vector<GroupPlacement> places;
     bool own = true;             // the group has shapes of its own (a record of it is placed)
+    bool placeable = true;       // a group of the scene's (not one holding a group's moving shape)
     std::uint64_t unfolded = 0;  // instance records one placement of the group makes (saturated)
   };
   std::vector<GroupNesting> group_nesting;  // one per group of the scene's (not per turning shape's group)

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "strahl/render/render_scene.h"
+#include "strahl/scene/copy_object.h"
 #include "strahl/scene/move_solid.h"
 #include "strahl/scene/shape_bounds.h"
 #include "strahl/scene/validate.h"
@@ -15,9 +16,26 @@
 namespace strahl {
 namespace {
 
+// A placement of a group's moving shape before its own group is appended (compile_groups).
+constexpr std::uint32_t kMovingShapeGroup = 0xffffffffu;
+
 bool finite(const Bounds& b) {
   return std::isfinite(b.lo.x) && std::isfinite(b.lo.y) && std::isfinite(b.lo.z) && std::isfinite(b.hi.x) &&
          std::isfinite(b.hi.y) && std::isfinite(b.hi.z);
+}
+
+// Does the map keep lengths at every time of the shutter (the same orthonormal linear part at
+// both keys, turned by rotations, and an orthonormal post map, if any)?
+bool keeps_lengths(const kernel::MovingMap& map) {
+  const auto orthonormal = [](const Vec3* rows) {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (!(std::fabs(dot(rows[i], rows[j]) - (i == j ? 1 : 0)) <= Real(1e-12))) return false;
+    return true;
+  };
+  for (int i = 0; i < 3; ++i)
+    if (!(map.linear0[i] == map.linear1[i])) return false;
+  return orthonormal(map.linear0) && (map.post == 0 || orthonormal(map.post_row));
 }
 
 // The instance x (world box w) carried by `map` after its placement: into the motion BVH with
@@ -27,6 +45,10 @@ void push_moving_instance(RenderScene& out, const kernel::Instance& x, const Bou
   kernel::MovingInstance mi;
   mi.instance = x;
   mi.map = map;
+  // A map that scales brings the ray to the still instance with a direction of another length:
+  // the record must make it a unit one again (instance_ray), as a placement that scales does —
+  // the group's spheres are met by a test that takes unit directions.
+  if (!keeps_lengths(map)) mi.instance.translation_only = false;
   mi.lo = w.lo;
   mi.hi = w.hi;
   // Over the shutter the linear part's Frobenius norm is at most the larger of the keys' (a norm
@@ -150,27 +172,109 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
       continue;
     }
     if (map != nullptr)
-      throw Error(loc, "this instance moves, and so does the instance at " + p.loc.str() + " inside group '" +
+      throw Error(loc, "this instance moves, and so does the object at " + p.loc.str() + " in group '" +
                            nesting.name + "': a placed object has one motion (give it to the one or the other)");
     kernel::MovingMap moved = p.motion;
     const Mat3 identity;
     if (!(m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2] && t == Vec3(0))) {
-      check_invertible(m, loc);
-      const Mat3 inv = m.inverse();
+      // x ↦ m·x + t after the map's own post map P (a moving mesh's transform), if it has one.
+      Mat3 post = m;
+      Vec3 shift = t;
+      if (p.motion.post != 0) {
+        Mat3 own;
+        for (int i = 0; i < 3; ++i) own.row[i] = p.motion.post_row[i];
+        post = m * own;
+        shift = m * p.motion.post_translate + t;
+      }
+      check_invertible(post, loc);
+      const Mat3 inv = post.inverse();
       moved.post = 1;
       for (int i = 0; i < 3; ++i) {
-        moved.post_row[i] = m.row[i];
+        moved.post_row[i] = post.row[i];
         moved.post_inverse[i] = inv.row[i];
       }
-      moved.post_translate = t;
+      moved.post_translate = shift;
     }
     unfold(out, p.group, p.linear, p.translate, &moved, loc);
   }
 }
 
+// Compiles `object` (which does not move) into g, group `name`'s shapes: only static, bounded
+// shapes may be there.
+void compile_group_object(RenderScene& out, RenderScene& g, const SceneObject& object, const std::string& name,
+                          std::uint32_t object_id) {
+  validate::material(object.material, object.loc);
+  const auto material_index = static_cast<std::uint32_t>(out.materials.size());
+  out.materials.push_back(object.material);
+  // (A group keeps only its static shapes: whatever else an object compiles to is refused.)
+  const auto placed = [&] { return g.instances.size() + g.moving_instances.size(); };
+  const auto moving = [&] { return g.moving_spheres.size() + g.moving_triangles.size() + g.moving_solids.size(); };
+  const std::size_t planes = g.planes.size(), solids = g.solids.size(), instances = placed(), moved = moving();
+  object.compile_into(g, material_index, object_id);
+  if (g.planes.size() != planes)
+    throw Error(object.loc, "a plane cannot be part of group '" + name + "': it is unbounded (place it in objects)");
+  if (!g.groups.empty() || placed() != instances || moving() != moved)  // (moving objects are taken apart)
+    throw Error(object.loc, "group '" + name + "' holds an object that moves");
+  for (std::size_t i = solids; i < g.solids.size(); ++i) {
+    const kernel::Solid& k = g.solids[i];
+    const bool unbounded = (k.kind == kernel::SolidKind::Quadric && !g.quadrics[k.index].clipped) ||
+                           !finite(kernel::bounds(g.shapes(), k));
+    if (unbounded)
+      throw Error(object.loc, "an unbounded solid (an unclipped quadric, an inverse) cannot be part of group '" + name + "'");
+  }
+}
+
+// A moving shape of group `name`: compiled still into `still` (a group of its own), and placed in
+// its group by its motion's map — after its own placement, as at the top level, or, for a mesh,
+// whose keys act in its own coordinates, before its transform (the map's post map). The group
+// number is set once `still` is appended (compile_groups).
+RenderScene::GroupPlacement moving_shape(RenderScene& out, RenderScene& still, const SceneObject& object,
+                                         const std::string& name, std::uint32_t object_id) {
+  std::unique_ptr<SceneObject> copy = copy_object(object);
+  if (!copy) throw Error(object.loc, "objects of group '" + name + "' of this kind cannot move");
+  copy->motion = Motion{};
+  RenderScene::GroupPlacement p;
+  p.group = kMovingShapeGroup;
+  p.moving = true;
+  p.loc = object.loc;
+  validate_motion(object.motion, object.loc);
+  if (auto* mesh = dynamic_cast<Mesh*>(copy.get())) {
+    validate::finite(mesh->transform.scale, object.loc, "mesh scale");
+    validate::finite(mesh->transform.rotate_degrees, object.loc, "mesh rotate");
+    validate::finite(mesh->transform.translate, object.loc, "mesh translate");
+    const Affine post = affine_of(mesh->transform);
+    if (!(std::fabs(post.m.determinant()) > 0)) throw Error(object.loc, "mesh scale must not be zero");
+    mesh->transform = Transform{};
+    p.motion = moving_map(object.motion, out.camera, object.loc, "mesh", &post);
+  } else {
+    const bool sphere = dynamic_cast<const Sphere*>(copy.get()) != nullptr;
+    const bool triangle = dynamic_cast<const Triangle*>(copy.get()) != nullptr;
+    p.motion = moving_map(object.motion, out.camera, object.loc, sphere ? "sphere" : triangle ? "triangle" : "solid");
+  }
+  compile_group_object(out, still, *copy, name, object_id);
+  return p;
+}
+
 }  // namespace
 
 void compile_groups(const Scene& scene, RenderScene& out) {
+  // The scene's structure inside each group; Embree (no visitor traversal, float) gets the BVH.
+  AccelKind kind = scene.settings.accel;
+#if defined(STRAHL_HAVE_EMBREE)
+  if (kind == AccelKind::Embree) {
+    kind = AccelKind::Bvh;
+    if (!scene.groups.empty())
+      out.warnings.push_back(scene.settings.loc.str() + (scene.settings.loc.file.empty() ? "" : ": ") +
+                             "accel embree: the groups of instances are built as bvh");
+  }
+#endif
+  // A moving shape of a group: held still in a group of its own (appended after the scene's
+  // groups, so their numbers stay the scene's) and placed in its group by a moving instance.
+  struct MovingShape {
+    std::size_t group, place;  // out.group_nesting[group].places[place] places it
+    RenderScene still;
+  };
+  std::vector<MovingShape> moving_shapes;
   for (const ObjectGroup& group : scene.groups) {
     check_cancelled("build");
     if (group.objects.empty()) throw Error(group.loc, "group '" + group.name + "' has no objects");
@@ -185,58 +289,37 @@ void compile_groups(const Scene& scene, RenderScene& out) {
         nesting.places.push_back(nested_placement(scene, out, index, *inner));
         continue;
       }
-      validate::material(object->material, object->loc);
-      const auto material_index = static_cast<std::uint32_t>(out.materials.size());
-      out.materials.push_back(object->material);
-      // (A group keeps only its static shapes: whatever else an object compiles to is refused.)
-      const auto placed = [&] { return g.instances.size() + g.moving_instances.size(); };
-      const auto moving = [&] { return g.moving_spheres.size() + g.moving_triangles.size() + g.moving_solids.size(); };
-      const std::size_t planes = g.planes.size(), solids = g.solids.size(), instances = placed(), moved = moving();
-      object->compile_into(g, material_index, object_id++);
-      if (g.planes.size() != planes)
-        throw Error(object->loc, "a plane cannot be part of group '" + group.name + "': it is unbounded (place it in objects)");
-      const auto cannot_move = [&] {
-        return Error(object->loc, "objects of group '" + group.name +
-                                      "' cannot move (give the motion to its instances, or put the object in a group "
-                                      "of its own and place that in '" + group.name + "' by a moving instance)");
-      };
-      if (!g.groups.empty())  // (a sphere, triangle or mesh whose keyframes turn it moves as an instance)
-        throw cannot_move();
-      if (placed() != instances)  // (an Instance is taken above: nothing else compiles to one)
-        throw Error(object->loc, "group '" + group.name + "' places an instance");
-      if (moving() != moved)
-        throw cannot_move();
-      for (std::size_t i = solids; i < g.solids.size(); ++i) {
-        const kernel::Solid& k = g.solids[i];
-        const bool unbounded = (k.kind == kernel::SolidKind::Quadric && !g.quadrics[k.index].clipped) ||
-                               !finite(kernel::bounds(g.shapes(), k));
-        if (unbounded)
-          throw Error(object->loc, "an unbounded solid (an unclipped quadric, an inverse) cannot be part of group '" +
-                                       group.name + "'");
+      if (object->motion.moving()) {
+        MovingShape shape{index, nesting.places.size(), {}};
+        shape.still.camera = out.camera;
+        nesting.places.push_back(moving_shape(out, shape.still, *object, group.name, object_id++));
+        moving_shapes.push_back(std::move(shape));
+        continue;
       }
+      compile_group_object(out, g, *object, group.name, object_id++);
     }
-    // The scene's structure inside each group; Embree (no visitor traversal, float) gets the BVH.
-    AccelKind kind = scene.settings.accel;
-#if defined(STRAHL_HAVE_EMBREE)
-    if (kind == AccelKind::Embree) {
-      kind = AccelKind::Bvh;
-      if (out.groups.empty())
-        out.warnings.push_back(scene.settings.loc.str() + (scene.settings.loc.file.empty() ? "" : ": ") +
-                               "accel embree: the groups of instances are built as bvh");
-    }
-#endif
     nesting.own = !g.spheres.empty() || !g.triangles.empty() || !g.solids.empty();  // (a group's solids are bounded)
     nesting.unfolded = nesting.own ? 1 : 0;
     for (const RenderScene::GroupPlacement& p : nesting.places)
-      nesting.unfolded = std::min(nesting.unfolded + out.group_nesting[p.group].unfolded, kMaxInstanceRecords + 1);
+      nesting.unfolded = std::min(nesting.unfolded + (p.group == kMovingShapeGroup ? 1 : out.group_nesting[p.group].unfolded),
+                                  kMaxInstanceRecords + 1);
     push_group(out, std::move(g), kind);
     out.group_nesting.push_back(std::move(nesting));
+  }
+  for (MovingShape& shape : moving_shapes) {
+    out.group_nesting[shape.group].places[shape.place].group = static_cast<std::uint32_t>(out.groups.size());
+    push_group(out, std::move(shape.still), kind);
+    RenderScene::GroupNesting still;
+    still.placeable = false;  // (an instance names only the scene's groups)
+    still.unfolded = 1;
+    out.group_nesting.push_back(std::move(still));
   }
 }
 
 void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) const {
-  // (group_nesting: the scene's groups, compiled first; out.groups may hold turning shapes' after them)
-  if (group >= out.group_nesting.size())
+  // (group_nesting: the scene's groups, then its groups' moving shapes'; out.groups may hold
+  // turning shapes' after them)
+  if (group >= out.group_nesting.size() || !out.group_nesting[group].placeable)
     throw Error(loc, "instance of group number " + std::to_string(group) + ", which the scene does not have");
   validate::finite(placement.translate, loc, "instance translate");
   const Mat3 m = placement.linear();
