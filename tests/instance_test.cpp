@@ -532,13 +532,15 @@ TEST(Instance, AMovingInstanceThatScalesMeetsItsSpheres) {
 TEST(Instance, NestedGroupsAreWrittenAndReadBack) {
   const Scene a = parse_scene(kHead + "groups:\n  g:\n" + group_objects("    ", "") +
                                   "  outer:\n    - {type: instance, of: g, rotate: [0, 30, 0]}\n"
-                                  "    - {type: instance, of: g, translate: [2, 0, 0]}\n"
+                                  "    - {type: instance, of: g, translate: [2, 0, 0], motion: {velocity: [0, 1, 0]}}\n"
+                                  "    - {type: box, corners: [[0, 0, 0], [1, 1, 1]], motion: {spin: {axis: [0, 1, 0], "
+                                  "angle: 90}}}\n"
                                   "objects:\n  - {type: instance, of: outer, scale: 0.5}\n",
                               "a.yaml", ".");
   const std::string text = scene_to_yaml(a);
   const Scene b = parse_scene(text, "b.yaml", ".");
   const RenderScene ca = compile(a);
-  EXPECT_EQ(ca.instances.size(), 2u);
+  EXPECT_EQ(ca.instances.size() + ca.moving_instances.size(), 3u);
   EXPECT_EQ(scene_hash(ca), scene_hash(compile(b))) << text;
 }
 
