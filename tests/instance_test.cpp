@@ -265,6 +265,21 @@ TEST(Instance, BadGroupsAreErrorsAtTheirPlace) {
             "bad.yaml:12:37: matrix is singular (its determinant is 0): it flattens the object");
 }
 
+// kHead with a shutter from 0 to 1 (for motions).
+std::string with_shutter() {
+  std::string head = kHead;
+  head.replace(head.find("fov: 45}"), 8, "fov: 45, shutter: [0, 1]}");
+  return head;
+}
+
+// Two scenes agree on the surfaces their rays met (but for a few grazing ones), to rounding.
+void expect_same_surfaces(const Compared& c, int min_both, const std::string& what = "") {
+  EXPECT_GT(c.both, min_both) << what;
+  EXPECT_LE(c.disagree, 4) << what;
+  EXPECT_LT(c.max_t, 1e-9) << what;
+  EXPECT_LT(c.max_normal, 1e-7) << what;
+}
+
 // Nested instances (scene/instances.h): `outer` places the group `g` by T1 beside a sphere of
 // its own, and the scene places `outer` by T2.
 RenderScene nested(const std::string& t1, const std::string& t2, AccelKind accel = AccelKind::Bvh) {
@@ -310,10 +325,7 @@ TEST(Instance, NestedInstanceIsTheObjectsUnderBothTransforms) {
             "  - {type: sphere, center: [0, 2.5, 0], radius: 0.2, material: red, transform: [" + t2 + "]}\n",
         "direct.yaml", "."));
     const Compared c = compare(d, n, 19 + k);
-    EXPECT_GT(c.both, 500) << t1 << " then " << t2;
-    EXPECT_LE(c.disagree, 4) << t1 << " then " << t2;
-    EXPECT_LT(c.max_t, 1e-9) << t1 << " then " << t2;
-    EXPECT_LT(c.max_normal, 1e-7) << t1 << " then " << t2;
+    expect_same_surfaces(c, 500, t1 + " then " + t2);
   }
   // The group `holder` has no shapes of its own: it is placed by its records only.
   const std::string t = "transform: [{rotate: {axis: [0, 1, 0], angle: 25}}, {scale: 1.3}]";
@@ -348,8 +360,7 @@ TEST(Instance, DeepNestingUnfoldsEveryPlacement) {
                            "  row:\n    - {type: instance, of: pair, translate: [0, 0, -1.5]}\n"
                            "    - {type: instance, of: pair, translate: [0.25, 0.125, 1]}\n";
   const std::string flat = g + ball;
-  std::string shutter_head = kHead;
-  shutter_head.replace(shutter_head.find("fov: 45}"), 8, "fov: 45, shutter: [0, 1]}");
+  const std::string shutter_head = with_shutter();
   const char* records[] = {"g, translate: [-0.5, 0, -1.5]", "g, translate: [0.625, 0, -1.75]", "ball, translate: [0, 0, -1.5]",
                            "g, translate: [-0.25, 0.125, 1]", "g, translate: [0.875, 0.125, 0.75]",
                            "ball, translate: [0.25, 0.125, 1]"};
@@ -380,8 +391,7 @@ TEST(Instance, DeepNestingUnfoldsEveryPlacement) {
 // that is the moving instance written at the top, bit for bit; under x ↦ M·x + t it is the moving
 // instance placed by M·P, M·t_P + t and moving by M·v, at every time of the shutter.
 TEST(Instance, MovingInstancesInsideGroupsMoveUnderTheOuterPlacement) {
-  std::string head = kHead;
-  head.replace(head.find("fov: 45}"), 8, "fov: 45, shutter: [0, 1]}");
+  const std::string head = with_shutter();
   const std::string g = "groups:\n  g:\n" + group_objects("    ", "");
   const std::string inner = "transform: [{rotate: {axis: [1, 2, 0.5], angle: 37}}, {translate: [0.25, -0.5, 0.75]}]";
   const auto scene_of = [&](const std::string& text) { return compile(parse_scene(head + text, "moving.yaml", ".")); };
@@ -455,8 +465,7 @@ Compared compare_in_time(const RenderScene& x, const RenderScene& y, std::uint64
 // instance's transform M, as the same shape with M added to its placement (a mesh's transform
 // list; a box's velocity carried by M).
 TEST(Instance, MovingShapesOfAGroupMoveAsInTheScene) {
-  std::string head = kHead;
-  head.replace(head.find("fov: 45}"), 8, "fov: 45, shutter: [0, 1]}");
+  const std::string head = with_shutter();
   const std::string shapes[] = {
       "{type: sphere, center: [-1, 0.5, 0], radius: 0.5, material: red, motion: {velocity: [0.5, 0, -0.25]}",
       "{type: sphere, center: [1, 1.5, -1], radius: 0.4, motion: {to: {scale: [1, 1.5, 0.75]}}",
@@ -484,10 +493,7 @@ TEST(Instance, MovingShapesOfAGroupMoveAsInTheScene) {
   EXPECT_EQ(grouped_scene.moving_instances.size(), 6u);   // each moving shape, in a group of its own
   EXPECT_EQ(grouped_scene.groups.size(), 7u);
   const Compared c = compare_in_time(direct_scene, grouped_scene, 31);
-  EXPECT_GT(c.both, 400);
-  EXPECT_LE(c.disagree, 4);
-  EXPECT_LT(c.max_t, 1e-9);
-  EXPECT_LT(c.max_normal, 1e-7);
+  expect_same_surfaces(c, 400);
   // Under M: the mesh with M after its own transform, the box placed by M moving by M·v.
   const std::string m = "matrix: [[0, -1, 0, 1], [1, 0, 0, 0], [0, 0, 2, -1]]";
   const RenderScene placed = compile(parse_scene(
@@ -500,10 +506,7 @@ TEST(Instance, MovingShapesOfAGroupMoveAsInTheScene) {
              "  - {type: box, corners: [[0.2, 0, -0.4], [1, 0.8, 0.4]], " + m + ", motion: {velocity: [-0.25, 0.5, -1]}}\n",
       "composed.yaml", base));
   const Compared d = compare_in_time(placed, composed, 37);
-  EXPECT_GT(d.both, 150);
-  EXPECT_LE(d.disagree, 4);
-  EXPECT_LT(d.max_t, 1e-9);
-  EXPECT_LT(d.max_normal, 1e-7);
+  expect_same_surfaces(d, 150);
 }
 
 // A moving instance whose motion scales brings rays to its still group with directions of another
@@ -511,8 +514,7 @@ TEST(Instance, MovingShapesOfAGroupMoveAsInTheScene) {
 // sphere written in the objects is (until 2026-12-06 they were not: the record passed the ray on
 // unnormalised).
 TEST(Instance, AMovingInstanceThatScalesMeetsItsSpheres) {
-  std::string head = kHead;
-  head.replace(head.find("fov: 45}"), 8, "fov: 45, shutter: [0, 1]}");
+  const std::string head = with_shutter();
   for (const std::string motion : {"{to: {scale: 1.5}}", "{from: {scale: 0.5}, to: {scale: [1, 2, 1], translate: [0, 1, 0]}}"}) {
     const RenderScene direct_scene = compile(parse_scene(
         head + "objects:\n" + kFloor + "  - {type: sphere, center: [1, 1, -1], radius: 0.6, motion: " + motion + "}\n",
