@@ -43,7 +43,8 @@ TEST(SceneWriter, EveryExampleSceneReadsBackToTheSameCompiledScene) {
     ++scenes;
   }
   EXPECT_GE(scenes, 10);
-  EXPECT_EQ(with_groups, 2);  // scenes/instances.yaml (meshes and CSG, 1,024 instances), instances-nested.yaml
+  EXPECT_EQ(with_groups, 3);  // scenes/instances.yaml (meshes and CSG, 1,024 instances), instances-nested.yaml,
+                              // instances-windmills.yaml
 }
 
 TEST(SceneWriter, EveryKindOfObjectLightAndCamera) {
