@@ -531,6 +531,49 @@ TEST(Instance, AMovingInstanceThatScalesMeetsItsSpheres) {
   }
 }
 
+// An instance that only translates (a velocity) may place things that move: a car driving, its
+// wheels spinning about their hubs. Its translation is added to theirs, so each wheel is where a
+// wheel written in the objects with the velocity and the spin carried over — axis M·z, centre
+// M·hub + t — is, at every time; likewise the body.
+TEST(Instance, ATranslatingInstanceCarriesWhatMovesInside) {
+  const std::string head = with_shutter();
+  const std::string groups =
+      "groups:\n  wheel:\n    - {type: cylinder, base: [0, 0, -0.1], cap: [0, 0, 0.1], radius: 0.3}\n"
+      "    - {type: box, corners: [[0.15, -0.05, -0.12], [0.3, 0.05, 0.12]], material: red}\n"
+      "  body: [{type: box, corners: [[-1, 0.3, -0.4], [1, 0.8, 0.4]], material: glass}]\n";
+  const char* hubs[] = {"[0.7, 0.3, 0.5]", "[-0.7, 0.3, 0.5]"};
+  std::string car = "  car:\n    - {type: instance, of: body}\n";
+  for (const char* hub : hubs)
+    car += std::string("    - {type: instance, of: wheel, translate: ") + hub +
+           ", motion: {spin: {axis: [0, 0, 1], angle: -120, center: " + hub + "}}}\n";
+  // M: the identity, and a quarter turn about y (exact entries) with a shift.
+  struct Case {
+    const char* m;
+    const char* axis;
+    const char* centers[2];
+  };
+  const Case cases[] = {{"", "[0, 0, 1]", {"[0.7, 0.3, 0.5]", "[-0.7, 0.3, 0.5]"}},
+                        {"matrix: [[0, 0, 1, 0.25], [0, 1, 0, 0], [-1, 0, 0, -0.5]]", "[1, 0, 0]",
+                         {"[0.75, 0.3, -1.2]", "[0.75, 0.3, 0.2]"}}};
+  for (const Case& k : cases) {
+    const std::string m = k.m;
+    const std::string velocity = "velocity: [0.5, 0, 0.25]";
+    const RenderScene nested_scene = compile(parse_scene(
+        head + groups + car + "objects:\n" + kFloor + "  - {type: instance, of: car, " + (m.empty() ? "" : m + ", ") +
+            "motion: {" + velocity + "}}\n",
+        "car.yaml", "."));
+    ASSERT_EQ(nested_scene.moving_instances.size(), 3u);
+    std::string flat = head + groups + "objects:\n" + kFloor + "  - {type: instance, of: body, " +
+                       (m.empty() ? "" : m + ", ") + "motion: {" + velocity + "}}\n";
+    for (int w = 0; w < 2; ++w)
+      flat += std::string("  - {type: instance, of: wheel, transform: [{translate: ") + hubs[w] + "}" +
+              (m.empty() ? "" : ", {" + m + "}") + "], motion: {" + velocity + ", spin: {axis: " + k.axis +
+              ", angle: -120, center: " + k.centers[w] + "}}}\n";
+    const Compared c = compare_in_time(nested_scene, compile(parse_scene(flat, "flat.yaml", ".")), 43);
+    expect_same_surfaces(c, 150, m);
+  }
+}
+
 TEST(Instance, NestedGroupsAreWrittenAndReadBack) {
   const Scene a = parse_scene(kHead + "groups:\n  g:\n" + group_objects("    ", "") +
                                   "  outer:\n    - {type: instance, of: g, rotate: [0, 30, 0]}\n"
@@ -571,9 +614,10 @@ TEST(Instance, BadNestingIsAnErrorAtItsPlace) {
             "bad.yaml:11:28: unknown group 'c': group 'a' can place the groups defined above it (b)");
   EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: b, motion: {velocity: [1, 0, 0]}}]\n" +
                      "  c: [{type: instance, of: a}]\nobjects:\n  - {type: instance, of: c}\n"
-                     "  - {type: instance, of: c, motion: {velocity: [0, 1, 0]}}\n"),
+                     "  - {type: instance, of: c, motion: {to: {scale: 2}}}\n"),
             "bad.yaml:15:5: this instance moves, and so does the object at bad.yaml:11:7 in group 'a': a placed "
-            "object has one motion (give it to the one or the other)");
+            "object has one motion, or the outer one only translates (give the turn or the scale to the one or "
+            "the other)");
   EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: b, scale: [1, 0, 1]}]\nobjects:\n"
                      "  - {type: instance, of: a}\n"),
             "bad.yaml:11:38: scale must not be zero");

@@ -188,7 +188,7 @@ objects:
     with pytest.raises(strahl.Error, match="group 'pair' can place only the groups added before it"):
         built.add_instance("row", into="pair")
     built.add_instance("pair", into="row", motion=strahl.Motion.linear((1, 0, 0)))  # moving inside a group
-    built.add_instance("row", translate=(0, 1, 0), motion=strahl.Motion.linear((0, 1, 0)))
+    built.add_instance("row", translate=(0, 1, 0), motion=strahl.Motion.spinning(strahl.Spin((0, 1, 0), 90)))
     with pytest.raises(strahl.Error, match="and so does the object at .* in group 'row'"):
         strahl.render(built, width=4, height=4)
     with pytest.raises(strahl.Error, match="unknown group 'trio'"):

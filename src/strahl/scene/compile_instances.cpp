@@ -156,11 +156,19 @@ void place(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, 
   }
 }
 
+// Does the map only translate (a velocity, keys that only translate: x ↦ x + d(u))?
+bool translates_only(const kernel::MovingMap& map) {
+  const Mat3 identity;
+  for (int i = 0; i < 3; ++i)
+    if (!(map.linear0[i] == identity.row[i] && map.linear1[i] == identity.row[i])) return false;
+  return map.angle == 0 && map.pivot == 0 && map.post == 0;
+}
+
 // One placement of group `group` by x ↦ m·x + t, moving with *map after it where given (the
 // instance at `loc`): the record of its own shapes (when it has any) and, in turn, those of the
 // groups it places, each by the composed map m·(m'·x + t') + t — or, where the placement inside
 // moves, by its own placement, carried by its motion A(u) and then by x ↦ m·x + t (A's post map:
-// a record has one motion).
+// a record has one motion, to which an outer motion that only translates adds its translation).
 void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, const kernel::MovingMap* map,
             const FileLoc& loc) {
   const RenderScene::GroupNesting& nesting = out.group_nesting[group];
@@ -171,9 +179,10 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
       unfold(out, p.group, m * p.linear, m * p.translate + t, map, loc);
       continue;
     }
-    if (map != nullptr)
+    if (map != nullptr && !translates_only(*map))
       throw Error(loc, "this instance moves, and so does the object at " + p.loc.str() + " in group '" +
-                           nesting.name + "': a placed object has one motion (give it to the one or the other)");
+                           nesting.name + "': a placed object has one motion, or the outer one only translates "
+                                          "(give the turn or the scale to the one or the other)");
     kernel::MovingMap moved = p.motion;
     const Mat3 identity;
     if (!(m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2] && t == Vec3(0))) {
@@ -194,6 +203,17 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
         moved.post_inverse[i] = inv.row[i];
       }
       moved.post_translate = shift;
+    }
+    if (map != nullptr) {
+      // The outer motion's translation d(u), taken inside the post map P: P(y) + d = P(y + P⁻¹·d),
+      // and d(u) = lerp(d₀, d₁, u) as the map's own translation is.
+      for (int key = 0; key < 2; ++key) {
+        const Vec3 d = key == 0 ? map->translate0 : map->translate1;
+        const Vec3 inside = moved.post == 0 ? d
+                                            : Vec3(dot(moved.post_inverse[0], d), dot(moved.post_inverse[1], d),
+                                                   dot(moved.post_inverse[2], d));
+        (key == 0 ? moved.translate0 : moved.translate1) += inside;
+      }
     }
     unfold(out, p.group, p.linear, p.translate, &moved, loc);
   }
