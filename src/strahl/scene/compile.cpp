@@ -362,11 +362,7 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   }
   // Keyframes that turn it (in its own coordinates, before its transform P) move its points on
   // arcs: it becomes an instance of a group holding it unmoved, carried by P·A(u).
-  validate::finite(transform.scale, loc, "mesh scale");
-  validate::finite(transform.rotate_degrees, loc, "mesh rotate");
-  validate::finite(transform.translate, loc, "mesh translate");
-  const Affine post = affine_of(transform);
-  if (!(std::fabs(post.m.determinant()) > 0)) throw Error(loc, "mesh scale must not be zero");
+  const Affine post = mesh_motion_post(transform, loc);
   RenderScene group;
   compile_mesh(data, Transform{}, Motion{}, loc, group, material_index, object_id);
   move_by_instance(out, std::move(group), moving_map(motion, out.camera, loc, "mesh", &post), loc);

@@ -19,6 +19,11 @@ namespace {
 // A placement of a group's moving shape before its own group is appended (compile_groups).
 constexpr std::uint32_t kMovingShapeGroup = 0xffffffffu;
 
+bool identity(const Mat3& m) {
+  const Mat3 i;
+  return m.row[0] == i.row[0] && m.row[1] == i.row[1] && m.row[2] == i.row[2];
+}
+
 bool finite(const Bounds& b) {
   return std::isfinite(b.lo.x) && std::isfinite(b.lo.y) && std::isfinite(b.lo.z) && std::isfinite(b.hi.x) &&
          std::isfinite(b.hi.y) && std::isfinite(b.hi.z);
@@ -130,8 +135,7 @@ void place(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, 
   kernel::Instance x;
   for (int i = 0; i < 3; ++i) x.to_object.row[i] = inv.row[i];
   x.to_object.translate = t;
-  const Mat3 identity;
-  x.translation_only = m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2];
+  x.translation_only = identity(m);
   // The Frobenius norm bounds the map's largest stretch.
   x.stretch = kernel::frobenius(m.row);
   x.shift = max_abs_component(t);
@@ -158,10 +162,11 @@ void place(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, 
 
 // Does the map only translate (a velocity, keys that only translate: x ↦ x + d(u))?
 bool translates_only(const kernel::MovingMap& map) {
-  const Mat3 identity;
   for (int i = 0; i < 3; ++i)
-    if (!(map.linear0[i] == identity.row[i] && map.linear1[i] == identity.row[i])) return false;
-  return map.angle == 0 && map.pivot == 0 && map.post == 0;
+    if (!(map.linear0[i] == map.linear1[i])) return false;
+  Mat3 linear;
+  for (int i = 0; i < 3; ++i) linear.row[i] = map.linear0[i];
+  return identity(linear) && map.angle == 0 && map.pivot == 0 && map.post == 0;
 }
 
 // One placement of group `group` by x ↦ m·x + t, moving with *map after it where given (the
@@ -183,27 +188,16 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
       throw Error(loc, "this instance moves, and so does the object at " + p.loc.str() + " in group '" +
                            nesting.name + "': a placed object has one motion, or the outer one only translates "
                                           "(give the turn or the scale to the one or the other)");
+    // x ↦ m·x + t after the map's own post map P (a moving mesh's transform), if it has one.
     kernel::MovingMap moved = p.motion;
-    const Mat3 identity;
-    if (!(m.row[0] == identity.row[0] && m.row[1] == identity.row[1] && m.row[2] == identity.row[2] && t == Vec3(0))) {
-      // x ↦ m·x + t after the map's own post map P (a moving mesh's transform), if it has one.
-      Mat3 post = m;
-      Vec3 shift = t;
-      if (p.motion.post != 0) {
-        Mat3 own;
-        for (int i = 0; i < 3; ++i) own.row[i] = p.motion.post_row[i];
-        post = m * own;
-        shift = m * p.motion.post_translate + t;
-      }
-      check_invertible(post, loc);
-      const Mat3 inv = post.inverse();
-      moved.post = 1;
-      for (int i = 0; i < 3; ++i) {
-        moved.post_row[i] = post.row[i];
-        moved.post_inverse[i] = inv.row[i];
-      }
-      moved.post_translate = shift;
+    Affine post{m, t};
+    if (p.motion.post != 0) {
+      Mat3 own;
+      for (int i = 0; i < 3; ++i) own.row[i] = p.motion.post_row[i];
+      post = {m * own, m * p.motion.post_translate + t};
     }
+    check_invertible(post.m, loc);
+    set_post(moved, post);
     if (map != nullptr) {
       // The outer motion's translation d(u), taken inside the post map P: P(y) + d = P(y + P⁻¹·d),
       // and d(u) = lerp(d₀, d₁, u) as the map's own translation is.
@@ -259,11 +253,7 @@ RenderScene::GroupPlacement moving_shape(RenderScene& out, RenderScene& still, c
   p.loc = object.loc;
   validate_motion(object.motion, object.loc);
   if (auto* mesh = dynamic_cast<Mesh*>(copy.get())) {
-    validate::finite(mesh->transform.scale, object.loc, "mesh scale");
-    validate::finite(mesh->transform.rotate_degrees, object.loc, "mesh rotate");
-    validate::finite(mesh->transform.translate, object.loc, "mesh translate");
-    const Affine post = affine_of(mesh->transform);
-    if (!(std::fabs(post.m.determinant()) > 0)) throw Error(object.loc, "mesh scale must not be zero");
+    const Affine post = mesh_motion_post(mesh->transform, object.loc);
     mesh->transform = Transform{};
     p.motion = moving_map(object.motion, out.camera, object.loc, "mesh", &post);
   } else {

@@ -161,6 +161,29 @@ bool turn_of(const Motion& motion, const Affine* key_map, Vec3& axis, Real& angl
 
 }  // namespace
 
+void set_post(kernel::MovingMap& map, const Affine& post) {
+  const Mat3 identity;
+  if (post.m.row[0] == identity.row[0] && post.m.row[1] == identity.row[1] && post.m.row[2] == identity.row[2] &&
+      post.t == Vec3(0))
+    return;
+  map.post = 1;
+  const Mat3 inv = post.m.inverse();
+  for (int i = 0; i < 3; ++i) {
+    map.post_row[i] = post.m.row[i];
+    map.post_inverse[i] = inv.row[i];
+  }
+  map.post_translate = post.t;
+}
+
+Affine mesh_motion_post(const Transform& transform, const FileLoc& loc) {
+  validate::finite(transform.scale, loc, "mesh scale");
+  validate::finite(transform.rotate_degrees, loc, "mesh rotate");
+  validate::finite(transform.translate, loc, "mesh translate");
+  const Affine post = affine_of(transform);
+  if (!(std::fabs(post.m.determinant()) > 0)) throw Error(loc, "mesh scale must not be zero");
+  return post;
+}
+
 kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what,
                              const Affine* post) {
   validate_motion(motion, loc);
@@ -202,20 +225,7 @@ kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const F
     if (off <= Real(1e-13) * size)
       for (int i = 0; i < 3; ++i) m.linear1[i] = m.linear0[i];
   }
-  if (post != nullptr) {
-    const Mat3 identity;
-    const bool none = post->m.row[0] == identity.row[0] && post->m.row[1] == identity.row[1] &&
-                      post->m.row[2] == identity.row[2] && post->t == Vec3(0);
-    if (!none) {
-      m.post = 1;
-      const Mat3 inv = post->m.inverse();
-      for (int i = 0; i < 3; ++i) {
-        m.post_row[i] = post->m.row[i];
-        m.post_inverse[i] = inv.row[i];
-      }
-      m.post_translate = post->t;
-    }
-  }
+  if (post != nullptr) set_post(m, *post);
   // lerp(L, L, u) = L + (L − L)·u = L + 0 is the same at every u ∈ [0, 1] (L itself but for a −0,
   // which becomes +0): at_time()'s inverse of it too, computed here once.
   if (m.linear0[0] == m.linear1[0] && m.linear0[1] == m.linear1[1] && m.linear0[2] == m.linear1[2]) {

@@ -25,6 +25,14 @@ void validate_motion(const Motion& m, const FileLoc& loc);
 kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const FileLoc& loc, const char* what,
                              const Affine* post = nullptr);
 
+// Follows the map by `post` (A(u), then x ↦ post.m·x + post.t): its post map and that map's
+// inverse; nothing where `post` is the identity (the map's bits stay those without one).
+void set_post(kernel::MovingMap& map, const Affine& post);
+
+// A mesh's transform as the post map of its motion (its keys act in its own coordinates, before
+// the transform), checked: finite, no scale of 0 (errors at `loc`).
+Affine mesh_motion_post(const Transform& transform, const FileLoc& loc);
+
 // Does the motion turn what it moves (keyframes whose rotations differ, a spin)? Such spheres, triangles
 // and meshes move as solids or instances do, on arcs (their blends of vertices and centres
 // would move on chords). The errors of moving_map().
