@@ -7,9 +7,11 @@
 // record per group reached: the same bits as those records written at one level, and the objects
 // where both transforms in turn put them.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -76,6 +78,7 @@ Image render_of(const RenderScene& rs) {
 struct Compared {
   int rays = 0, both = 0, disagree = 0;
   Real max_t = 0, max_normal = 0;
+  int shadowed = 0, shadow_disagree = 0;  // compare_in_time: the rays' transmittance over 16 units
 };
 
 // Nearest hits along random rays towards the objects, and their surface normals.
@@ -278,6 +281,7 @@ void expect_same_surfaces(const Compared& c, int min_both, const std::string& wh
   EXPECT_LE(c.disagree, 4) << what;
   EXPECT_LT(c.max_t, 1e-9) << what;
   EXPECT_LT(c.max_normal, 1e-7) << what;
+  EXPECT_LE(c.shadow_disagree, 4) << what;
 }
 
 // Nested instances (scene/instances.h): `outer` places the group `g` by T1 beside a sphere of
@@ -435,17 +439,23 @@ TEST(Instance, MovingInstancesInsideGroupsMoveUnderTheOuterPlacement) {
   EXPECT_LT(max_t, 1e-9);
 }
 
-// Hits of two scenes along rays at random times of the shutter: how many met a shape (not the
-// floor), how many disagreed (a grazing ray), the largest relative difference in t and normal.
-Compared compare_in_time(const RenderScene& x, const RenderScene& y, std::uint64_t seed) {
+// Hits of two scenes along rays at random times of the shutter (or all at time `at`, where given):
+// how many met a shape (not the floor), how many disagreed (a grazing ray), the largest relative
+// difference in t and normal.
+Compared compare_in_time(const RenderScene& x, const RenderScene& y, std::uint64_t seed, Real at = -1) {
   const SceneView vx = x.view(), vy = y.view();
   test::Random rng(seed);
   Compared c;
   for (int i = 0; i < 4000; ++i) {
     const Vec3 o = Vec3(0, 0.8, 0) + rng.direction() * 8;
-    const Ray ray{o, normalize(Vec3(0, 0.8, 0) + rng.point(-2.5, 2.5) - o), rng.uniform()};
+    const Vec3 d = normalize(Vec3(0, 0.8, 0) + rng.point(-2.5, 2.5) - o);
+    const Ray ray{o, d, at < 0 ? rng.uniform() : at};
     const Hit hx = closest_hit(vx, ray, 0, kInfinity), hy = closest_hit(vy, ray, 0, kInfinity);
     ++c.rays;
+    // As a shadow ray across the scene (through the glass: crossings counted, render/moving_shapes.h).
+    const Vec3 ax = transmittance(vx, ray, 16), ay = transmittance(vy, ray, 16);
+    c.shadowed += !(ax == Vec3(1));
+    c.shadow_disagree += max_abs_component(ax - ay) > 1e-9;
     if (hx.found() != hy.found() || (hx.found() && std::fabs(hx.t - hy.t) > 1e-6 * hx.t)) {
       ++c.disagree;
       continue;
@@ -574,6 +584,64 @@ TEST(Instance, ATranslatingInstanceCarriesWhatMovesInside) {
   }
 }
 
+// Motions that turn or scale compose (geometry/moving_instance.h: a record carried by A(u), then
+// B(u)): a car whose wheels spin about their hubs, placed by keys that turn it and scale it
+// (under a matrix; inside a group moved by a velocity; moved inside a group by a velocity after a
+// fixed turn, the turn and scale above), against still scenes at fixed times of the shutter, the
+// car and its wheels placed by the transforms that the motions reach then, written out: the
+// spin's angle −120°·u about the hub, the keys' turn 40°·u about y with the scale 1 + 0.5·u, the
+// velocity's shift.
+TEST(Instance, TurnsAndScalesComposeAcrossNestedMotions) {
+  const std::string head = with_shutter();
+  const std::string groups =
+      "groups:\n  wheel:\n    - {type: cylinder, base: [0, 0, -0.1], cap: [0, 0, 0.1], radius: 0.3}\n"
+      "    - {type: box, corners: [[0.15, -0.05, -0.12], [0.3, 0.05, 0.12]], material: red}\n"
+      "  body: [{type: box, corners: [[-1, 0.3, -0.4], [1, 0.8, 0.4]], material: glass}]\n"
+      "  car:\n    - {type: instance, of: body}\n"
+      "    - {type: instance, of: wheel, translate: [0.7, 0.3, 0.5], motion: {spin: {axis: [0, 0, 1], angle: -120, "
+      "center: [0.7, 0.3, 0.5]}}}\n"
+      "    - {type: instance, of: wheel, translate: [-0.7, 0.3, 0.5], motion: {spin: {axis: [0, 0, 1], angle: -120, "
+      "center: [-0.7, 0.3, 0.5]}}}\n";
+  const std::string keys = "motion: {to: {rotate: [0, 40, 0], scale: 1.5}}";
+  const std::string m = "[[0, 0, 1, 0.25], [0, 1, 0, 0], [-1, 0, 0, -0.5]]";
+  const auto num = [](Real x) { return fmt::format("{}", x); };
+  const auto turned = [&](Real u) {
+    return "{scale: " + num(1 + 0.5 * u) + "}, {rotate: [0, " + num(40 * u) + ", 0]}";
+  };
+  struct Case {
+    std::string moving;                                  // groups after the car's, and the objects
+    std::function<std::string(Real)> outer;              // the car's transform list at u
+  };
+  const Case cases[] = {
+      {"objects:\n" + kFloor + "  - {type: instance, of: car, matrix: " + m + ", " + keys + "}\n",
+       [&](Real u) { return "{matrix: " + m + "}, " + turned(u); }},
+      {"  convoy: [{type: instance, of: car, translate: [0, 0, -0.5], " + keys + "}]\nobjects:\n" + kFloor +
+           "  - {type: instance, of: convoy, motion: {velocity: [0.5, 0, 0.25]}}\n",
+       [&](Real u) {
+         return "{translate: [0, 0, -0.5]}, " + turned(u) + ", {translate: [" + num(0.5 * u) + ", 0, " + num(0.25 * u) + "]}";
+       }},
+      {"  convoy: [{type: instance, of: car, rotate: [0, 90, 0], motion: {velocity: [0.5, 0, 0]}}]\nobjects:\n" +
+           kFloor + "  - {type: instance, of: convoy, " + keys + "}\n",
+       [&](Real u) { return "{rotate: [0, 90, 0]}, {translate: [" + num(0.5 * u) + ", 0, 0]}, " + turned(u); }},
+  };
+  int seed = 47;
+  for (const Case& k : cases) {
+    const RenderScene moving = compile(parse_scene(head + groups + k.moving, "car.yaml", "."));
+    ASSERT_EQ(moving.moving_instances.size(), 3u) << k.moving;
+    EXPECT_EQ(moving.moving_instances[1].two_maps + moving.moving_instances[2].two_maps, 2u) << k.moving;
+    for (const Real u : {0.0, 0.3, 0.71, 1.0}) {
+      std::string still = head + groups + "objects:\n" + kFloor + "  - {type: instance, of: body, transform: [" +
+                          k.outer(u) + "]}\n";
+      for (const char* hub : {"[0.7, 0.3, 0.5]", "[-0.7, 0.3, 0.5]"})
+        still += "  - {type: instance, of: wheel, transform: [{rotate: {axis: [0, 0, 1], angle: " + num(-120 * u) +
+                 "}}, {translate: " + hub + "}, " + k.outer(u) + "]}\n";
+      const Compared c = compare_in_time(moving, compile(parse_scene(still, "still.yaml", ".")), seed++, u);
+      expect_same_surfaces(c, 150, k.moving + " at " + num(u));
+      EXPECT_GT(c.shadowed, 150) << k.moving << " at " << u;
+    }
+  }
+}
+
 TEST(Instance, NestedGroupsAreWrittenAndReadBack) {
   const Scene a = parse_scene(kHead + "groups:\n  g:\n" + group_objects("    ", "") +
                                   "  outer:\n    - {type: instance, of: g, rotate: [0, 30, 0]}\n"
@@ -612,12 +680,13 @@ TEST(Instance, BadNestingIsAnErrorAtItsPlace) {
   EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: c}]\n  c: " + sphere +
                      "\nobjects:\n  - {type: instance, of: a}\n"),
             "bad.yaml:11:28: unknown group 'c': group 'a' can place the groups defined above it (b)");
-  EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: b, motion: {velocity: [1, 0, 0]}}]\n" +
-                     "  c: [{type: instance, of: a}]\nobjects:\n  - {type: instance, of: c}\n"
-                     "  - {type: instance, of: c, motion: {to: {scale: 2}}}\n"),
-            "bad.yaml:15:5: this instance moves, and so does the object at bad.yaml:11:7 in group 'a': a placed "
-            "object has one motion, or the outer one only translates (give the turn or the scale to the one or "
-            "the other)");
+  // Three motions that turn or scale (a spin in a group scaled in a group turned): two compose.
+  EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: b, motion: {spin: {axis: [0, 1, 0], angle: 90}}}]\n" +
+                     "  c: [{type: instance, of: a, motion: {to: {scale: 2}}}]\nobjects:\n  - {type: instance, of: c}\n"
+                     "  - {type: instance, of: c, motion: {to: {rotate: [0, 30, 0]}}}\n"),
+            "bad.yaml:15:5: this instance moves, and so does the object at bad.yaml:11:7 in group 'a', inside a "
+            "placement that moves too: a placed object has at most two motions that turn or scale (let one of the "
+            "three only translate)");
   EXPECT_EQ(error_of("groups:\n  b: " + sphere + "\n  a: [{type: instance, of: b, scale: [1, 0, 1]}]\nobjects:\n"
                      "  - {type: instance, of: a}\n"),
             "bad.yaml:11:38: scale must not be zero");

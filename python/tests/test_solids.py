@@ -187,9 +187,13 @@ objects:
     assert strahl._scene_hash(built) == strahl._scene_hash(loaded)
     with pytest.raises(strahl.Error, match="group 'pair' can place only the groups added before it"):
         built.add_instance("row", into="pair")
-    built.add_instance("pair", into="row", motion=strahl.Motion.linear((1, 0, 0)))  # moving inside a group
+    built.add_instance("pair", into="row", motion=strahl.Motion.spinning(strahl.Spin((0, 0, 1), 45)))  # moving inside a group
     built.add_instance("row", translate=(0, 1, 0), motion=strahl.Motion.spinning(strahl.Spin((0, 1, 0), 90)))
-    with pytest.raises(strahl.Error, match="and so does the object at .* in group 'row'"):
+    assert strahl.render(built, width=4, height=4).shape == (4, 4, 3)  # two motions that turn compose
+    built.add_group("field")
+    built.add_instance("row", into="field", motion=strahl.Motion.spinning(strahl.Spin((1, 0, 0), 30)))
+    built.add_instance("field", motion=strahl.Motion.spinning(strahl.Spin((0, 1, 0), 20)))  # a third that turns
+    with pytest.raises(strahl.Error, match="and so does the object at .* in group 'row', inside a placement that moves too"):
         strahl.render(built, width=4, height=4)
     with pytest.raises(strahl.Error, match="unknown group 'trio'"):
         built.add_instance("pair", into="trio")

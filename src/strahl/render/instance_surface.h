@@ -71,7 +71,7 @@ STRAHL_HOST_DEVICE inline InstanceSurface instance_surface(const SceneView& s, c
 // A(u)⁻¹), the normals brought back by A(u)⁻ᵀ.
 STRAHL_HOST_DEVICE inline InstanceSurface moving_instance_surface(const SceneView& s, Real u, const Vec3& p, const Hit& hit) {
   const kernel::MovingInstance& m = s.moving_instances[hit.index];
-  const kernel::Placement a = kernel::at_time(m.map, u);
+  const kernel::Placement a = kernel::at_time(m, u);
   InstanceSurface out = instance_surface(s, m.instance, m.stretch, m.shift, kernel::object_point(a, p), hit);
   out.geometric_normal = kernel::world_normal(a, out.geometric_normal);
   out.normal = kernel::world_normal(a, out.normal);

@@ -54,7 +54,7 @@ STRAHL_HOST_DEVICE inline void closest_moving_hit(const SceneView& s, const Ray&
     } else {
       const std::uint32_t i = prim - s.moving_sphere_count - s.moving_triangle_count - s.moving_solid_count;
       const kernel::MovingInstance& mi = s.moving_instances[i];
-      if (nearest_in_instance(s, mi.instance, kernel::object_ray(kernel::at_time(mi.map, u), ray), t_min, t_far, hit)) {
+      if (nearest_in_instance(s, mi.instance, kernel::object_ray(kernel::at_time(mi, u), ray), t_min, t_far, hit)) {
         hit.kind = ShapeKind::MovingInstance;
         hit.index = i;
       }
@@ -90,7 +90,7 @@ STRAHL_HOST_DEVICE inline void for_each_moving_crossing(const SceneView& s, cons
       return n > 0 && cross(ms.solid.material, n);
     }
     const kernel::MovingInstance& mi = s.moving_instances[i - s.moving_solid_count];
-    return crossings_in_instance(s, mi.instance, kernel::object_ray(kernel::at_time(mi.map, u), ray), t_far, cross);
+    return crossings_in_instance(s, mi.instance, kernel::object_ray(kernel::at_time(mi, u), ray), t_far, cross);
   };
   traverse<kNearestFirst>(s.moving_bvh.segment_at(u), ray, 0, t_max, visit);
 }

@@ -271,10 +271,12 @@ void hash(Hasher& h, const kernel::Instance& x) {
   h.add(x.group);
   h.add(x.translation_only);
 }
-static_assert(sizeof(kernel::MovingInstance) == 712, "kernel::MovingInstance changed: hash its new fields here");
+static_assert(sizeof(kernel::MovingInstance) == 1248, "kernel::MovingInstance changed: hash its new fields here");
 void hash(Hasher& h, const kernel::MovingInstance& x) {
   hash(h, x.instance);
   hash(h, x.map);
+  h.add(x.two_maps);
+  if (x.two_maps != 0) hash(h, x.outer);
   h.add(x.lo);
   h.add(x.hi);
   h.add(x.stretch);

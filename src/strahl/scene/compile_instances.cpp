@@ -43,28 +43,18 @@ bool keeps_lengths(const kernel::MovingMap& map) {
   return orthonormal(map.linear0) && (map.post == 0 || orthonormal(map.post_row));
 }
 
-// The instance x (world box w) carried by `map` after its placement: into the motion BVH with
-// the other moving shapes (geometry/moving_instance.h).
-void push_moving_instance(RenderScene& out, const kernel::Instance& x, const Bounds& w, const kernel::MovingMap& map,
-                          const FileLoc& loc) {
-  kernel::MovingInstance mi;
-  mi.instance = x;
-  mi.map = map;
-  // A map that scales brings the ray to the still instance with a direction of another length:
-  // the record must make it a unit one again (instance_ray), as a placement that scales does —
-  // the group's spheres are met by a test that takes unit directions.
-  if (!keeps_lengths(map)) mi.instance.translation_only = false;
-  mi.lo = w.lo;
-  mi.hi = w.hi;
-  // Over the shutter the linear part's Frobenius norm is at most the larger of the keys' (a norm
-  // of a blend; a turn keeps it), which bounds the stretch of A(u) and of its product with the
-  // placement; the translation A(u)·t_placement + t(u) − Rot(u)·c(u) by the same, plus the
-  // larger of the keys' |c| about a spin's centre (a turn keeps its length). A post map P
-  // stretches both by at most its norm and adds its translation.
+// Bounds over the shutter of the stretch and the translation's largest component of `map` after
+// a map with those bounds (stretch, shift): ray offsets (geometry/moving_instance.h). Over the
+// shutter the linear part's Frobenius norm is at most the larger of the keys' (a norm of a blend;
+// a turn keeps it), which bounds the stretch of A(u) and of its product with the placement; the
+// translation A(u)·t_placement + t(u) − Rot(u)·c(u) by the same, plus the larger of the keys' |c|
+// about a spin's centre (a turn keeps its length). A post map P stretches both by at most its norm
+// and adds its translation.
+void carry_bounds(const kernel::MovingMap& map, Real& stretch, Real& shift) {
   Real reach = 0, moved = 0, pivot = 0;
   for (int key = 0; key < 2; ++key) {
-    reach = std::fmax(reach, kernel::frobenius(key == 0 ? mi.map.linear0 : mi.map.linear1));
-    moved = std::fmax(moved, max_abs_component(key == 0 ? mi.map.translate0 : mi.map.translate1));
+    reach = std::fmax(reach, kernel::frobenius(key == 0 ? map.linear0 : map.linear1));
+    moved = std::fmax(moved, max_abs_component(key == 0 ? map.translate0 : map.translate1));
     if (map.pivot != 0) pivot = std::fmax(pivot, length(key == 0 ? map.pivot0 : map.pivot1));
   }
   moved += pivot;
@@ -73,10 +63,33 @@ void push_moving_instance(RenderScene& out, const kernel::Instance& x, const Bou
     post = kernel::frobenius(map.post_row);
     post_shift = max_abs_component(map.post_translate);
   }
-  mi.stretch = x.stretch * reach * post;
+  stretch = stretch * reach * post;
   const Real sqrt3 = Real(1.7320508075688772);  // |L·t|∞ ≤ ‖L‖_F·|t|₂ ≤ ‖L‖_F·√3·|t|∞
-  mi.shift = moved + reach * sqrt3 * x.shift;
-  if (map.post != 0) mi.shift = post * sqrt3 * mi.shift + post_shift;
+  shift = moved + reach * sqrt3 * shift;
+  if (map.post != 0) shift = post * sqrt3 * shift + post_shift;
+}
+
+// The instance x (world box w) carried by `map` after its placement, and then by `outer` where
+// given: into the motion BVH with the other moving shapes (geometry/moving_instance.h).
+void push_moving_instance(RenderScene& out, const kernel::Instance& x, const Bounds& w, const kernel::MovingMap& map,
+                          const kernel::MovingMap* outer, const FileLoc& loc) {
+  kernel::MovingInstance mi;
+  mi.instance = x;
+  mi.map = map;
+  if (outer != nullptr) {
+    mi.outer = *outer;
+    mi.two_maps = 1;
+  }
+  // A map that scales brings the ray to the still instance with a direction of another length:
+  // the record must make it a unit one again (instance_ray), as a placement that scales does —
+  // the group's spheres are met by a test that takes unit directions.
+  if (!keeps_lengths(map) || (outer != nullptr && !keeps_lengths(*outer))) mi.instance.translation_only = false;
+  mi.lo = w.lo;
+  mi.hi = w.hi;
+  mi.stretch = x.stretch;
+  mi.shift = x.shift;
+  carry_bounds(map, mi.stretch, mi.shift);
+  if (outer != nullptr) carry_bounds(*outer, mi.stretch, mi.shift);
   const Bounds swept = kernel::swept_bounds(mi);
   validate::coordinates(swept.lo, loc, "moving instance bounds");
   validate::coordinates(swept.hi, loc, "moving instance bounds");
@@ -126,10 +139,16 @@ RenderScene::GroupPlacement nested_placement(const Scene& scene, const RenderSce
   return p;
 }
 
-// The instance record of group `group`'s own shapes placed by x ↦ m·x + t (moving with *map
-// when given), with its world box.
-void place(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, const kernel::MovingMap* map,
-           const FileLoc& loc) {
+// What carries a record after its placement: nothing (map null), the motion A(u), or A(u) and
+// then B(u) (outer).
+struct Carried {
+  const kernel::MovingMap* map = nullptr;
+  const kernel::MovingMap* outer = nullptr;
+};
+
+// The instance record of group `group`'s own shapes placed by x ↦ m·x + t (moving as `by` says),
+// with its world box.
+void place(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, Carried by, const FileLoc& loc) {
   check_invertible(m, loc);  // (a product of invertible maps may still round to a singular one)
   const Mat3 inv = m.inverse();
   kernel::Instance x;
@@ -152,42 +171,51 @@ void place(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, 
   w.hi = w.hi + Vec3(pad);
   validate::coordinates(w.lo, loc, "instance bounds");
   validate::coordinates(w.hi, loc, "instance bounds");
-  if (map == nullptr) {
+  if (by.map == nullptr) {
     out.instances.push_back(x);
     out.instance_bounds.push_back(w);
   } else {
-    push_moving_instance(out, x, w, *map, loc);
+    push_moving_instance(out, x, w, *by.map, by.outer, loc);
   }
 }
 
-// Does the map only translate (a velocity, keys that only translate: x ↦ x + d(u))?
+// Does the map only translate (a velocity, keys that only translate, followed by a fixed map P:
+// x ↦ P(x + d(u)), which is P(x) + P_linear·d(u) — so it moves every point by the same)?
 bool translates_only(const kernel::MovingMap& map) {
   for (int i = 0; i < 3; ++i)
     if (!(map.linear0[i] == map.linear1[i])) return false;
   Mat3 linear;
   for (int i = 0; i < 3; ++i) linear.row[i] = map.linear0[i];
-  return identity(linear) && map.angle == 0 && map.pivot == 0 && map.post == 0;
+  return identity(linear) && map.angle == 0 && map.pivot == 0;
 }
 
-// One placement of group `group` by x ↦ m·x + t, moving with *map after it where given (the
-// instance at `loc`): the record of its own shapes (when it has any) and, in turn, those of the
-// groups it places, each by the composed map m·(m'·x + t') + t — or, where the placement inside
-// moves, by its own placement, carried by its motion A(u) and then by x ↦ m·x + t (A's post map:
-// a record has one motion, to which an outer motion that only translates adds its translation).
-void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, const kernel::MovingMap* map,
-            const FileLoc& loc) {
+// Where such a map moves every point at shutter open (key 0) or close (key 1).
+Vec3 displacement(const kernel::MovingMap& map, int key) {
+  const Vec3 d = key == 0 ? map.translate0 : map.translate1;
+  if (map.post == 0) return d;
+  return Vec3(dot(map.post_row[0], d), dot(map.post_row[1], d), dot(map.post_row[2], d));
+}
+
+// One placement of group `group` by x ↦ m·x + t, moving as `by` says after it (the instance at
+// `loc`): the record of its own shapes (when it has any) and, in turn, those of the groups it
+// places, each by the composed map m·(m'·x + t') + t — or, where the placement inside moves, by its
+// own placement, carried by its motion A(u) and then by x ↦ m·x + t (A's post map), and then by
+// what carries this placement: a motion that only translates adds its translation to A's; one that
+// turns or scales follows A as B. A record has at most two motions that turn or scale.
+void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t, Carried by, const FileLoc& loc) {
   const RenderScene::GroupNesting& nesting = out.group_nesting[group];
-  if (nesting.own) place(out, group, m, t, map, loc);
+  if (nesting.own) place(out, group, m, t, by, loc);
   for (const RenderScene::GroupPlacement& p : nesting.places) {
     check_cancelled("build");
     if (!p.moving) {
-      unfold(out, p.group, m * p.linear, m * p.translate + t, map, loc);
+      unfold(out, p.group, m * p.linear, m * p.translate + t, by, loc);
       continue;
     }
-    if (map != nullptr && !translates_only(*map))
+    const bool adds = by.map != nullptr && translates_only(*by.map);
+    if (by.outer != nullptr && !adds)
       throw Error(loc, "this instance moves, and so does the object at " + p.loc.str() + " in group '" +
-                           nesting.name + "': a placed object has one motion, or the outer one only translates "
-                                          "(give the turn or the scale to the one or the other)");
+                           nesting.name + "', inside a placement that moves too: a placed object has at most two " +
+                           "motions that turn or scale (let one of the three only translate)");
     // x ↦ m·x + t after the map's own post map P (a moving mesh's transform), if it has one.
     kernel::MovingMap moved = p.motion;
     Affine post{m, t};
@@ -198,18 +226,19 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
     }
     check_invertible(post.m, loc);
     set_post(moved, post);
-    if (map != nullptr) {
+    if (adds) {
       // The outer motion's translation d(u), taken inside the post map P: P(y) + d = P(y + P⁻¹·d),
       // and d(u) = lerp(d₀, d₁, u) as the map's own translation is.
       for (int key = 0; key < 2; ++key) {
-        const Vec3 d = key == 0 ? map->translate0 : map->translate1;
+        const Vec3 d = displacement(*by.map, key);
         const Vec3 inside = moved.post == 0 ? d
                                             : Vec3(dot(moved.post_inverse[0], d), dot(moved.post_inverse[1], d),
                                                    dot(moved.post_inverse[2], d));
         (key == 0 ? moved.translate0 : moved.translate1) += inside;
       }
     }
-    unfold(out, p.group, p.linear, p.translate, &moved, loc);
+    // (adds: the outer map, if any, stays B; else the motion carrying this placement becomes B)
+    unfold(out, p.group, p.linear, p.translate, Carried{&moved, adds ? by.outer : by.map}, loc);
   }
 }
 
@@ -344,13 +373,13 @@ void Instance::compile_into(RenderScene& out, std::uint32_t, std::uint32_t) cons
                          std::to_string(kMaxInstanceRecords));
   }
   if (!motion.moving()) {
-    unfold(out, group, m, placement.translate, nullptr, loc);
+    unfold(out, group, m, placement.translate, Carried{}, loc);
     return;
   }
   // Moving (geometry/moving_instance.h): every record carried by the motion's map after its
   // placement, in the motion BVH with the other moving shapes.
   const kernel::MovingMap map = moving_map(motion, out.camera, loc, "instance");
-  unfold(out, group, m, placement.translate, &map, loc);
+  unfold(out, group, m, placement.translate, Carried{&map, nullptr}, loc);
 }
 
 void move_by_instance(RenderScene& out, RenderScene&& group, const kernel::MovingMap& map, const FileLoc& loc) {
@@ -358,7 +387,7 @@ void move_by_instance(RenderScene& out, RenderScene&& group, const kernel::Movin
   x.translation_only = true;
   x.group = static_cast<std::uint32_t>(out.groups.size());
   const Bounds b = push_group(out, std::move(group), AccelKind::Bvh);
-  push_moving_instance(out, x, b, map, loc);
+  push_moving_instance(out, x, b, map, nullptr, loc);
 }
 
 void build_instance_bvh(RenderScene& out) {
