@@ -43,8 +43,8 @@ TEST(SceneWriter, EveryExampleSceneReadsBackToTheSameCompiledScene) {
     ++scenes;
   }
   EXPECT_GE(scenes, 10);
-  EXPECT_EQ(with_groups, 3);  // scenes/instances.yaml (meshes and CSG, 1,024 instances), instances-nested.yaml,
-                              // instances-windmills.yaml
+  EXPECT_EQ(with_groups, 4);  // scenes/instances.yaml (meshes and CSG, 1,024 instances), instances-nested.yaml,
+                              // instances-windmills.yaml, motion-tumble.yaml
 }
 
 TEST(SceneWriter, EveryKindOfObjectLightAndCamera) {

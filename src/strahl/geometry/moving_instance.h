@@ -15,26 +15,26 @@ namespace strahl::kernel {
 struct MovingInstance {
   Instance instance;  // the unmoved instance
   MovingMap map;      // A
-  MovingMap outer;    // B, where two_maps is 1 (else unused: A alone carries the instance)
-  std::uint32_t two_maps = 0;
   Vec3 lo, hi;        // the unmoved instance's world box
   // Bounds over the shutter of how much the group → world map lengthens and of its translation's
   // largest component (ray offsets, as Instance::stretch and Instance::shift).
   Real stretch = 1, shift = 0;
+  std::uint32_t two_maps = 0;
+  MovingMap outer;  // B, where two_maps is 1 (else unused: A alone carries the instance; last, so
+                    // that a record with one map is read from the same lines as before)
 };
 
 // world → the unmoved instance at time u: A(u)⁻¹, or A(u)⁻¹·B(u)⁻¹. With b = B(u)⁻¹ (p ↦
 // Rb·(p − tb)) and a = A(u)⁻¹ (q ↦ Ra·(q − ta)): p ↦ Ra·Rb·(p − (tb + Rb⁻¹·ta)), Rb⁻¹ being
 // B(u)'s own linear part.
 STRAHL_HOST_DEVICE inline Placement at_time(const MovingInstance& m, Real u) {
-  const Placement a = at_time(m.map, u);
-  if (m.two_maps == 0) return a;
+  Placement x = at_time(m.map, u);  // a
+  if (m.two_maps == 0) return x;
   const Placement b = at_time(m.outer, u);
   Vec3 forward[3];
   inverse_rows(b.row[0], b.row[1], b.row[2], forward);
-  Placement x;
-  x.translate = b.translate + Vec3(dot(forward[0], a.translate), dot(forward[1], a.translate), dot(forward[2], a.translate));
-  for (int i = 0; i < 3; ++i) x.row[i] = b.row[0] * a.row[i].x + b.row[1] * a.row[i].y + b.row[2] * a.row[i].z;
+  x.translate = b.translate + Vec3(dot(forward[0], x.translate), dot(forward[1], x.translate), dot(forward[2], x.translate));
+  for (Vec3& row : x.row) row = b.row[0] * row.x + b.row[1] * row.y + b.row[2] * row.z;
   return x;
 }
 
