@@ -189,6 +189,13 @@ bool translates_only(const kernel::MovingMap& map) {
   return identity(linear) && map.angle == 0 && map.pivot == 0;
 }
 
+// A map's fixed post map (geometry/moving_map.h), as an affine map.
+Affine post_map(const kernel::MovingMap& map) {
+  Affine a{Mat3{}, map.post_translate};
+  for (int i = 0; i < 3; ++i) a.m.row[i] = map.post_row[i];
+  return a;
+}
+
 // Where such a map moves every point at shutter open (key 0) or close (key 1).
 Vec3 displacement(const kernel::MovingMap& map, int key) {
   const Vec3 d = key == 0 ? map.translate0 : map.translate1;
@@ -216,14 +223,13 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
       throw Error(loc, "this instance moves, and so does the object at " + p.loc.str() + " in group '" +
                            nesting.name + "', inside a placement that moves too: a placed object has at most two " +
                            "motions that turn or scale (let one of the three only translate)");
-    // x ↦ m·x + t after the map's own post map P (a moving mesh's transform), if it has one.
+    // x ↦ m·x + t after the map's own post map P (a moving mesh's transform), if it has one; and
+    // where the motion above is folded into this one (it only translates: x ↦ Q(x + d(u))), its
+    // fixed map Q after both (its shift d(u) is added below).
     kernel::MovingMap moved = p.motion;
     Affine post{m, t};
-    if (p.motion.post != 0) {
-      Mat3 own;
-      for (int i = 0; i < 3; ++i) own.row[i] = p.motion.post_row[i];
-      post = {m * own, m * p.motion.post_translate + t};
-    }
+    if (p.motion.post != 0) post = compose(post, post_map(p.motion));
+    if (adds && by.map->post != 0) post = compose(post_map(*by.map), post);
     check_invertible(post.m, loc);
     set_post(moved, post);
     if (adds) {
