@@ -587,7 +587,8 @@ TEST(Instance, ATranslatingInstanceCarriesWhatMovesInside) {
 // Motions that turn or scale compose (geometry/moving_instance.h: a record carried by A(u), then
 // B(u)): a car whose wheels spin about their hubs, placed by keys that turn it and scale it
 // (under a matrix; inside a group moved by a velocity; moved inside a group by a velocity after a
-// fixed turn, the turn and scale above), against still scenes at fixed times of the shutter, the
+// fixed turn, the turn and scale above; that velocity under a fixed placement alone, folded into
+// the spins), against still scenes at fixed times of the shutter, the
 // car and its wheels placed by the transforms that the motions reach then, written out: the
 // spin's angle −120°·u about the hub, the keys' turn 40°·u about y with the scale 1 + 0.5·u, the
 // velocity's shift.
@@ -609,8 +610,8 @@ TEST(Instance, TurnsAndScalesComposeAcrossNestedMotions) {
     return "{scale: " + num(1 + 0.5 * u) + "}, {rotate: [0, " + num(40 * u) + ", 0]}";
   };
   struct Case {
-    std::string moving;                                  // groups after the car's, and the objects
-    std::function<std::string(Real)> outer;              // the car's transform list at u
+    std::string moving;                      // groups after the car's, and the objects
+    std::function<std::string(Real)> outer;  // the car's transform list at u
   };
   const Case cases[] = {
       {"objects:\n" + kFloor + "  - {type: instance, of: car, matrix: " + m + ", " + keys + "}\n",
