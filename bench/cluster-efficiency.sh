@@ -9,7 +9,7 @@
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
-bunny=${2:-$here/../../shared/data/stanford-bunny.obj}
+bunny=$(realpath -m "${2:-$here/../../shared/data/stanford-bunny.obj}")  # (the scene is written elsewhere)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

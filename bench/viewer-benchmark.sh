@@ -7,7 +7,7 @@
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
-bunny=${2:-$here/../../shared/data/stanford-bunny.obj}
+bunny=$(realpath -m "${2:-$here/../../shared/data/stanford-bunny.obj}")  # (the scene is written elsewhere)
 frames=${3:-100}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -165,6 +165,10 @@ run() {
   # differently on the device).
   cp "$bundle/scenes/motion-blur.yaml" "$bundle/scenes/motion-solids.yaml" "$bundle/scenes/motion-spin.yaml" "$out/"
   cases+=("motion-blur|--spp 4|rmse" "motion-solids|--spp 4|rmse" "motion-spin|--spp 4|rmse")
+  # Nested instances (unfolded into records of one level), moving instances inside groups, and
+  # records carried by two motions (a top that precesses, a car's spinning wheels as it turns).
+  cp "$bundle/scenes/instances-nested.yaml" "$bundle/scenes/instances-windmills.yaml" "$bundle/scenes/motion-tumble.yaml" "$out/"
+  cases+=("instances-nested|--sampler grid|exact" "instances-windmills|--spp 4|rmse" "motion-tumble|--spp 4|rmse")
   [[ " ${scenes[*]} " == *" bunny "* ]] && cases+=("bunny|--sampler grid --accel kdtree|exact" "bunny|--sampler grid --accel octree|exact")
   local c name opts mode i=0
   for c in "${cases[@]}"; do
