@@ -189,18 +189,10 @@ bool translates_only(const kernel::MovingMap& map) {
   return identity(linear) && map.angle == 0 && map.pivot == 0;
 }
 
-// A map's fixed post map (geometry/moving_map.h), as an affine map.
-Affine post_map(const kernel::MovingMap& map) {
-  Affine a{Mat3{}, map.post_translate};
-  for (int i = 0; i < 3; ++i) a.m.row[i] = map.post_row[i];
-  return a;
-}
-
 // Where such a map moves every point at shutter open (key 0) or close (key 1).
 Vec3 displacement(const kernel::MovingMap& map, int key) {
   const Vec3 d = key == 0 ? map.translate0 : map.translate1;
-  if (map.post == 0) return d;
-  return Vec3(dot(map.post_row[0], d), dot(map.post_row[1], d), dot(map.post_row[2], d));
+  return map.post == 0 ? d : post_map(map).m * d;
 }
 
 // One placement of group `group` by x ↦ m·x + t, moving as `by` says after it (the instance at

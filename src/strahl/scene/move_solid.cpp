@@ -175,6 +175,12 @@ void set_post(kernel::MovingMap& map, const Affine& post) {
   map.post_translate = post.t;
 }
 
+Affine post_map(const kernel::MovingMap& map) {
+  Affine a{Mat3{}, map.post_translate};
+  for (int i = 0; i < 3; ++i) a.m.row[i] = map.post_row[i];
+  return a;
+}
+
 Affine mesh_motion_post(const Transform& transform, const FileLoc& loc) {
   validate::finite(transform.scale, loc, "mesh scale");
   validate::finite(transform.rotate_degrees, loc, "mesh rotate");

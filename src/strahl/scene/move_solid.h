@@ -28,6 +28,8 @@ kernel::MovingMap moving_map(const Motion& motion, const Camera& camera, const F
 // Follows the map by `post` (A(u), then x ↦ post.m·x + post.t): its post map and that map's
 // inverse; nothing where `post` is the identity (the map's bits stay those without one).
 void set_post(kernel::MovingMap& map, const Affine& post);
+// The map's post map as set_post() left it (meaningful where map.post is 1).
+Affine post_map(const kernel::MovingMap& map);
 
 // A mesh's transform as the post map of its motion (its keys act in its own coordinates, before
 // the transform), checked: finite, no scale of 0 (errors at `loc`).
