@@ -397,7 +397,10 @@ void bind_shapes(py::module_& m) {
 
 void bind_instance(py::module_& m) {
   py::class_<Instance, SceneObject>(m, "Instance", "A placed group (Scene.add_instance; scene files' `instance`).")
-      .def_readonly("group", &Instance::group, "The group's index in Scene.groups");
+      .def_readonly("group", &Instance::group, "The group's index in Scene.groups")
+      .def("__repr__", [](const Instance& in) {
+        return "<strahl.Instance of group " + std::to_string(in.group) + (in.motion.moving() ? ", moving>" : ">");
+      });
 }
 
 void bind_lights(py::module_& m) {
@@ -643,6 +646,19 @@ void bind_scene_class(py::module_& m) {
         for (const ObjectGroup& g : s.groups) names.push_back(g.name);
         return names;
       }, "The groups' names")
+      .def("group", [](py::object self, const std::string& name) {
+             Scene& s = self.cast<Scene&>();
+             for (const ObjectGroup& g : s.groups)
+               if (g.name == name) {
+                 py::list out;
+                 for (const auto& o : g.objects)
+                   out.append(py::cast(o.get(), py::return_value_policy::reference_internal, self));
+                 return out;
+               }
+             throw Error("unknown group '" + name + "'");
+           }, py::arg("name"),
+           "The group's own objects (its shapes and the instances placed in it), as scene.objects gives the scene's: "
+           "changing them changes the group")
       .def("add_instance", [](Scene& s, const std::string& group, const py::object& scale, const Vec3& rotate,
                               const Vec3& translate, const std::optional<Motion>& motion,
                               const std::optional<std::string>& into) {

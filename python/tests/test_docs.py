@@ -28,6 +28,7 @@ def test_python_md_examples_run(source_dir, tmp_path, monkeypatch, capsys):
     assert "(60, 80) (60, 80, 3)" in out
     assert "4 difference 4" in out
     assert "['pair'] 7" in out
+    assert "<strahl.Instance of group 0>" in out
     assert "stopped early" in out
     assert "bad.yaml:2:47: sphere radius must be positive (got -1)" in out
     assert "bad.yaml 2 47" in out

@@ -185,6 +185,18 @@ objects:
 """)
     assert built.groups == ["pair", "row"] and len(built.objects) == 1
     assert strahl._scene_hash(built) == strahl._scene_hash(loaded)
+    # A group's own objects, read back as the file gave them; editing them edits the group.
+    assert [type(o).__name__ for o in loaded.group("pair")] == ["Box", "Sphere"]
+    row = loaded.group("row")
+    assert [(o.group, repr(o)) for o in row] == [(0, "<strahl.Instance of group 0>")] * 2
+    assert row[1].placement.scale == (0.5, 0.5, 0.5) and row[1].location == "<string>:8:7"
+    loaded.group("pair")[1].radius = 0.25
+    built.group("pair")[1].radius = 0.25
+    assert strahl._scene_hash(built) == strahl._scene_hash(loaded)
+    loaded.group("pair")[1].radius = 0.3
+    assert strahl._scene_hash(built) != strahl._scene_hash(loaded)
+    with pytest.raises(strahl.Error, match="unknown group 'trio'"):
+        loaded.group("trio")
     with pytest.raises(strahl.Error, match="group 'pair' can place only the groups added before it"):
         built.add_instance("row", into="pair")
     built.add_instance("pair", into="row", motion=strahl.Motion.spinning(strahl.Spin((0, 0, 1), 45)))  # moving inside a group
