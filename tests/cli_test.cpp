@@ -119,6 +119,29 @@ TEST_F(Cli, SummarySaysTheInstancesWereUnfolded) {
       << log();
 }
 
+// --explain prints one sample's ray tree instead of rendering: no image; a pixel or sample
+// outside the image is a usage error.
+TEST_F(Cli, ExplainPrintsTheRayTreeAndWritesNothing) {
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --explain 8,6 -o out.png"), 0) << log();
+  EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+  EXPECT_NE(log().find("pixel (8, 6) of 16×12"), std::string::npos) << log();
+  EXPECT_NE(log().find("ray 1: camera ray, depth 1, weight 1\n  from (0, 1, 3)"), std::string::npos) << log();
+  EXPECT_NE(log().find("hits a sphere (object id 1)"), std::string::npos) << log();
+  EXPECT_NE(log().find("\nradiance ("), std::string::npos) << log();
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --spp 4 --explain 15,11,3"), 0) << log();
+  EXPECT_NE(log().find("sample 3 of its grid sequence"), std::string::npos) << log();
+  EXPECT_EQ(run("scene.yaml --width 16 --height 12 --explain 16,0"), 1) << log();
+  EXPECT_NE(log().find("--explain 16,0: the image has 16×12 pixels (x 0 to 15, y 0 to 11 from the top) and 1 samples per "
+                       "pixel (0 to 0)"),
+            std::string::npos)
+      << log();
+  EXPECT_EQ(run("scene.yaml --explain 1,1,1"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --explain 1"), 1) << log();
+  EXPECT_EQ(run("scene.yaml --explain 1,-1"), 1) << log();
+  EXPECT_EQ(run("bad.yaml --explain 1,1"), 2) << log();
+  EXPECT_NE(log().find("bad.yaml:2:"), std::string::npos) << log();
+}
+
 TEST_F(Cli, DefaultOutputNameFollowsTheScene) {
   ASSERT_EQ(run("scene.yaml --width 8 --height 8 -q"), 0) << log();
   EXPECT_TRUE(fs::exists(dir_ / "scene.png"));

@@ -4,6 +4,7 @@
 // image rendered so far is written, or nothing when the signal came before rendering).
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tbb/info.h>
 
 #include <CLI/CLI.hpp>
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <vector>
 
 #include "console.h"
 #include "device.h"
@@ -22,8 +24,10 @@
 #include "strahl/cuda/cuda_backend.h"
 #include "strahl/image/image_io.h"
 #include "strahl/render/cpu_backend.h"
+#include "strahl/render/explain.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/renderer.h"
+#include "strahl/sampling/pixel_sampler.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/solids.h"
 #include "strahl/util/cancel.h"
@@ -37,6 +41,26 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 // --device (docs/cli.md, docs/gpu.md): the back end the render job runs on.
 std::string device = "cpu";
+// --explain X,Y[,S] (docs/cli.md): sample S of pixel (X, Y) explained instead of rendering.
+std::vector<int> explain;
+
+// Prints the ray tree of the sample --explain names (render/explain.h); no image is written.
+int explain_sample(const strahl::cli::Options& o) {
+  using namespace strahl;
+  const RenderScene render_scene = compile(cli::configured_scene(o));
+  for (const std::string& w : render_scene.warnings) strahl::console::err("strahl: warning: {}\n", w);
+  const int nx = render_scene.camera.nx, ny = render_scene.camera.ny;
+  const int spp = effective_spp(render_scene.sampling.sampler, render_scene.sampling.spp);
+  const int sample = explain.size() > 2 ? explain[2] : 0;
+  if (explain[0] >= nx || explain[1] >= ny || sample >= spp) {
+    strahl::console::err("strahl: error: --explain {}: the image has {}×{} pixels (x 0 to {}, y 0 to {} from the top) and "
+                         "{} samples per pixel (0 to {})\n",
+                         fmt::join(explain, ","), nx, ny, nx - 1, ny - 1, spp, spp - 1);
+    return 1;
+  }
+  strahl::console::out("{}", explain_pixel(render_scene, explain[0], explain[1], std::uint32_t(sample)).text);
+  return 0;
+}
 
 int run(const strahl::cli::Options& o) {
   using namespace strahl;
@@ -124,6 +148,12 @@ int main(int argc, char** argv) {
   strahl::console::protect_streams();  // docs/cli.md, "Streams and signals"
   const strahl::cli::ParseResult parsed = strahl::cli::parse_options(argc, argv, "strahl", [](CLI::App& app) {
     strahl::cli::add_device_option(app, device);
+    app.add_option("--explain", explain,
+                   "Print the ray tree of one camera sample instead of rendering: X,Y (the pixel, from the top left) "
+                   "or X,Y,S (its sample S, default 0)")
+        ->expected(2, 3)
+        ->delimiter(',')
+        ->check(CLI::NonNegativeNumber);
   });
   if (!parsed.options) return parsed.exit_code;
   // The GPU traverses the BVH (or the naive loop) only.
@@ -132,6 +162,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
+    if (!explain.empty()) return explain_sample(*parsed.options);
     return run(*parsed.options);
   } catch (const strahl::Cancelled&) {  // a signal while loading or building
     strahl::console::err("strahl: interrupted ({}) before rendering; nothing written\n",

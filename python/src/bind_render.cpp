@@ -22,6 +22,8 @@
 #include "strahl/image/image_io.h"
 #include "strahl/render/aov.h"
 #include "strahl/render/cpu_backend.h"
+#include "strahl/render/explain.h"
+#include "strahl/sampling/pixel_sampler.h"
 #include "strahl/render/render_job.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/scene_hash.h"
@@ -227,6 +229,25 @@ void bind_render(py::module_& m) {
       py::arg("aovs") = std::vector<std::string>{}, py::arg("device") = "cpu",
       "The compiled part of strahl.render (see its docstring).");
 
+  m.def(
+      "explain",
+      [](Scene& scene, int x, int y, int sample, std::optional<int> width, std::optional<int> height,
+         std::optional<int> spp, std::optional<std::string> sampler, std::optional<std::uint64_t> seed,
+         std::optional<int> max_depth, std::optional<int> supersample) {
+        Overrides o;
+        o.width = width, o.height = height, o.spp = spp, o.sampler = sampler, o.seed = seed;
+        o.max_depth = max_depth, o.supersample = supersample;
+        const RenderScene rs = compile_with(scene, o);
+        const int samples = effective_spp(rs.sampling.sampler, rs.sampling.spp);
+        if (sample < 0 || sample >= samples)
+          throw Error("sample " + std::to_string(sample) + " of a pixel of " + std::to_string(samples) +
+                      " samples (0 to " + std::to_string(samples - 1) + ")");
+        return explain_pixel(rs, x, y, std::uint32_t(sample)).text;
+      },
+      py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("sample") = 0, py::kw_only(), py::arg("width") = py::none(),
+      py::arg("height") = py::none(), py::arg("spp") = py::none(), py::arg("sampler") = py::none(),
+      py::arg("seed") = py::none(), py::arg("max_depth") = py::none(), py::arg("supersample") = py::none(),
+      "The compiled part of strahl.explain (see its docstring).");
   m.def(
       "write",
       [](const py::object& array, const std::filesystem::path& path, bool linear) {

@@ -62,7 +62,8 @@ __all__ = [
     "Box", "Camera", "Cone", "Csg", "Cylinder", "Difference", "DirectionalLight", "Disk", "DiskLight", "Error",
     "Image", "Implicit", "Instance", "Intersection", "Inverse", "Light", "Material", "Merge", "Mesh", "Motion",
     "Plane", "PointLight", "Quadric", "RectLight", "RenderSettings", "Scene", "SceneObject", "Sphere", "SphereLight",
-    "Spin", "Torus", "Transform", "Triangle", "Union", "lecture_scene", "load", "loads", "read", "render", "version", "write",
+    "Spin", "Torus", "Transform", "Triangle", "Union", "explain", "lecture_scene", "load", "loads", "read", "render", "version",
+    "write",
 ]
 
 
@@ -125,6 +126,17 @@ def render(scene, *, width=None, height=None, spp=None, sampler=None, seed=None,
         image, planes = result
         return _image(image), {name: _image(plane) for name, plane in planes.items()}
     return _image(result)
+
+
+def explain(scene, x, y, sample=0, *, width=None, height=None, spp=None, sampler=None, seed=None, max_depth=None,
+            supersample=None):
+    """The ray tree of sample `sample` of pixel (x, y) — x from the left, y from the top — as text
+    in the lecture's terms: the camera's formulas, every hit, light, shadow ray and spawned ray,
+    and each ray's colour; its last line is the sample's radiance, which at one sample per pixel
+    is the rendered pixel's (the CLI's --explain; docs/cli.md, "Explaining a pixel"). The keyword
+    arguments override the scene's settings for this call, as in strahl.render."""
+    return _strahl.explain(scene, x, y, sample, width=width, height=height, spp=spp, sampler=sampler, seed=seed,
+                           max_depth=max_depth, supersample=supersample)
 
 
 def write(image, path, *, linear=False):

@@ -30,6 +30,7 @@ def test_python_md_examples_run(source_dir, tmp_path, monkeypatch, capsys):
     assert "['pair'] 7" in out
     assert "<strahl.Instance of group 0>" in out
     assert "stopped early" in out
+    assert "pixel (40, 30) of 80×60 (x from the left, row from the top), sample 0 of its" in out
     assert "bad.yaml:2:47: sphere radius must be positive (got -1)" in out
     assert "bad.yaml 2 47" in out
     assert (tmp_path / "lecture.png").exists() and (tmp_path / "copy.yaml").exists()

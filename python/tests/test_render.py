@@ -118,3 +118,21 @@ def test_device_without_a_gpu():
         return  # built without Embree
     with pytest.raises(strahl.Error, match="device='cuda' renders with accel 'bvh', 'kdtree', 'octree' or 'naive', not 'embree'"):
         strahl.render(scene, width=16, height=9, device="cuda", accel="embree")
+
+
+def test_explain_is_the_clis_and_the_rendered_pixel(cli, source_dir):
+    scene_file = f"{source_dir}/scenes/lecture-whitted.yaml"
+    scene = strahl.load(scene_file)
+    text = strahl.explain(scene, 22, 22, width=64, height=36)
+    assert text == cli(scene_file, "--width", 64, "--height", 36, "--explain", "22,22").stdout
+    assert "ray 1.T: refracted ray, depth 2" in text
+    # The last line's radiance (printed to 6 digits) is the rendered pixel's, row 22 from the top.
+    radiance = [float(v) for v in text.splitlines()[-1].split("(")[1].split(")")[0].split(",")]
+    pixel = strahl.render(scene, width=64, height=36)[22, 22]
+    assert np.allclose(pixel, radiance, rtol=1e-5, atol=1e-7)
+    assert "sample 3 of its random sequence" in strahl.explain(scene, 0, 0, 3, width=8, height=8, spp=4, sampler="random")
+    with pytest.raises(strahl.Error, match="sample 4 of a pixel of 4 samples"):
+        strahl.explain(scene, 0, 0, 4, width=8, height=8, spp=4)
+    with pytest.raises(strahl.Error, match="outside the image of 8×8 pixels"):
+        strahl.explain(scene, 8, 0, width=8, height=8)
+    assert scene.settings.width != 8  # the overrides were for that call only

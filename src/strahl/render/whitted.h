@@ -21,6 +21,7 @@
 // drawn in a fixed order, so images stay deterministic.
 
 #include <cmath>
+#include <type_traits>
 
 #include "strahl/render/intersect_packet.h"
 #include "strahl/render/intersect_scene.h"
@@ -186,6 +187,12 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const Sce
   return sum * (Real(1) / (k * k));
 }
 
+// The ambient term of the local colour: (1 − T)·k_a·C·ambient_light, C = c.
+STRAHL_HOST_DEVICE inline Vec3 ambient_term(const SceneView& s, const Material& m, const Vec3& c) {
+  const Real opacity = 1 - m.transparency;
+  return c * s.settings.ambient_light * (m.ambient * opacity);
+}
+
 // `known`, where given, holds known[i] for each point light i (the packet front end's); else
 // local_illumination samples the lights and traces the shadow rays itself.
 STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
@@ -193,8 +200,7 @@ STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const Surf
                                                   const KnownLight* known = nullptr) {
   const Material& m = s.materials[sp.material];
   const Vec3 c = surface_color(m, sp.texcoord);
-  const Real opacity = 1 - m.transparency;
-  Vec3 result = c * s.settings.ambient_light * (m.ambient * opacity);
+  Vec3 result = ambient_term(s, m, c);
   for (std::uint32_t i = 0; i < s.light_count; ++i) {
     const Light& light = s.lights[i];
     if (!light.is_area()) {
@@ -340,6 +346,13 @@ STRAHL_HOST_DEVICE inline bool start_refracted(const SceneView& s, TraceFrame& f
 // places `ray` deeper in a camera sample's ray tree (the packet front end's reflected and
 // refracted rays, render/packet_radiance.h): its depth, its weight, the rays left in the budget,
 // the media it travels in; and where to tell how many rays are left when its subtree is done.
+//
+// `observer`, where given, is told the ray tree as trace() walks it (render/explain.h shows one
+// camera sample's): observer->ray(kind, depth, ray, weight) as each ray starts; then
+// observer->emitter(light, L), ->background(colour) or ->surface(hit, sp, front, n, local) and,
+// below max_depth, ->split(k_r, T, reflects) (after total internal reflection and Fresnel;
+// `reflects`: the reflected ray is traced); and observer->done(depth, colour) once the ray's
+// radiance is known. The default observer type is told nothing and costs nothing.
 struct TraceStart {
   int depth = 1;
   Real weight = 1;
@@ -347,8 +360,14 @@ struct TraceStart {
   const MediumStack* media = nullptr;   // null: the scene's medium
   std::uint32_t* left = nullptr;        // where given: the budget left at the end
 };
+enum class TracedRay : std::uint8_t { Camera, Reflected, Refracted };
+struct NoTraceObserver {};
+template <class Observer = NoTraceObserver>
 STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng,
-                                     const FirstHit* first = nullptr, const TraceStart& start = {}) {
+                                     const FirstHit* first = nullptr, const TraceStart& start = {},
+                                     Observer* observer = nullptr) {
+  constexpr bool observed = !std::is_same_v<Observer, NoTraceObserver>;
+  TracedRay kind = TracedRay::Camera;        // of `ray` (as the observer is told)
   TraceFrameSlot stack[kMaxTraceDepth - 1];  // hits at depths 1 … max_depth − 1 (deeper ones spawn no rays)
   int top = 0;                               // frames in use: `ray` is at depth top + start.depth
   const int max_depth = s.settings.max_depth < kMaxTraceDepth ? s.settings.max_depth : kMaxTraceDepth;
@@ -360,6 +379,7 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
   Real weight = start.weight;                // `ray`'s share of the pixel
 
   for (;;) {
+    if constexpr (observed) observer->ray(kind, top + start.depth, ray, weight);
     // `ray`'s own colour, unless it spawns a child: then its frame is pushed and the child traced.
     Vec3 color;
     const FirstHit* known = first;
@@ -368,8 +388,10 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
     const int emitter = known != nullptr ? known->emitter : s.area_light_count > 0 ? nearest_emitter(s, ray, hit.t) : -1;
     if (emitter >= 0) {
       color = s.lights[emitter].radiance;
+      if constexpr (observed) observer->emitter(emitter, color);
     } else if (!hit.found()) {
       color = s.settings.background;
+      if constexpr (observed) observer->background(color);
     } else {
       const SurfacePoint sp = known != nullptr ? known->sp : surface_at(s, ray, hit);
       const Material& m = s.materials[sp.material];
@@ -378,11 +400,13 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
       const Vec3 n = front ? sp.normal : -sp.normal;
       const Vec3 view = -ray.direction;
       color = local_illumination(s, sp, n, view, counters, rng, known != nullptr ? known->lights : nullptr);
+      if constexpr (observed) observer->surface(hit, sp, front, n, color);
       if (top + start.depth < max_depth) {
         Real kr, kt;
         Vec3 refracted_dir;
         split_at(m, ray.direction, n, front, media, kr, kt, refracted_dir);
         const bool reflects = kr > 0 && kr * weight >= min_weight && spend(budget, counters);
+        if constexpr (observed) observer->split(kr, kt, reflects);
         if (reflects || kt > 0) {
           TraceFrame& f = stack[top].frame;
           f.color = color;
@@ -402,10 +426,12 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
             if (m.roughness > 0) dir = glossy_direction(dir, sp.geometric_normal, m.roughness, rng.next2());
             ray = spawn_ray(sp, dir, time);
             weight = weight * kr;
+            kind = TracedRay::Reflected;
             ++top;
             continue;
           }
           if (start_refracted(s, f, time, ray, weight, media, budget, counters, rng)) {
+            kind = TracedRay::Refracted;
             ++top;
             continue;
           }
@@ -413,6 +439,7 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
       }
     }
     // Return `color` to the hits waiting for it, until one starts its refracted ray or none is left.
+    if constexpr (observed) observer->done(top + start.depth, color);
     for (;;) {
       if (top == 0) {
         if (start.left != nullptr) *start.left = budget;
@@ -421,13 +448,17 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
       TraceFrame& f = stack[top - 1].frame;
       if (!f.refracting) {
         f.color += color * f.kr;
-        if (start_refracted(s, f, time, ray, weight, media, budget, counters, rng)) break;
+        if (start_refracted(s, f, time, ray, weight, media, budget, counters, rng)) {
+          kind = TracedRay::Refracted;
+          break;
+        }
       } else {
         f.color += color * transmission_tint(s.materials[f.material]) * f.kt;
         media.undo(f.media);
       }
       color = f.color;
       --top;
+      if constexpr (observed) observer->done(top + start.depth, color);
     }
   }
 }

@@ -1,0 +1,278 @@
+#include "strahl/render/explain.h"
+
+#include <cstdio>
+#include <vector>
+
+#include "strahl/render/pixel.h"
+#include "strahl/render/render_scene.h"
+#include "strahl/util/error.h"
+
+namespace strahl {
+namespace {
+
+std::string num(Real x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.6g", double(x));
+  return buffer;
+}
+
+std::string vec(const Vec3& v) { return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")"; }
+
+const char* solid_name(kernel::SolidKind kind) {
+  switch (kind) {
+    case kernel::SolidKind::Box: return "box";
+    case kernel::SolidKind::Cone: return "cone or cylinder";
+    case kernel::SolidKind::Disk: return "disk";
+    case kernel::SolidKind::Torus: return "torus";
+    case kernel::SolidKind::Quadric: return "quadric";
+    case kernel::SolidKind::Implicit: return "implicit surface";
+    case kernel::SolidKind::Sphere: return "sphere (solid)";
+    case kernel::SolidKind::Csg: return "CSG tree";
+    case kernel::SolidKind::Placed: return "transformed solid";
+  }
+  return "solid";
+}
+
+const char* light_name(LightKind kind) {
+  switch (kind) {
+    case LightKind::Point: return "point";
+    case LightKind::Directional: return "directional";
+    case LightKind::Rect: return "rect";
+    case LightKind::Disk: return "disk";
+    case LightKind::Sphere: return "sphere";
+  }
+  return "light";
+}
+
+// trace()'s observer (render/whitted.h): writes each ray of the tree as trace() walks it, depth
+// first, each child indented under its hit.
+class Explainer {
+ public:
+  Explainer(const SceneView& s, std::string& out) : s_(s), out_(out) {}
+
+  void ray(TracedRay kind, int depth, const Ray& r, Real weight) {
+    Node node;
+    node.depth = depth;
+    node.name = stack_.empty() ? "1" : stack_.back().name + (kind == TracedRay::Reflected ? ".R" : ".T");
+    if (!stack_.empty()) (kind == TracedRay::Reflected ? stack_.back().reflected_ray : stack_.back().refracted_ray) = true;
+    node.kind = kind;
+    const char* what = kind == TracedRay::Camera ? "camera ray" : kind == TracedRay::Reflected ? "reflected ray" : "refracted ray";
+    line(depth, "ray " + node.name + ": " + what + ", depth " + std::to_string(depth) + ", weight " + num(weight));
+    line(depth, "  from " + vec(r.origin) + " along " + vec(r.direction));
+    stack_.push_back(node);
+  }
+
+  void emitter(int light, const Vec3& radiance) {
+    line(here(), "  meets area light " + std::to_string(light) + ": its radiance L = " + vec(radiance));
+  }
+
+  void background(const Vec3& color) { line(here(), "  hits nothing: the background " + vec(color)); }
+
+  void surface(const Hit& hit, const SurfacePoint& sp, bool front, const Vec3& n, const Vec3& local) {
+    const int d = here();
+    Node& node = stack_.back();
+    node.surface = true;
+    node.local = local;
+    node.material = sp.material;
+    line(d, "  hits " + object_name(hit, sp) + " at t = " + num(hit.t));
+    line(d, "    p = " + vec(sp.p) + ", N = " + vec(n) +
+                (front ? " (the ray arrives at the outside)" : " (the ray arrives from inside: N turned towards it)"));
+    const Material& m = s_.materials[sp.material];
+    const Vec3 c = surface_color(m, sp.texcoord);
+    line(d, "    C = " + vec(c) + ", k_a = " + num(m.ambient) + ", k_d = " + num(m.diffuse) + ", k_s = " + vec(m.specular) +
+                ", shininess " + num(m.shininess) + ", k_r = " + num(m.reflectivity) + ", T = " + num(m.transparency) +
+                (m.transparency > 0 ? ", ior " + num(m.ior) : std::string()) +
+                (m.roughness > 0 ? ", roughness " + num(m.roughness) : std::string()));
+    // Each light's share, by the functions local_illumination() calls (its shadow rays traced
+    // again here: no random numbers, so the same answers).
+    const Vec3 view = -ray_direction_;
+    Vec3 sum = ambient_term(s_, m, c);
+    line(d, "    ambient (1 − T)·k_a·C·ambient_light = " + vec(sum));
+    bool sampled = false;
+    RayCounters scratch;
+    for (std::uint32_t i = 0; i < s_.light_count; ++i) {
+      const Light& light = s_.lights[i];
+      std::string text = "    light " + std::to_string(i) + " (" + light_name(light.kind);
+      if (light.is_area()) {
+        sampled = true;
+        line(d, text + ", " + std::to_string(light.samples) + "×" + std::to_string(light.samples) +
+                    " samples): sampled with this sample's random numbers, not broken down here");
+        continue;
+      }
+      text += light.kind == LightKind::Point ? " at " + vec(light.position) : " along " + vec(light.direction);
+      text += ", I = " + vec(light.radiance) + "): ";
+      const LightSample ls = sample_light(light, sp.p);
+      const Real n_dot_l = dot(n, ls.to_light);
+      text += "L = " + vec(ls.to_light) + ", N·L = " + num(n_dot_l);
+      if (n_dot_l <= 0) {
+        line(d, text + ": behind the surface, adds 0");
+        continue;
+      }
+      KnownLight known;
+      known.sample = ls;
+      known.transmittance = transmittance(s_, shadow_ray(sp, ls.to_light), ls.distance);
+      known.n_dot_h = dot(n, normalize(ls.to_light + view));
+      const Vec3 share =
+          shade_from(s_, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance, scratch, &known);
+      sum += share;
+      line(d, text);
+      if (is_black(known.transmittance)) {
+        line(d, "      the shadow ray is blocked: adds 0");
+        continue;
+      }
+      line(d, std::string(known.transmittance == Vec3(1) ? "      the shadow ray reaches it"
+                                                         : "      the shadow ray passes transparent objects: S = " +
+                                                               vec(known.transmittance)) +
+                  "; N·H = " + num(known.n_dot_h) + ": S·I·[(1 − T)·k_d·C·N·L + k_s·(N·H)^shininess] = " + vec(share));
+    }
+    // Without area lights the shares above are local's own terms, added in its order.
+    line(d, std::string("    local = ") + (!sampled && sum == local ? "ambient + lights = " : "") + vec(local));
+  }
+
+  void split(Real kr, Real kt, bool reflects) {
+    const int d = here();
+    Node& node = stack_.back();
+    node.kr = kr;
+    node.kt = kt;
+    node.split = true;
+    const Material& m = s_.materials[node.material];
+    std::string text = "    k_r = " + num(kr) + ", T = " + num(kt);
+    if (m.transparency > 0 && !(kt > 0)) text += " (total internal reflection: T moved to k_r)";
+    else if (m.transparency > 0 && m.fresnel) text += " (Fresnel: Schlick's share of T moved to k_r)";
+    if (kr > 0 && !reflects) text += "; the reflected ray is not traced (its weight is below min_weight, or the ray budget is spent)";
+    line(d, text);
+  }
+
+  void done(int depth, const Vec3& color) {
+    Node node = stack_.back();
+    stack_.pop_back();
+    std::string text = "  ray " + node.name + " brings " + vec(color);
+    if (node.surface) {
+      if (!node.split) {
+        text += " = local (max_depth " + std::to_string(s_.settings.max_depth) + " reached: no further rays)";
+      } else if (node.reflected_ray || node.refracted_ray) {
+        text += " = local " + vec(node.local);
+        if (node.reflected_ray) text += " + k_r·" + vec(node.reflected);
+        if (node.refracted_ray) {
+          const Material& m = s_.materials[node.material];
+          text += std::string(" + T·") + (m.filter ? "C·" : "") + vec(node.refracted);
+        }
+      } else {
+        text += " = local";
+      }
+      if (node.split && node.kt > 0 && !node.refracted_ray)
+        text += " (the refracted ray is not traced: its weight is below min_weight, or the ray budget is spent)";
+    }
+    line(depth, text);
+    if (!stack_.empty()) (node.kind == TracedRay::Reflected ? stack_.back().reflected : stack_.back().refracted) = color;
+  }
+
+  // The ray being traced (trace() tells its direction only to ray()).
+  void set_direction(const Vec3& d) { ray_direction_ = d; }
+
+ private:
+  struct Node {
+    int depth = 1;
+    std::string name;
+    TracedRay kind = TracedRay::Camera;
+    bool surface = false, split = false, reflected_ray = false, refracted_ray = false;
+    std::uint32_t material = 0;
+    Vec3 local, reflected, refracted;
+    Real kr = 0, kt = 0;
+  };
+
+  int here() const { return stack_.back().depth; }
+
+  void line(int depth, const std::string& text) {
+    out_.append(std::size_t(2 * (depth - 1)), ' ');
+    out_ += text;
+    out_ += '\n';
+  }
+
+  // What the ray hit, with the object id `--aov id` writes (compile() gives every object its own
+  // material slot: the groups' shapes first, then the `objects` list).
+  std::string object_name(const Hit& hit, const SurfacePoint& sp) const {
+    std::string kind;
+    switch (hit.kind) {
+      case ShapeKind::Sphere: kind = "a sphere"; break;
+      case ShapeKind::Plane: kind = "a plane"; break;
+      case ShapeKind::Triangle: kind = "a triangle"; break;
+      case ShapeKind::Solid: kind = std::string("a ") + solid_name(s_.solids[hit.index].kind); break;
+      case ShapeKind::MovingSphere: kind = "a moving sphere"; break;
+      case ShapeKind::MovingTriangle: kind = "a moving triangle"; break;
+      case ShapeKind::MovingSolid: kind = "a moving solid"; break;
+      case ShapeKind::Instance: kind = "a shape of instance record " + std::to_string(hit.index); break;
+      case ShapeKind::MovingInstance: kind = "a shape of moving instance record " + std::to_string(hit.index); break;
+      case ShapeKind::None: break;
+    }
+    return kind + " (object id " + std::to_string(sp.material) + ")";
+  }
+
+  const SceneView& s_;
+  std::string& out_;
+  std::vector<Node> stack_;
+  Vec3 ray_direction_;
+};
+
+// The observer trace() is given: the Explainer, told each ray's direction as it starts (its
+// surface() needs the view direction).
+struct Observer {
+  Explainer& e;
+  void ray(TracedRay kind, int depth, const Ray& r, Real weight) {
+    e.set_direction(r.direction);
+    e.ray(kind, depth, r, weight);
+  }
+  void emitter(int light, const Vec3& radiance) { e.emitter(light, radiance); }
+  void background(const Vec3& color) { e.background(color); }
+  void surface(const Hit& hit, const SurfacePoint& sp, bool front, const Vec3& n, const Vec3& local) {
+    e.surface(hit, sp, front, n, local);
+  }
+  void split(Real kr, Real kt, bool reflects) { e.split(kr, kt, reflects); }
+  void done(int depth, const Vec3& color) { e.done(depth, color); }
+};
+
+}  // namespace
+
+PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index) {
+  const SceneView s = scene.view();
+  const Camera& cam = s.camera;
+  if (x < 0 || x >= cam.nx || row < 0 || row >= cam.ny)
+    throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") is outside the image of " +
+                std::to_string(cam.nx) + "×" + std::to_string(cam.ny) + " pixels");
+  PixelExplanation out;
+  std::string& t = out.text;
+  // The sample as the renderer takes it (render/pixel.h: pixel_sample).
+  const PixelSequence p = pixel_sequence(s, make_pixel_sampler(scene.sampling), x, row);
+  const CameraSample cs = p.sample(index);
+  SampleStream rng{p.stream, index};
+  t += "pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") of " + std::to_string(cam.nx) + "×" +
+       std::to_string(cam.ny) + " (x from the left, row from the top), sample " + std::to_string(index) + " of its " +
+       sampler_name(scene.sampling.sampler) + " sequence\n";
+  t += "camera: e = " + vec(cam.eye) + ", u = " + vec(cam.basis.u) + ", v = " + vec(cam.basis.v) + ", w = " +
+       vec(cam.basis.w) + "\n";
+  t += "        l = " + num(cam.l) + ", r = " + num(cam.r) + ", b = " + num(cam.b) + ", t = " + num(cam.t) +
+       ", d = " + num(cam.d) + ", n_x = " + std::to_string(cam.nx) + ", n_y = " + std::to_string(cam.ny) + "\n";
+  const Real su = cam.l + (cam.r - cam.l) * cs.film_x / cam.nx;
+  const Real sv = cam.b + (cam.t - cam.b) * cs.film_y / cam.ny;
+  t += "film position (x, y) = (" + num(cs.film_x) + ", " + num(cs.film_y) + ") (y from the bottom row): s_u = l + (r − l)·x/n_x = " +
+       num(su) + ", s_v = b + (t − b)·y/n_y = " + num(sv) + "\n";
+  t += "direction = normalize(s_u·u + s_v·v − d·w) = " + vec(cam.generate_ray(cs.film_x, cs.film_y).direction) + "\n";
+  const Ray ray = cam.generate_ray(cs);
+  if (cam.lens_radius > 0)
+    t += "through the thin lens (radius " + num(cam.lens_radius) + ", in focus at distance " + num(cam.focus_distance) +
+         "): from " + vec(ray.origin) + " along " + vec(ray.direction) + "\n";
+  if (cam.shutter_close != cam.shutter_open && s.moving_count() > 0) t += "time " + num(ray.time) + " (the shutter's)\n";
+  Explainer explainer(s, t);
+  Observer observer{explainer};
+  RayCounters& counters = out.rays;
+  ++counters.camera;
+  const Vec3 radiance = trace(s, ray, counters, rng, nullptr, {}, &observer);
+  out.radiance = guard_sample(radiance, counters);
+  if (counters.invalid_samples > 0) t += "the radiance is not finite: the film takes it as black\n";
+  t += "radiance " + vec(out.radiance) + " (linear) from " + std::to_string(counters.total()) + " rays: " +
+       std::to_string(counters.camera) + " camera, " + std::to_string(counters.shadow) + " shadow, " +
+       std::to_string(counters.reflection) + " reflection, " + std::to_string(counters.refraction) + " refraction\n";
+  return out;
+}
+
+}  // namespace strahl

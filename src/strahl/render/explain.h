@@ -1,0 +1,30 @@
+#pragma once
+// One camera sample explained: the ray tree of sample `index` of pixel (x, row), as the lecture
+// writes it — the camera ray from e, u, v, w and l, r, b, t, d; at each hit the object, t, the
+// point and the normal, the ambient term and each light's N·L, shadow ray, N·H and share of the
+// local colour; the reflected and refracted rays with k_r and T (total internal reflection
+// named); and each ray's colour as local + k_r·reflected + T·tint·refracted. The integrator that
+// renders the image walks the tree (trace()'s observer, render/whitted.h), so the explanation's
+// radiance is the renderer's for that sample, bit for bit (`strahl --explain`, docs/cli.md).
+
+#include <cstdint>
+#include <string>
+
+#include "strahl/math/vec3.h"
+#include "strahl/render/ray_counters.h"
+
+namespace strahl {
+
+struct RenderScene;
+
+struct PixelExplanation {
+  std::string text;  // lines ending in '\n'
+  Vec3 radiance;     // the sample's radiance (after the film's guard: NaN or ∞ become black)
+  RayCounters rays;  // the sample's rays, as the renderer counts them
+};
+
+// `row` counts from the top of the image (as image viewers do), x from the left; both must lie
+// in the image (throws strahl::Error otherwise).
+PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index = 0);
+
+}  // namespace strahl
