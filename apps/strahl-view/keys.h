@@ -27,6 +27,7 @@ inline constexpr KeyHelp kKeyHelp[] = {
     {"V", "display: image, depth, normal, albedo, id"},
     {"9 0", "exposure -/+ half a stop (display only)"},
     {"P", "print the camera as YAML on stdout"},
+    {"X", "explain the pixel under the cursor on stdout"},
     {"Ctrl+S", "save the image (numbered, never overwrites)"},
     {"L", "reload the scene now"},
     {"Tab", "HUD on / off"},

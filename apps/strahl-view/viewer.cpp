@@ -20,6 +20,7 @@
 #include "save.h"
 #include "script.h"
 #include "setup.h"
+#include "strahl/render/explain.h"
 #include "strahl/render/intersect_scene.h"
 #include "strahl/scene/camera_build.h"
 #include "text.h"
@@ -130,6 +131,7 @@ class Viewer {
   void draw();
   void save();
   void focus_under_cursor();
+  void explain_under_cursor();
   void message(const std::string& text, bool error = false);
   std::vector<std::string> hud_lines(const FrameStatus& s);
   SDL_Rect image_rect() const;
@@ -342,6 +344,7 @@ void Viewer::key_down(const SDL_Keysym& key, bool repeat) {
     case SDLK_PLUS: case SDLK_EQUALS: case SDLK_KP_PLUS: zoom(settings_.camera, 1 / 1.1); break;
     case SDLK_MINUS: case SDLK_KP_MINUS: zoom(settings_.camera, 1.1); break;
     case SDLK_f: focus_under_cursor(); break;
+    case SDLK_x: explain_under_cursor(); changed = false; break;
     case SDLK_LEFTBRACKET: settings_.max_depth = std::max(1, settings_.max_depth - 1); break;
     case SDLK_RIGHTBRACKET: settings_.max_depth = std::min(64, settings_.max_depth + 1); break;
     case SDLK_m: {
@@ -411,6 +414,27 @@ void Viewer::focus_under_cursor() {
     return;
   }
   focus_on(settings_.camera, ray.at(hit.t));
+}
+
+// X: the ray tree of sample 0 of the full-resolution pixel under the cursor, with the window's
+// camera, max depth and sampler (render/explain.h; what `strahl --explain` prints for them).
+void Viewer::explain_under_cursor() {
+  const SDL_Rect rect = image_rect();
+  const double fx = (mouse_x_ - rect.x + 0.5) / rect.w, fy = (mouse_y_ - rect.y + 0.5) / rect.h;
+  if (!scene_ || fx < 0 || fx >= 1 || fy < 0 || fy >= 1) return;
+  SceneView view = scene_->view();
+  view.settings.max_depth = settings_.max_depth;
+  try {
+    view.camera = build_camera(settings_.camera, settings_.width, settings_.height);
+  } catch (const Error&) {
+    return;
+  }
+  const int x = std::min(settings_.width - 1, int(fx * settings_.width));
+  const int row = std::min(settings_.height - 1, int(fy * settings_.height));
+  console::out("{}", explain_pixel(view, settings_.sampling, x, row).text);
+  note_ = fmt::format("pixel ({}, {}) explained on stdout", x, row);
+  note_time_ = Clock::now();
+  redraw_ = true;
 }
 
 void Viewer::save() {

@@ -151,6 +151,26 @@ else
   fail "keys: strahl-view failed: $(cat "$WORK/keys.err")"
 fi
 
+# X explains the pixel under the cursor: what `strahl --explain` prints for that pixel.
+printf '0.2 mouse move 40 20\n0 wait still\n0 key x\n0 quit\n' > "$WORK/explain.txt"
+if view_offscreen "$SRC/scenes/lecture-whitted.yaml" --width 96 --height 54 -q -o "$WORK/explain.png" \
+    --script "$WORK/explain.txt" > "$WORK/explain.raw" 2> "$WORK/explain.err"; then
+  grep -v '^input: ' "$WORK/explain.raw" > "$WORK/explain.out"
+  pixel=$(sed -n 's/^pixel (\([0-9]*\), \([0-9]*\)) of 96×54 .*/\1,\2/p' "$WORK/explain.out")
+  if [ -z "$pixel" ]; then
+    fail "explain: nothing explained: $(cat "$WORK/explain.raw")"
+  elif [ "$pixel" != 40,20 ]; then  # the window shows the image at its size: window pixel = image pixel
+    fail "explain: the cursor is over pixel 40,20, the viewer explained $pixel"
+  elif "$CLI" "$SRC/scenes/lecture-whitted.yaml" --width 96 --height 54 --explain "$pixel" > "$WORK/explain.strahl"; then
+    if cmp -s "$WORK/explain.out" "$WORK/explain.strahl"; then echo "ok: X explains pixel $pixel as strahl --explain"
+    else fail "explain: the viewer's explanation of $pixel differs from strahl's"; fi
+  else
+    fail "explain: strahl --explain $pixel failed"
+  fi
+else
+  fail "explain: strahl-view failed: $(cat "$WORK/explain.err")"
+fi
+
 check grid       lecture.yaml         pfm --supersample 2
 check png        lecture-whitted.yaml png --supersample 2
 check stratified lecture-whitted.yaml pfm --sampler stratified --spp 4 --filter mitchell --filter-radius 2

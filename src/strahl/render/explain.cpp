@@ -234,7 +234,11 @@ struct Observer {
 }  // namespace
 
 PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index) {
-  const SceneView s = scene.view();
+  return explain_pixel(scene.view(), scene.sampling, x, row, index);
+}
+
+PixelExplanation explain_pixel(const SceneView& s, const SamplingSettings& sampling, int x, int row,
+                               std::uint32_t index) {
   const Camera& cam = s.camera;
   if (x < 0 || x >= cam.nx || row < 0 || row >= cam.ny)
     throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") is outside the image of " +
@@ -242,12 +246,12 @@ PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::ui
   PixelExplanation out;
   std::string& t = out.text;
   // The sample as the renderer takes it (render/pixel.h: pixel_sample).
-  const PixelSequence p = pixel_sequence(s, make_pixel_sampler(scene.sampling), x, row);
+  const PixelSequence p = pixel_sequence(s, make_pixel_sampler(sampling), x, row);
   const CameraSample cs = p.sample(index);
   SampleStream rng{p.stream, index};
   t += "pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") of " + std::to_string(cam.nx) + "×" +
        std::to_string(cam.ny) + " (x from the left, row from the top), sample " + std::to_string(index) + " of its " +
-       sampler_name(scene.sampling.sampler) + " sequence\n";
+       sampler_name(sampling.sampler) + " sequence\n";
   t += "camera: e = " + vec(cam.eye) + ", u = " + vec(cam.basis.u) + ", v = " + vec(cam.basis.v) + ", w = " +
        vec(cam.basis.w) + "\n";
   t += "        l = " + num(cam.l) + ", r = " + num(cam.r) + ", b = " + num(cam.b) + ", t = " + num(cam.t) +

@@ -16,6 +16,8 @@
 namespace strahl {
 
 struct RenderScene;
+struct SamplingSettings;
+struct SceneView;
 
 struct PixelExplanation {
   std::string text;  // lines ending in '\n'
@@ -24,7 +26,10 @@ struct PixelExplanation {
 };
 
 // `row` counts from the top of the image (as image viewers do), x from the left; both must lie
-// in the image (throws strahl::Error otherwise).
+// in the image (throws strahl::Error otherwise). The scene as compiled, or a view of it with its
+// own camera and settings and the sampling it renders with (the viewer's).
 PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index = 0);
+PixelExplanation explain_pixel(const SceneView& s, const SamplingSettings& sampling, int x, int row,
+                               std::uint32_t index = 0);
 
 }  // namespace strahl
