@@ -124,6 +124,9 @@ TEST(Explain, TheRayTreeNamesEachRayAndWhyItEnds) {
   EXPECT_TRUE(contains(g.text, "ray 1.R: reflected ray, depth 2")) << g.text;
   EXPECT_TRUE(contains(g.text, "ray 1.T: refracted ray, depth 2")) << g.text;
   EXPECT_TRUE(contains(g.text, "(the ray arrives from inside: N turned towards it)")) << g.text;
+  EXPECT_TRUE(contains(g.text, "refraction n_1 = 1 → n_2 = 1.5: cos θ_1 = −d·N = 1, sin θ_2 = (n_1/n_2)·sin θ_1 = 0\n"))
+      << g.text;
+  EXPECT_TRUE(contains(g.text, "refraction n_1 = 1.5 → n_2 = 1: cos θ_1 = −d·N = 1,")) << g.text;
   EXPECT_TRUE(contains(g.text, "ray 1 brings ")) << g.text;
 
   // From inside a glass sphere (centre (0.9, 0, 0), radius 1) the ray down −z meets the wall at
@@ -133,6 +136,8 @@ TEST(Explain, TheRayTreeNamesEachRayAndWhyItEnds) {
   inside.addSceneObject(new Sphere(Vec3(0.9, 0, 0), 1, test::clear_glass(1.5)));
   inside.addLightSource(Vec3(0, 5, 0));
   const std::string tir = explain_pixel(compile(inside), 10, 10).text;
+  EXPECT_TRUE(contains(tir, "refraction n_1 = 1.5 → n_2 = 1: cos θ_1 = −d·N = 0.43589, sin θ_2 = (n_1/n_2)·sin θ_1 = "
+                            "1.35 > 1\n")) << tir;
   EXPECT_TRUE(contains(tir, "(total internal reflection: T moved to k_r)")) << tir;
   EXPECT_FALSE(contains(tir, "ray 1.T:")) << tir;
 

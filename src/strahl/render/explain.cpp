@@ -1,5 +1,6 @@
 #include "strahl/render/explain.h"
 
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -73,6 +74,7 @@ class Explainer {
     Node& node = stack_.back();
     node.surface = true;
     node.local = local;
+    node.normal = n;
     node.material = sp.material;
     line(d, "  hits " + object_name(hit, sp) + " at t = " + num(hit.t));
     line(d, "    p = " + vec(sp.p) + ", N = " + vec(n) +
@@ -129,13 +131,20 @@ class Explainer {
     line(d, std::string("    local = ") + (!sampled && sum == local ? "ambient + lights = " : "") + vec(local));
   }
 
-  void split(Real kr, Real kt, bool reflects) {
+  void split(Real kr, Real kt, bool reflects, Real n1, Real n2) {
     const int d = here();
     Node& node = stack_.back();
     node.kr = kr;
     node.kt = kt;
     node.split = true;
     const Material& m = s_.materials[node.material];
+    if (m.transparency > 0) {
+      // Snell's law (lecture 1.5): n_1·sin θ_1 = n_2·sin θ_2, θ_1 between −d and N.
+      const Real cos1 = -dot(ray_direction_, node.normal);
+      const Real sin2 = n1 / n2 * std::sqrt(std::fmax(Real(0), 1 - cos1 * cos1));
+      line(d, "    refraction n_1 = " + num(n1) + " → n_2 = " + num(n2) + ": cos θ_1 = −d·N = " + num(cos1) +
+                  ", sin θ_2 = (n_1/n_2)·sin θ_1 = " + num(sin2) + (sin2 > 1 ? " > 1" : ""));
+    }
     std::string text = "    k_r = " + num(kr) + ", T = " + num(kt);
     if (m.transparency > 0 && !(kt > 0)) text += " (total internal reflection: T moved to k_r)";
     else if (m.transparency > 0 && m.fresnel) text += " (Fresnel: Schlick's share of T moved to k_r)";
@@ -177,7 +186,7 @@ class Explainer {
     TracedRay kind = TracedRay::Camera;
     bool surface = false, split = false, reflected_ray = false, refracted_ray = false;
     std::uint32_t material = 0;
-    Vec3 local, reflected, refracted;
+    Vec3 local, normal, reflected, refracted;
     Real kr = 0, kt = 0;
   };
 
@@ -227,7 +236,7 @@ struct Observer {
   void surface(const Hit& hit, const SurfacePoint& sp, bool front, const Vec3& n, const Vec3& local) {
     e.surface(hit, sp, front, n, local);
   }
-  void split(Real kr, Real kt, bool reflects) { e.split(kr, kt, reflects); }
+  void split(Real kr, Real kt, bool reflects, Real n1, Real n2) { e.split(kr, kt, reflects, n1, n2); }
   void done(int depth, const Vec3& color) { e.done(depth, color); }
 };
 
@@ -270,7 +279,7 @@ PixelExplanation explain_pixel(const SceneView& s, const SamplingSettings& sampl
   Observer observer{explainer};
   RayCounters& counters = out.rays;
   ++counters.camera;
-  const Vec3 radiance = trace(s, ray, counters, rng, nullptr, {}, &observer);
+  const Vec3 radiance = trace_observed(s, ray, counters, rng, observer);
   out.radiance = guard_sample(radiance, counters);
   if (counters.invalid_samples > 0) t += "the radiance is not finite: the film takes it as black\n";
   t += "radiance " + vec(out.radiance) + " (linear) from " + std::to_string(counters.total()) + " rays: " +

@@ -347,12 +347,13 @@ STRAHL_HOST_DEVICE inline bool start_refracted(const SceneView& s, TraceFrame& f
 // refracted rays, render/packet_radiance.h): its depth, its weight, the rays left in the budget,
 // the media it travels in; and where to tell how many rays are left when its subtree is done.
 //
-// `observer`, where given, is told the ray tree as trace() walks it (render/explain.h shows one
+// trace_observed() tells an observer the ray tree as it walks it (render/explain.h shows one
 // camera sample's): observer->ray(kind, depth, ray, weight) as each ray starts; then
 // observer->emitter(light, L), ->background(colour) or ->surface(hit, sp, front, n, local) and,
-// below max_depth, ->split(k_r, T, reflects) (after total internal reflection and Fresnel;
-// `reflects`: the reflected ray is traced); and observer->done(depth, colour) once the ray's
-// radiance is known. The default observer type is told nothing and costs nothing.
+// below max_depth, ->split(k_r, T, reflects, n_1, n_2) (after total internal reflection and
+// Fresnel; `reflects`: the reflected ray is traced; n_1 → n_2 the indices of refraction a
+// refracted ray crosses); and observer->done(depth, colour) once the ray's
+// radiance is known.
 struct TraceStart {
   int depth = 1;
   Real weight = 1;
@@ -362,10 +363,11 @@ struct TraceStart {
 };
 enum class TracedRay : std::uint8_t { Camera, Reflected, Refracted };
 struct NoTraceObserver {};
-template <class Observer = NoTraceObserver>
-STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng,
-                                     const FirstHit* first = nullptr, const TraceStart& start = {},
-                                     Observer* observer = nullptr) {
+// trace()'s body, and trace_observed()'s (below); with NoTraceObserver (trace()) every call of
+// the observer is left out at compile time.
+template <class Observer>
+STRAHL_HOST_DEVICE inline Vec3 walk_ray_tree(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng,
+                                             const FirstHit* first, const TraceStart& start, Observer* observer) {
   constexpr bool observed = !std::is_same_v<Observer, NoTraceObserver>;
   TracedRay kind = TracedRay::Camera;        // of `ray` (as the observer is told)
   TraceFrameSlot stack[kMaxTraceDepth - 1];  // hits at depths 1 … max_depth − 1 (deeper ones spawn no rays)
@@ -406,7 +408,8 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
         Vec3 refracted_dir;
         split_at(m, ray.direction, n, front, media, kr, kt, refracted_dir);
         const bool reflects = kr > 0 && kr * weight >= min_weight && spend(budget, counters);
-        if constexpr (observed) observer->split(kr, kt, reflects);
+        if constexpr (observed)  // (the indices split_at() refracts between)
+          observer->split(kr, kt, reflects, front ? media.current() : m.ior, front ? m.ior : media.outer());
         if (reflects || kt > 0) {
           TraceFrame& f = stack[top].frame;
           f.color = color;
@@ -461,6 +464,18 @@ STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& c
       if constexpr (observed) observer->done(top + start.depth, color);
     }
   }
+}
+
+STRAHL_HOST_DEVICE inline Vec3 trace(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng,
+                                     const FirstHit* first = nullptr, const TraceStart& start = {}) {
+  return walk_ray_tree<NoTraceObserver>(s, ray, counters, rng, first, start, nullptr);
+}
+
+// trace() of a camera ray, telling `observer` the ray tree as it walks it (see above).
+template <class Observer>
+STRAHL_HOST_DEVICE inline Vec3 trace_observed(const SceneView& s, Ray ray, RayCounters& counters, SampleStream& rng,
+                                              Observer& observer) {
+  return walk_ray_tree(s, ray, counters, rng, nullptr, TraceStart{}, &observer);
 }
 
 }  // namespace strahl
