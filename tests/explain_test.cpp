@@ -51,6 +51,11 @@ TEST(Explain, RadianceAndRaysAreTheRenderersSample) {
           multi += rays.reflection + rays.refraction > 0;
         }
     EXPECT_EQ(checked, 5 * 6 * 2) << file;
+    if (std::string(file) == "soft-shadows.yaml") {  // area lights: their sum, not each sample
+      const std::string t = explain_pixel(rs, 12, 10).text;
+      EXPECT_TRUE(contains(t, "light 0 (rect, 4×4 samples): sampled with this sample's random numbers")) << t;
+      EXPECT_TRUE(contains(t, "the area lights' samples add local − the terms above = (")) << t;
+    }
     if (std::string(file) == "lecture-whitted.yaml") {
       EXPECT_GT(multi, 4);
     }

@@ -12,6 +12,7 @@ namespace strahl {
 namespace {
 
 std::string num(Real x) {
+  if (x == 0) x = 0;  // −0 prints as 0
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%.6g", double(x));
   return buffer;
@@ -128,6 +129,7 @@ class Explainer {
                   "; N·H = " + num(known.n_dot_h) + ": S·I·[(1 − T)·k_d·C·N·L + k_s·(N·H)^shininess] = " + vec(share));
     }
     // Without area lights the shares above are local's own terms, added in its order.
+    if (sampled) line(d, "    the area lights' samples add local − the terms above = " + vec(local - sum));
     line(d, std::string("    local = ") + (!sampled && sum == local ? "ambient + lights = " : "") + vec(local));
   }
 
