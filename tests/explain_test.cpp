@@ -153,6 +153,29 @@ TEST(Explain, TheRayTreeNamesEachRayAndWhyItEnds) {
   EXPECT_FALSE(contains(shallow, "ray 1.R")) << shallow;
 }
 
+// What a ray hits inside an instance is named by its group; the compiler's own groups (a group's
+// moving shape, a turning mesh) by what they hold.
+TEST(Explain, NamesTheShapesInInstances) {
+  const std::string camera = "camera: {position: [0, 0, 5], look_at: [0, 0, 0], fov: 40, shutter: [0, 1]}\n"
+                             "render: {width: 21, height: 21}\nlights: [{type: point, position: [0, 0, 5]}]\n";
+  const auto centre = [&](const std::string& rest) {
+    return explain_pixel(compile(parse_scene(camera + rest, "t.yaml", ".")), 10, 10).text;
+  };
+  const std::string placed = centre(
+      "groups:\n  ball: [{type: box, corners: [[-2, -2, -2], [-1, -1, -1]]}, {type: sphere, center: [0, 0, 0], "
+      "radius: 1}]\nobjects: [{type: instance, of: ball}]\n");
+  EXPECT_TRUE(contains(placed, "hits a sphere of group 'ball', in instance record 0 (object id 1) at t = 4\n")) << placed;
+  const std::string moving = centre(
+      "groups:\n  ball: [{type: sphere, center: [0, 0, 0], radius: 1, motion: {velocity: [0, 0, 0.1]}}]\n"
+      "objects: [{type: instance, of: ball}]\n");
+  EXPECT_TRUE(contains(moving, "hits a sphere moving in its group, in moving instance record 0")) << moving;
+  const std::string turning = centre(
+      "objects: [{type: triangle, vertices: [[-1, -1, 0], [1, -1, 0], [0, 1, 0]], motion: {spin: {axis: [0, 0, 1], "
+      "angle: 10}}}]\n");
+  EXPECT_TRUE(contains(turning, "hits a triangle that turns, in moving instance record 0 (object id 0) at t = 5\n"))
+      << turning;
+}
+
 TEST(Explain, APixelOutsideTheImageIsAnError) {
   const RenderScene rs = compile(lit_sphere(Material{}));
   EXPECT_THROW(explain_pixel(rs, 21, 0), Error);

@@ -431,7 +431,7 @@ void Viewer::explain_under_cursor() {
   }
   const int x = std::min(settings_.width - 1, int(fx * settings_.width));
   const int row = std::min(settings_.height - 1, int(fy * settings_.height));
-  console::out("{}", explain_pixel(view, settings_.sampling, x, row).text);
+  console::out("{}", explain_pixel(*scene_, view, settings_.sampling, x, row).text);
   note_ = fmt::format("pixel ({}, {}) explained on stdout", x, row);
   note_time_ = Clock::now();
   redraw_ = true;

@@ -50,7 +50,7 @@ const char* light_name(LightKind kind) {
 // first, each child indented under its hit.
 class Explainer {
  public:
-  Explainer(const SceneView& s, std::string& out) : s_(s), out_(out) {}
+  Explainer(const RenderScene& scene, const SceneView& s, std::string& out) : scene_(scene), s_(s), out_(out) {}
 
   void ray(TracedRay kind, int depth, const Ray& r, Real weight) {
     Node node;
@@ -212,13 +212,32 @@ class Explainer {
       case ShapeKind::MovingSphere: kind = "a moving sphere"; break;
       case ShapeKind::MovingTriangle: kind = "a moving triangle"; break;
       case ShapeKind::MovingSolid: kind = "a moving solid"; break;
-      case ShapeKind::Instance: kind = "a shape of instance record " + std::to_string(hit.index); break;
-      case ShapeKind::MovingInstance: kind = "a shape of moving instance record " + std::to_string(hit.index); break;
+      case ShapeKind::Instance:
+        kind = group_shape(s_.instances[hit.index].group, hit.prim) + ", in instance record " + std::to_string(hit.index);
+        break;
+      case ShapeKind::MovingInstance:
+        kind = group_shape(s_.moving_instances[hit.index].instance.group, hit.prim) + ", in moving instance record " +
+               std::to_string(hit.index);
+        break;
       case ShapeKind::None: break;
     }
     return kind + " (object id " + std::to_string(sp.material) + ")";
   }
 
+  // Primitive `prim` of group `group`'s structure (spheres, triangles, then solids), and the
+  // group's name: the scene's, or what the compiler made the group for (scene/instances.h).
+  std::string group_shape(std::uint32_t group, std::uint32_t prim) const {
+    if (group >= scene_.groups.size()) return "a shape of a group";
+    const PrimitiveSet prims = scene_.groups[group].primitives();
+    const std::string shape = prims.is_sphere(prim)  ? "a sphere"
+                              : prims.is_solid(prim) ? std::string("a ") + solid_name(prims.solid(prim).kind)
+                                                     : "a triangle";
+    if (group < scene_.group_nesting.size() && scene_.group_nesting[group].placeable)
+      return shape + " of group '" + scene_.group_nesting[group].name + "'";
+    return shape + (group < scene_.group_nesting.size() ? " moving in its group" : " that turns");
+  }
+
+  const RenderScene& scene_;
   const SceneView& s_;
   std::string& out_;
   std::vector<Node> stack_;
@@ -245,11 +264,11 @@ struct Observer {
 }  // namespace
 
 PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index) {
-  return explain_pixel(scene.view(), scene.sampling, x, row, index);
+  return explain_pixel(scene, scene.view(), scene.sampling, x, row, index);
 }
 
-PixelExplanation explain_pixel(const SceneView& s, const SamplingSettings& sampling, int x, int row,
-                               std::uint32_t index) {
+PixelExplanation explain_pixel(const RenderScene& scene, const SceneView& s, const SamplingSettings& sampling, int x,
+                               int row, std::uint32_t index) {
   const Camera& cam = s.camera;
   if (x < 0 || x >= cam.nx || row < 0 || row >= cam.ny)
     throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") is outside the image of " +
@@ -277,7 +296,7 @@ PixelExplanation explain_pixel(const SceneView& s, const SamplingSettings& sampl
     t += "through the thin lens (radius " + num(cam.lens_radius) + ", in focus at distance " + num(cam.focus_distance) +
          "): from " + vec(ray.origin) + " along " + vec(ray.direction) + "\n";
   if (cam.shutter_close != cam.shutter_open && s.moving_count() > 0) t += "time " + num(ray.time) + " (the shutter's)\n";
-  Explainer explainer(s, t);
+  Explainer explainer(scene, s, t);
   Observer observer{explainer};
   RayCounters& counters = out.rays;
   ++counters.camera;

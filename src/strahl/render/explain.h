@@ -26,10 +26,10 @@ struct PixelExplanation {
 };
 
 // `row` counts from the top of the image (as image viewers do), x from the left; both must lie
-// in the image (throws strahl::Error otherwise). The scene as compiled, or a view of it with its
-// own camera and settings and the sampling it renders with (the viewer's).
+// in the image (throws strahl::Error otherwise). The scene as compiled, or a view `s` of it with
+// its own camera and settings and the sampling it renders with (the viewer's).
 PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index = 0);
-PixelExplanation explain_pixel(const SceneView& s, const SamplingSettings& sampling, int x, int row,
-                               std::uint32_t index = 0);
+PixelExplanation explain_pixel(const RenderScene& scene, const SceneView& s, const SamplingSettings& sampling, int x,
+                               int row, std::uint32_t index = 0);
 
 }  // namespace strahl
