@@ -1,9 +1,9 @@
 #pragma once
 // The loaders' fuzz entries, shared by the libFuzzer targets (tests/fuzz/fuzz_*.cpp) and the
 // normal test suite (tests/fuzz_regression_test.cpp replays saved inputs through them).
-// Each takes arbitrary bytes, loads them and compiles the result into a RenderScene. A
-// strahl::Error is the expected answer to bad input; anything else (a crash, a sanitizer report,
-// another exception escaping, a huge allocation) is a bug.
+// Each takes arbitrary bytes, loads them and compiles the result into a RenderScene (a scene file's
+// also traces one camera sample). A strahl::Error is the expected answer to bad input; anything
+// else (a crash, a sanitizer report, another exception escaping, a huge allocation) is a bug.
 
 #include <cmath>
 #include <cstddef>
@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "strahl/render/explain.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/scene_hash.h"
 #include "strahl/scene/expression_ast.h"
@@ -50,11 +51,16 @@ inline Outcome scene_input(const std::uint8_t* data, std::size_t size) {
     return Outcome::Refused;
   }
   std::uint64_t hash = 0;
+  RenderScene compiled;
   try {
-    hash = scene_hash(compile(scene));
+    compiled = compile(scene);
+    hash = scene_hash(compiled);
   } catch (const Error&) {
     return Outcome::Refused;
   }
+  // One camera sample through the integrator, its ray tree explained (render/explain.h): the
+  // centre pixel's.
+  (void)explain_pixel(compiled, compiled.camera.nx / 2, compiled.camera.ny / 2);
   std::string text;
   try {
     text = scene_to_yaml(scene);
