@@ -23,10 +23,10 @@
 #include "strahl/render/aov.h"
 #include "strahl/render/cpu_backend.h"
 #include "strahl/render/explain.h"
-#include "strahl/sampling/pixel_sampler.h"
 #include "strahl/render/render_job.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/scene_hash.h"
+#include "strahl/sampling/pixel_sampler.h"
 #include "strahl/scene/scene.h"
 #include "strahl/scene/validate.h"
 #include "strahl/version.h"
@@ -235,8 +235,13 @@ void bind_render(py::module_& m) {
          std::optional<int> spp, std::optional<std::string> sampler, std::optional<std::uint64_t> seed,
          std::optional<int> max_depth, std::optional<int> supersample) {
         Overrides o;
-        o.width = width, o.height = height, o.spp = spp, o.sampler = sampler, o.seed = seed;
-        o.max_depth = max_depth, o.supersample = supersample;
+        o.width = width;
+        o.height = height;
+        o.spp = spp;
+        o.sampler = sampler;
+        o.seed = seed;
+        o.max_depth = max_depth;
+        o.supersample = supersample;
         const RenderScene rs = compile_with(scene, o);
         const int samples = effective_spp(rs.sampling.sampler, rs.sampling.spp);
         if (sample < 0 || sample >= samples)
