@@ -53,6 +53,7 @@ class Explainer {
   Explainer(const RenderScene& scene, const SceneView& s, std::string& out) : scene_(scene), s_(s), out_(out) {}
 
   void ray(TracedRay kind, int depth, const Ray& r, Real weight) {
+    ray_direction_ = r.direction;  // (surface() and split() need it)
     Node node;
     node.depth = depth;
     node.name = stack_.empty() ? "1" : stack_.back().name + (kind == TracedRay::Reflected ? ".R" : ".T");
@@ -178,9 +179,6 @@ class Explainer {
     if (!stack_.empty()) (node.kind == TracedRay::Reflected ? stack_.back().reflected : stack_.back().refracted) = color;
   }
 
-  // The ray being traced (trace() tells its direction only to ray()).
-  void set_direction(const Vec3& d) { ray_direction_ = d; }
-
  private:
   struct Node {
     int depth = 1;
@@ -244,23 +242,6 @@ class Explainer {
   Vec3 ray_direction_;
 };
 
-// The observer trace() is given: the Explainer, told each ray's direction as it starts (its
-// surface() needs the view direction).
-struct Observer {
-  Explainer& e;
-  void ray(TracedRay kind, int depth, const Ray& r, Real weight) {
-    e.set_direction(r.direction);
-    e.ray(kind, depth, r, weight);
-  }
-  void emitter(int light, const Vec3& radiance) { e.emitter(light, radiance); }
-  void background(const Vec3& color) { e.background(color); }
-  void surface(const Hit& hit, const SurfacePoint& sp, bool front, const Vec3& n, const Vec3& local) {
-    e.surface(hit, sp, front, n, local);
-  }
-  void split(Real kr, Real kt, bool reflects, Real n1, Real n2) { e.split(kr, kt, reflects, n1, n2); }
-  void done(int depth, const Vec3& color) { e.done(depth, color); }
-};
-
 }  // namespace
 
 PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index) {
@@ -297,10 +278,9 @@ PixelExplanation explain_pixel(const RenderScene& scene, const SceneView& s, con
          "): from " + vec(ray.origin) + " along " + vec(ray.direction) + "\n";
   if (cam.shutter_close != cam.shutter_open && s.moving_count() > 0) t += "time " + num(ray.time) + " (the shutter's)\n";
   Explainer explainer(scene, s, t);
-  Observer observer{explainer};
   RayCounters& counters = out.rays;
   ++counters.camera;
-  const Vec3 radiance = trace_observed(s, ray, counters, rng, observer);
+  const Vec3 radiance = trace_observed(s, ray, counters, rng, explainer);
   out.radiance = guard_sample(radiance, counters);
   if (counters.invalid_samples > 0) t += "the radiance is not finite: the film takes it as black\n";
   t += "radiance " + vec(out.radiance) + " (linear) from " + std::to_string(counters.total()) + " rays: " +
