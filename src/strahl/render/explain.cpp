@@ -255,11 +255,14 @@ PixelExplanation explain_pixel(const RenderScene& scene, const SceneView& s, con
     throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") is outside the image of " +
                 std::to_string(cam.nx) + "×" + std::to_string(cam.ny) + " pixels");
   PixelExplanation out;
+  // The sample as the renderer takes it (render/pixel.h), its ray tree told to the Explainer.
+  std::string tree;
+  Explainer explainer(scene, s, tree);
+  CameraSample cs;
+  out.radiance = pixel_sample(s, pixel_sequence(s, make_pixel_sampler(sampling), x, row), index, cs, out.rays,
+                              &explainer);
+  const RayCounters& counters = out.rays;
   std::string& t = out.text;
-  // The sample as the renderer takes it (render/pixel.h: pixel_sample).
-  const PixelSequence p = pixel_sequence(s, make_pixel_sampler(sampling), x, row);
-  const CameraSample cs = p.sample(index);
-  SampleStream rng{p.stream, index};
   t += "pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") of " + std::to_string(cam.nx) + "×" +
        std::to_string(cam.ny) + " (x from the left, row from the top), sample " + std::to_string(index) + " of its " +
        sampler_name(sampling.sampler) + " sequence\n";
@@ -277,11 +280,7 @@ PixelExplanation explain_pixel(const RenderScene& scene, const SceneView& s, con
     t += "through the thin lens (radius " + num(cam.lens_radius) + ", in focus at distance " + num(cam.focus_distance) +
          "): from " + vec(ray.origin) + " along " + vec(ray.direction) + "\n";
   if (cam.shutter_close != cam.shutter_open && s.moving_count() > 0) t += "time " + num(ray.time) + " (the shutter's)\n";
-  Explainer explainer(scene, s, t);
-  RayCounters& counters = out.rays;
-  ++counters.camera;
-  const Vec3 radiance = trace_observed(s, ray, counters, rng, explainer);
-  out.radiance = guard_sample(radiance, counters);
+  t += tree;
   if (counters.invalid_samples > 0) t += "the radiance is not finite: the film takes it as black\n";
   t += "radiance " + vec(out.radiance) + " (linear) from " + std::to_string(counters.total()) + " rays: " +
        std::to_string(counters.camera) + " camera, " + std::to_string(counters.shadow) + " shadow, " +

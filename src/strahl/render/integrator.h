@@ -3,6 +3,8 @@
 // the integrator does inside (DESIGN.md, "Integrator"). A pure function of the scene, the camera
 // sample and the sample's random stream (sampling/rng.h), so images are deterministic.
 
+#include <type_traits>
+
 #include "strahl/camera/camera_sample.h"
 #include "strahl/render/sample_guard.h"
 #include "strahl/render/whitted.h"
@@ -10,11 +12,14 @@
 
 namespace strahl {
 
+// `observer`, where given, is told the ray tree (trace_observed(), render/whitted.h).
+template <class Observer = NoTraceObserver>
 STRAHL_HOST_DEVICE inline Vec3 sample_radiance(const SceneView& s, const CameraSample& cs, SampleStream& rng,
-                                               RayCounters& counters) {
+                                               RayCounters& counters, Observer* observer = nullptr) {
   const Ray ray = s.camera.generate_ray(cs);
   ++counters.camera;
-  return guard_sample(trace(s, ray, counters, rng), counters);
+  if constexpr (std::is_same_v<Observer, NoTraceObserver>) return guard_sample(trace(s, ray, counters, rng), counters);
+  else return guard_sample(trace_observed(s, ray, counters, rng, *observer), counters);
 }
 
 }  // namespace strahl

@@ -29,12 +29,14 @@ STRAHL_HOST_DEVICE inline PixelSequence pixel_sequence(const SceneView& s, const
   return p;
 }
 
-// Radiance of sample `index` of a pixel; `cs` receives the camera sample it used.
+// Radiance of sample `index` of a pixel; `cs` receives the camera sample it used (`observer`:
+// sample_radiance's).
+template <class Observer = NoTraceObserver>
 STRAHL_HOST_DEVICE inline Vec3 pixel_sample(const SceneView& s, const PixelSequence& p, std::uint32_t index,
-                                            CameraSample& cs, RayCounters& counters) {
+                                            CameraSample& cs, RayCounters& counters, Observer* observer = nullptr) {
   cs = p.sample(index);
   SampleStream rng{p.stream, index};
-  return sample_radiance(s, cs, rng, counters);
+  return sample_radiance(s, cs, rng, counters, observer);
 }
 
 // Mean of samples 0 … spp−1 (in index order, as the film adds them).
