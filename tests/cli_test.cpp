@@ -142,6 +142,27 @@ TEST_F(Cli, ExplainPrintsTheRayTreeAndWritesNothing) {
   EXPECT_NE(log().find("bad.yaml:2:"), std::string::npos) << log();
 }
 
+// A POV-Ray scene: --width/--height are its image_width/image_height, --declare its
+// Declare=NAME=VALUE; the picture is its YAML twin's.
+TEST_F(Cli, ReadsPovRayScenesWithDeclaredNames) {
+  const fs::path scenes = fs::path(STRAHL_SOURCE_DIR) / "scenes";
+  ASSERT_EQ(run("'" + (scenes / "lecture.pov").string() + "' --declare WHITTED=1 --width 32 --height 18 -q -o out.pfm"), 0)
+      << log();
+  Scene twin = load_scene(scenes / "lecture-whitted.yaml");
+  twin.settings.width = 32;
+  twin.settings.height = 18;
+  EXPECT_TRUE(read_image(dir_ / "out.pfm") == test::render_image(twin));
+  ASSERT_EQ(run("'" + (scenes / "lecture.pov").string() + "' --width 32 --height 18 -q -o plain.pfm"), 0) << log();
+  EXPECT_FALSE(read_image(dir_ / "plain.pfm") == test::render_image(twin));
+  for (const char* bad : {"--declare WHITTED", "--declare =1", "--declare 1X=2", "--declare W=one", "--declare W=inf"}) {
+    EXPECT_EQ(run(std::string("scene.yaml -q ") + bad), 1) << bad << ": " << log();
+    EXPECT_NE(log().find("--declare"), std::string::npos) << log();
+  }
+  test::write_text(dir_ / "bad.pov", "sphere { 0, 1 }\nsphere { <0, 0, 0> 2 }\n");
+  EXPECT_EQ(run("bad.pov -q"), 2) << log();
+  EXPECT_NE(log().find("bad.pov:2:20: expected ','"), std::string::npos) << log();
+}
+
 TEST_F(Cli, DefaultOutputNameFollowsTheScene) {
   ASSERT_EQ(run("scene.yaml --width 8 --height 8 -q"), 0) << log();
   EXPECT_TRUE(fs::exists(dir_ / "scene.png"));

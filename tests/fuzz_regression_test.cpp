@@ -31,6 +31,7 @@ int replay(const std::string& kind, Entry entry) {
 }
 
 TEST(FuzzRegression, SceneInputs) { EXPECT_GT(replay("scene", &fuzz::scene_input), 5); }
+TEST(FuzzRegression, PovInputs) { EXPECT_GT(replay("pov", &fuzz::pov_input), 4); }
 TEST(FuzzRegression, ObjInputs) { EXPECT_GT(replay("obj", &fuzz::obj_input), 5); }
 TEST(FuzzRegression, PlyInputs) { EXPECT_GT(replay("ply", &fuzz::ply_input), 5); }
 TEST(FuzzRegression, ExpressionInputs) { EXPECT_GT(replay("expression", &fuzz::expression_input), 5); }
@@ -43,6 +44,8 @@ TEST(FuzzRegression, ValidSeedsAreAccepted) {
   };
   const fs::path corpus = fs::path(STRAHL_SOURCE_DIR) / "tests" / "fuzz" / "corpus";
   EXPECT_TRUE(accepted(&fuzz::scene_input, corpus / "scene" / "lecture-whitted.yaml"));
+  for (const char* pov : {"lecture.pov", "shapes.pov", "csg.pov", "directives.pov", "meshes.pov"})
+    EXPECT_TRUE(accepted(&fuzz::pov_input, corpus / "pov" / pov)) << pov;
   EXPECT_TRUE(accepted(&fuzz::obj_input, corpus / "obj" / "quad-normals-uv.obj"));
   EXPECT_TRUE(accepted(&fuzz::obj_input, corpus / "obj" / "icosahedron.obj"));
   EXPECT_TRUE(accepted(&fuzz::ply_input, corpus / "ply" / "binary_big_endian-quad.ply"));

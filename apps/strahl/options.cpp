@@ -1,7 +1,9 @@
 #include "options.h"
 
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "strahl/accel/accel.h"
@@ -86,7 +88,27 @@ ParseResult parse_options(int argc, char** argv, const char* program, const std:
   CLI::App app{"strahl — a Whitted-style ray tracer. Renders a scene file (.yaml/.json), or the lecture's scene "
                "when none is given.",
                program};
-  app.add_option("scene", o.scene, "Scene file (.yaml, .yml, .json); omitted: the built-in lecture scene");
+  app.add_option("scene", o.scene,
+                 "Scene file (.yaml, .yml, .json, or a POV-Ray scene .pov: docs/pov-import.md); omitted: the built-in "
+                 "lecture scene");
+  app.add_option_function<std::vector<std::string>>(
+         "--declare",
+         [&o](const std::vector<std::string>& all) {
+           for (const std::string& d : all) o.declares.emplace_back(d.substr(0, d.find('=')), std::stod(d.substr(d.find('=') + 1)));
+         },
+         "NAME=VALUE: declare a float in a .pov scene before it is read (POV-Ray's Declare=NAME=VALUE); repeatable")
+      ->check([](const std::string& d) -> std::string {
+        const std::size_t eq = d.find('=');
+        if (eq == std::string::npos || eq == 0) return "expected NAME=VALUE, got '" + d + "'";
+        for (std::size_t i = 0; i < eq; ++i)
+          if (!(std::isalnum(static_cast<unsigned char>(d[i])) || d[i] == '_') || (i == 0 && std::isdigit(static_cast<unsigned char>(d[0]))))
+            return "'" + d.substr(0, eq) + "' is not a POV-Ray name (letters, digits, _)";
+        const std::string v = d.substr(eq + 1);
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (v.empty() || end != v.c_str() + v.size() || !std::isfinite(x)) return "'" + v + "' is not a number";
+        return {};
+      });
   app.add_option("-o,--output", o.output,
                  "Output image; the format follows the extension: .png .jpg/.jpeg .ppm (8-bit sRGB), .pfm .exr (linear "
                  "float). Default: <scene>.png");

@@ -5,6 +5,7 @@
 #include <optional>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CLI {
@@ -16,6 +17,7 @@ namespace strahl::cli {
 struct Options {
   std::string scene;   // empty: the built-in lecture scene
   std::string output;  // empty: <scene name>.png in the current directory
+  std::vector<std::pair<std::string, double>> declares;  // --declare NAME=VALUE (.pov scenes)
   std::optional<int> width, height, max_depth, supersample;
   std::optional<std::string> accel;
   // Sampling and output (issue 4).

@@ -33,7 +33,11 @@ std::string output_path(const Options& o) {
 }
 
 Scene configured_scene(const Options& o) {
-  Scene scene = o.scene.empty() ? lecture_scene() : load_scene(o.scene);
+  PovOptions pov;
+  if (o.width) pov.width = *o.width;
+  if (o.height) pov.height = *o.height;
+  pov.declares = o.declares;
+  Scene scene = o.scene.empty() ? lecture_scene() : load_scene(o.scene, pov);
   if (o.width) scene.settings.width = *o.width;
   if (o.height) scene.settings.height = *o.height;
   if (o.max_depth) scene.settings.max_depth = *o.max_depth;

@@ -6,6 +6,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cmath>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -717,10 +718,17 @@ void bind_scene_class(py::module_& m) {
       });
 
   m.def("lecture_scene", &lecture_scene, "The lecture's scene (five spheres, a plane, one light): what `strahl` renders without a scene file.");
-  m.def("load", [](const std::filesystem::path& path) {
-    return interruptible<Scene>([&] { return load_scene(path); });
-  }, py::arg("path"), "Reads a scene file (.yaml, .yml, .json); errors raise strahl.Error with file, line and column. Ctrl-C "
-  "(KeyboardInterrupt) stops it.");
+  m.def("load", [](const std::filesystem::path& path, int width, int height, const std::map<std::string, double>& declare) {
+    PovOptions pov;
+    pov.width = width;
+    pov.height = height;
+    pov.declares.assign(declare.begin(), declare.end());
+    return interruptible<Scene>([&] { return load_scene(path, pov); });
+  }, py::arg("path"), py::kw_only(), py::arg("width") = PovOptions{}.width, py::arg("height") = PovOptions{}.height,
+  py::arg("declare") = std::map<std::string, double>{},
+  "Reads a scene file (.yaml, .yml, .json, or a POV-Ray scene .pov: docs/pov-import.md); errors raise strahl.Error with "
+  "file, line and column. Ctrl-C (KeyboardInterrupt) stops it. For a .pov scene, width and height are its image_width "
+  "and image_height (and the render's size) and declare its Declare=NAME=VALUE floats, e.g. {\"WHITTED\": 1}.");
   m.def("loads", [](const std::string& text, const std::string& name, const std::filesystem::path& base_dir) {
     return interruptible<Scene>([&] { return parse_scene(text, name, base_dir); });
   }, py::arg("text"), py::arg("name") = "<string>", py::arg("base_dir") = ".",

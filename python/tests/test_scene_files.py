@@ -96,3 +96,20 @@ def test_save_refuses_bad_paths(tmp_path):
     with pytest.raises(strahl.Error):
         scene.save(tmp_path / "missing-dir" / "x.yaml")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_pov_ray_scenes_load_with_their_size_and_declared_names(tmp_path, source_dir):
+    lecture = f"{source_dir}/scenes/lecture.pov"
+    whitted = strahl.load(lecture, width=32, height=18, declare={"WHITTED": 1})
+    twin = strahl.render(strahl.load(f"{source_dir}/scenes/lecture-whitted.yaml"), width=32, height=18)
+    assert (whitted.settings.width, whitted.settings.height) == (32, 18)
+    assert np.array_equal(strahl.render(whitted), twin)
+    assert not np.array_equal(strahl.render(strahl.load(lecture, width=32, height=18)), twin)
+    # Errors name the .pov file's line and column; saved, the scene is strahl's YAML.
+    bad = tmp_path / "bad.pov"
+    bad.write_text("sphere { 0, 1 }\nsphere { 0, -1 }\n")
+    with pytest.raises(strahl.Error) as info:
+        strahl.load(bad)
+    assert (info.value.file, info.value.line, info.value.column) == (str(bad), 2, 1)
+    whitted.save(tmp_path / "whitted.yaml")
+    assert np.array_equal(strahl.render(strahl.load(tmp_path / "whitted.yaml")), twin)

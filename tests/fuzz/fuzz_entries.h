@@ -20,6 +20,7 @@
 #include "strahl/scene/expression_compiler.h"
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/ply_loader.h"
+#include "strahl/scene/pov/pov_scene.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
 #include "strahl/util/error.h"
@@ -42,6 +43,8 @@ inline Outcome compile_scene(const Scene& scene) {
 // A scene file's text; mesh paths resolve in a directory that does not exist. An accepted scene
 // is also written (scene_to_yaml) and read back: the compiled scenes must be the same (scene_hash),
 // as save_scene promises; a scene the writer refuses (a kind of object files do not have) is fine.
+inline Outcome read_scene(const Scene& scene);
+
 inline Outcome scene_input(const std::uint8_t* data, std::size_t size) {
   Scene scene;
   try {
@@ -50,6 +53,27 @@ inline Outcome scene_input(const std::uint8_t* data, std::size_t size) {
   } catch (const Error&) {
     return Outcome::Refused;
   }
+  return read_scene(scene);
+}
+
+// A POV-Ray scene's text (scene/pov/): translated and read as a scene file's, then the same
+// checks; #include finds nothing (the directory does not exist).
+inline Outcome pov_input(const std::uint8_t* data, std::size_t size) {
+  Scene scene;
+  try {
+    PovOptions options;
+    options.width = 32;
+    options.height = 18;
+    scene = parse_pov_scene(std::string(reinterpret_cast<const char*>(data), size),
+                            "/nonexistent-strahl-fuzz-dir/fuzz.pov", options);
+  } catch (const Error&) {
+    return Outcome::Refused;
+  }
+  return read_scene(scene);
+}
+
+// An accepted scene: compiled, one sample traced, written and read back.
+inline Outcome read_scene(const Scene& scene) {
   std::uint64_t hash = 0;
   RenderScene compiled;
   try {
@@ -61,6 +85,9 @@ inline Outcome scene_input(const std::uint8_t* data, std::size_t size) {
   // One camera sample through the integrator, its ray tree explained (render/explain.h): the
   // centre pixel's.
   (void)explain_pixel(compiled, compiled.camera.nx / 2, compiled.camera.ny / 2);
+  // (A mesh is written to a file of its own beside the scene: no round trip in memory.)
+  for (const auto& o : scene.objects())
+    if (dynamic_cast<const Mesh*>(o.get())) return Outcome::Accepted;
   std::string text;
   try {
     text = scene_to_yaml(scene);

@@ -54,7 +54,8 @@ struct ObjectText {
 
 class Reader {
  public:
-  Reader(std::string name, fs::path base_dir) : name_(std::move(name)), base_dir_(std::move(base_dir)) {}
+  Reader(std::string name, fs::path base_dir, MeshSource meshes)
+      : name_(std::move(name)), base_dir_(std::move(base_dir)), meshes_(std::move(meshes)) {}
 
   // `objects`: when not empty, the text of each element of the top-level objects list, read one
   // at a time (the list itself was blanked out of `root`'s text, line numbers kept).
@@ -523,12 +524,12 @@ class Reader {
     } else if (type == "mesh") {
       keys(n, {"type", "file", "material", "scale", "rotate", "translate", "matrix", "transform", "motion"}, "mesh");
       const YAML::Node f = required(n, "file", "mesh");
-      const fs::path path = base_dir_ / scalar(f, "mesh file");
+      const std::string file = scalar(f, "mesh file");
       const Transform t = placement(n, "mesh ");
       const Material m = object_material(n);
       MeshData data;
       try {
-        data = load_mesh(path);
+        data = meshes_ ? meshes_(file) : load_mesh(base_dir_ / file);
       } catch (const Error& e) {
         fail(f, std::string("mesh: ") + e.what());
       }
@@ -800,6 +801,7 @@ class Reader {
 
   std::string name_;
   fs::path base_dir_;
+  MeshSource meshes_;  // empty: mesh files are read from base_dir_
   std::map<std::string, Material> materials_;
   int line_offset_ = 0;  // of the object being read from its own text
   std::map<std::string, std::uint32_t> group_index_;  // into Scene::groups
@@ -882,7 +884,7 @@ FileLoc second_document(const std::string& text, const std::string& name) {
 }
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& name, const fs::path& base_dir) {
+Scene parse_scene(const std::string& text, const std::string& name, const fs::path& base_dir, const MeshSource& meshes) {
   // yaml-cpp reads a NUL byte as the end of the text: a binary or UTF-16 file would be half read.
   if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
     const std::size_t line_start = text.rfind('\n', nul);
@@ -902,7 +904,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const fs::pa
   }
   if (may_hold_merge_keys(split.objects.empty() ? text : split.rest)) expand_merge_keys(root, name);
   split.rest = std::string();
-  Scene scene = Reader(name, base_dir).read(root, split.objects);
+  Scene scene = Reader(name, base_dir, meshes).read(root, split.objects);
   // A scene is one document; what follows a second `---` would be silently dropped.
   if (const FileLoc second = second_document(text, name); second.line > 0)
     scene.warnings.push_back(second.str() +
@@ -910,11 +912,11 @@ Scene parse_scene(const std::string& text, const std::string& name, const fs::pa
   return scene;
 }
 
-Scene load_scene(const fs::path& path) {
+Scene load_scene(const fs::path& path, const PovOptions& pov) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext != ".yaml" && ext != ".yml" && ext != ".json")
-    throw Error(FileLoc{path.string()}, "unknown scene format '" + ext + "' (use .yaml, .yml or .json)");
+  if (ext != ".yaml" && ext != ".yml" && ext != ".json" && ext != ".pov")
+    throw Error(FileLoc{path.string()}, "unknown scene format '" + ext + "' (use .yaml, .yml, .json or .pov)");
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error(FileLoc{path.string()}, "cannot open scene file (no such file)");
   if (fs::is_directory(path, ec)) throw Error(FileLoc{path.string()}, "is a directory, not a scene file");
@@ -926,7 +928,7 @@ Scene load_scene(const fs::path& path) {
   Scene scene = [&] {
     std::ostringstream text;
     text << in.rdbuf();
-    return parse_scene(text.str(), path.string(), path.parent_path());
+    return ext == ".pov" ? parse_pov_scene(text.str(), path.string(), pov) : parse_scene(text.str(), path.string(), path.parent_path());
   }();
   give_back_free_heap();  // the text's and the parser's memory (util/large_pages.h)
   return scene;

@@ -1,0 +1,92 @@
+#pragma once
+// The POV-Ray importer's parser: directives (#declare, #if, #while, #for, #include …), float
+// and vector expressions, and the scene's items, read into the plain records below. The
+// translation into strahl's scene format (pov_scene.cpp) reads these records.
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "strahl/scene/mesh_data.h"
+#include "strahl/scene/pov/pov_scene.h"
+#include "strahl/util/error.h"
+
+namespace strahl::pov {
+
+using Color = std::array<double, 5>;  // red, green, blue, filter, transmit
+using Vector = std::array<double, 3>;
+
+struct Pigment {
+  Color color{};  // POV-Ray's default pigment is black
+  bool checker = false;
+  Color color2{};
+  double scale = 1;  // the checker's square size
+};
+
+// POV-Ray's default finish.
+struct Finish {
+  double ambient = 0.1, diffuse = 0.6, specular = 0, roughness = 0.05, reflection = 0;
+  double phong = 0, phong_size = 40;
+  bool fresnel = false;
+};
+
+struct Interior {
+  double ior = 1;
+  bool fresnel = false;
+};
+
+struct Texture {
+  bool has_pigment = false, has_finish = false, has_interior = false;
+  Pigment pigment;
+  Finish finish;
+  Interior interior;
+  bool given() const { return has_pigment || has_finish || has_interior; }
+};
+
+// A shape or CSG node: its strahl type, its own keys as YAML text, transform steps in order.
+struct Object {
+  std::string type;
+  FileLoc loc;
+  std::string keys;                // ", center: [0, 1, 0], radius: 0.5"
+  std::vector<std::string> steps;  // "{translate: [1, 0, 0]}", applied in this order
+  std::vector<Object> children;    // union, intersection, difference, merge
+  Texture texture;
+  bool inverse = false;
+  int mesh = -1;                   // index in Parsed::meshes
+};
+
+struct Light {
+  Vector position{};
+  Color color{1, 1, 1, 0, 0};
+  FileLoc loc;
+};
+
+struct Camera {
+  Vector location{0, 0, 0}, look_at{0, 0, 1}, right{1.33, 0, 0}, up{0, 1, 0}, direction{0, 0, 1}, sky{0, 1, 0};
+  bool has_look_at = false, has_angle = false;
+  double angle = 0;
+  double aperture = 0;
+  bool has_focal_point = false;
+  Vector focal_point{};
+  int blur_samples = 0;
+  FileLoc loc;
+};
+
+struct Parsed {
+  Camera camera;
+  std::vector<Light> lights;
+  std::vector<Object> objects;
+  std::vector<MeshData> meshes;
+  std::vector<std::string> warnings;
+  Color background{};
+  Color ambient_light{1, 1, 1, 0, 0};
+  int max_trace_level = 5;
+  Texture default_texture;
+};
+
+// Reads `text` (the file `name`: #include finds files beside it) and what it includes. Throws
+// strahl::Error at the offending file:line:column.
+Parsed parse_pov(const std::string& text, const std::string& name, const PovOptions& options);
+
+}  // namespace strahl::pov

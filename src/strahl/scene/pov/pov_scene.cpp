@@ -1,0 +1,227 @@
+// POV-Ray scenes in strahl's format (pov_scene.h): the parsed records (pov_reader.h) written as
+// the YAML that docs/scene-format.md describes, one line per item so that the reader's errors
+// and warnings can be given the .pov location of the item they concern.
+
+#include "strahl/scene/pov/pov_scene.h"
+
+#include <cmath>
+
+#include "strahl/scene/pov/pov_reader.h"
+#include "strahl/scene/scene_file.h"
+#include "strahl/util/number_syntax.h"
+
+namespace strahl {
+namespace {
+
+namespace fs = std::filesystem;
+using pov::Color;
+using pov::Vector;
+
+std::string fmt(double v) { return number::shortest(v); }
+std::string vec(const Vector& v) { return "[" + fmt(v[0]) + ", " + fmt(v[1]) + ", " + fmt(v[2]) + "]"; }
+std::string rgb(const Color& c) { return "[" + fmt(c[0]) + ", " + fmt(c[1]) + ", " + fmt(c[2]) + "]"; }
+double length(const Vector& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+Vector minus(const Vector& a, const Vector& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vector cross(const Vector& a, const Vector& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vector& a, const Vector& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+class Writer {
+ public:
+  explicit Writer(pov::Parsed& parsed, const PovOptions& options) : p_(parsed), options_(options) {}
+
+  PovTranslation run() {
+    t_.warnings = std::move(p_.warnings);
+    const pov::Camera& c = p_.camera;
+    // POV-Ray's camera is left-handed (its image the mirror image of strahl's right-handed
+    // {u, v, w} camera's) where (up × direction)·right > 0, as by default: then the whole scene
+    // is mirrored in x, the camera with it, which gives POV-Ray's picture.
+    mirror_ = dot(cross(c.up, c.direction), c.right) > 0;
+    camera();
+    render();
+    line("lights:", {});
+    if (p_.lights.empty()) t_.yaml.back() = ' ', t_.yaml += "[]\n";
+    for (const pov::Light& l : p_.lights)
+      line("  - {type: point, position: " + vec(mirrored(l.position)) + ", color: " + rgb(l.color) + "}", l.loc);
+    line("objects:", {});
+    if (p_.objects.empty()) t_.yaml.back() = ' ', t_.yaml += "[]\n";
+    for (const pov::Object& o : p_.objects) line("  - " + object(o, &p_.default_texture), o.loc);
+    t_.meshes = std::move(p_.meshes);
+    return std::move(t_);
+  }
+
+ private:
+  void line(const std::string& text, const FileLoc& loc) {
+    t_.yaml += text + "\n";
+    t_.line_locs.push_back(loc);
+  }
+
+  void camera() {
+    const pov::Camera& c = p_.camera;
+    // POV-Ray's camera ray: direction + s·right + t·up, s and t in [−1/2, 1/2]; `angle` sets
+    // |direction| = |right|/2 / tan(angle/2).
+    const double right = length(c.right), up = length(c.up);
+    const double d = c.has_angle ? right / 2 / std::tan(c.angle * 3.14159265358979323846 / 360) : length(c.direction);
+    const Vector look_at = c.has_look_at ? c.look_at : Vector{c.location[0] + c.direction[0], c.location[1] + c.direction[1], c.location[2] + c.direction[2]};
+    std::string s = "camera: {position: " + vec(mirrored(c.location)) + ", look_at: " + vec(mirrored(look_at)) +
+                    ", up: " + vec(mirrored(c.has_look_at ? c.sky : c.up));
+    const double aspect = double(options_.width) / options_.height;
+    if (c.has_angle && std::fabs(right / up - aspect) <= 1e-12 * aspect) {
+      s += ", fov: " + fmt(c.angle) + ", fov_axis: horizontal";
+    } else {
+      s += ", image_plane: {l: " + fmt(-right / 2) + ", r: " + fmt(right / 2) + ", b: " + fmt(-up / 2) + ", t: " + fmt(up / 2) +
+           ", d: " + fmt(d) + "}";
+    }
+    if (c.aperture > 0 && c.has_focal_point) {
+      // POV-Ray's lens offsets are aperture/2 times points of a disc of radius 1/2 (its
+      // JitterCameraRay): a thin lens of radius aperture/4, focused at |focal_point − location|.
+      s += ", aperture: " + fmt(c.aperture / 4) + ", focus_distance: " + fmt(length(minus(c.focal_point, c.location)));
+    }
+    line(s + "}", c.loc);
+  }
+
+  void render() {
+    int depth = p_.max_trace_level;
+    if (depth < 1 || depth > 64) {
+      t_.warnings.push_back("max_trace_level " + std::to_string(depth) + " is drawn as max_depth " + (depth < 1 ? "1" : "64"));
+      depth = depth < 1 ? 1 : 64;
+    }
+    std::string s = "render: {width: " + std::to_string(options_.width) + ", height: " + std::to_string(options_.height) +
+                    ", max_depth: " + std::to_string(depth) + ", ambient_light: " + rgb(p_.ambient_light) +
+                    ", background: " + rgb(p_.background);
+    if (p_.camera.aperture > 0 && p_.camera.blur_samples > 0)
+      s += ", sampler: stratified, spp: " + std::to_string(p_.camera.blur_samples);
+    line(s + "}", {});
+  }
+
+  std::string material(const pov::Texture& t, const FileLoc& loc) {
+    const pov::Pigment& p = t.pigment;
+    const pov::Finish& f = t.finish;
+    const bool phong = f.phong > 0 && f.specular == 0;
+    std::string s = "{color: " + rgb(p.color) + ", ambient: " + fmt(f.ambient) + ", diffuse: " + fmt(f.diffuse) +
+                    ", specular: " + fmt(phong ? f.phong : f.specular) +
+                    ", shininess: " + fmt(phong ? 4 * f.phong_size : 1 / f.roughness);
+    if (f.reflection != 0) s += ", reflectivity: " + fmt(f.reflection);
+    const double filter = p.color[3], transmit = p.color[4];
+    if (filter + transmit != 0) {
+      s += ", transparency: " + fmt(filter + transmit);
+      if (filter > 0) s += ", filter: true";
+      if (filter > 0 && transmit > 0)
+        warn(loc, "a pigment's filter and transmit together are drawn as filter (strahl tints all transmitted light)");
+    }
+    if (t.interior.ior != 1) s += ", ior: " + fmt(t.interior.ior);
+    if (f.fresnel || t.interior.fresnel) s += ", fresnel: true";
+    if (p.checker) s += ", checker: {size: " + fmt(p.scale) + ", color: " + rgb(p.color2) + "}";
+    return s + "}";
+  }
+
+  void warn(const FileLoc& loc, const std::string& message) { t_.warnings.push_back(loc.str() + ": " + message); }
+
+  // An object as a YAML flow map. `texture`: the material of the outermost node (CSG operands
+  // have none of their own in strahl's format).
+  std::string object(const pov::Object& o, const pov::Texture* fallback) {
+    const pov::Texture* texture = o.texture.given() ? &o.texture : first_operand_texture(o);
+    if (!texture) texture = fallback;
+    check_operand_textures(o, true);
+    std::string s = shape(o, mirror_ ? "{scale: [-1, 1, 1]}" : "");
+    if (o.inverse) s = "{type: inverse, objects: [" + s + "]";
+    else s.pop_back();  // its '}'
+    return s + ", material: " + material(*texture, o.loc) + "}";
+  }
+
+  Vector mirrored(const Vector& v) const { return mirror_ ? Vector{0 - v[0], v[1], v[2]} : v; }  // (0 − 0 = +0)
+
+  // `last_step`: a step after the object's own (the mirror), for the outermost node.
+  std::string shape(const pov::Object& o, const std::string& last_step = "") {
+    std::string s = "{type: " + o.type;
+    if (o.mesh >= 0) s += ", file: pov-mesh-" + std::to_string(o.mesh);
+    s += o.keys;
+    if (!o.children.empty()) {
+      s += ", objects: [";
+      for (std::size_t i = 0; i < o.children.size(); ++i) {
+        const pov::Object& c = o.children[i];
+        s += (i ? ", " : "") + (c.inverse ? "{type: inverse, objects: [" + shape(c) + "]}" : shape(c));
+      }
+      s += "]";
+    }
+    std::vector<std::string> steps = o.steps;
+    if (!last_step.empty()) steps.push_back(last_step);
+    if (!steps.empty()) {
+      s += ", transform: [";
+      for (std::size_t i = 0; i < steps.size(); ++i) s += (i ? ", " : "") + steps[i];
+      s += "]";
+    }
+    return s + "}";
+  }
+
+  static const pov::Texture* first_operand_texture(const pov::Object& o) {
+    for (const pov::Object& c : o.children) {
+      if (c.texture.given()) return &c.texture;
+      if (const pov::Texture* t = first_operand_texture(c)) return t;
+    }
+    return nullptr;
+  }
+  void check_operand_textures(const pov::Object& o, bool outermost) {
+    if (!outermost && o.texture.given() && !warned_operands_) {
+      warned_operands_ = true;
+      warn(o.loc, "CSG operands' own textures are left out: strahl gives a CSG tree one material (the outermost "
+                  "node's, else its first operand's)");
+    }
+    for (const pov::Object& c : o.children) check_operand_textures(c, false);
+  }
+
+  pov::Parsed& p_;
+  const PovOptions& options_;
+  PovTranslation t_;
+  bool warned_operands_ = false;
+  bool mirror_ = false;
+};
+
+// "NAME:LINE:COLUMN: message" of the YAML text → the .pov location of that line's item.
+std::string relocate(const std::string& message, const std::string& name, const std::vector<FileLoc>& locs) {
+  const std::string prefix = name + ":";
+  if (message.rfind(prefix, 0) != 0) return message;
+  std::size_t i = prefix.size(), line = 0;
+  while (i < message.size() && std::isdigit(static_cast<unsigned char>(message[i]))) line = line * 10 + std::size_t(message[i++] - '0');
+  if (i < message.size() && message[i] == ':') {
+    ++i;
+    while (i < message.size() && std::isdigit(static_cast<unsigned char>(message[i]))) ++i;
+  }
+  if (message.compare(i, 2, ": ") != 0) return message;
+  const FileLoc loc = line >= 1 && line <= locs.size() ? locs[line - 1] : FileLoc{};
+  return (loc.file.empty() ? name : loc.str()) + message.substr(i);
+}
+
+}  // namespace
+
+PovTranslation translate_pov(const std::string& text, const std::string& name, const PovOptions& options) {
+  pov::Parsed parsed = pov::parse_pov(text, name, options);
+  return Writer(parsed, options).run();
+}
+
+Scene parse_pov_scene(const std::string& text, const std::string& pov_name, const PovOptions& options) {
+  PovTranslation t = translate_pov(text, pov_name, options);
+  const std::string name = pov_name + " (as YAML)";
+  MeshSource meshes = [&](const std::string& file) -> MeshData {
+    const std::string prefix = "pov-mesh-";
+    const std::size_t i = file.rfind(prefix, 0) == 0 ? std::stoul(file.substr(prefix.size())) : t.meshes.size();
+    if (i >= t.meshes.size()) throw Error("no such mesh");
+    return std::move(t.meshes[i]);
+  };
+  try {
+    Scene scene = parse_scene(t.yaml, name, fs::path(pov_name).parent_path(), meshes);
+    for (std::string& w : scene.warnings) w = relocate(w, name, t.line_locs);
+    scene.warnings.insert(scene.warnings.begin(), t.warnings.begin(), t.warnings.end());
+    return scene;
+  } catch (const Error& e) {
+    const FileLoc loc = e.loc().file == name && e.loc().line >= 1 && std::size_t(e.loc().line) <= t.line_locs.size()
+                            ? t.line_locs[std::size_t(e.loc().line - 1)]
+                            : FileLoc{};
+    if (loc.file.empty()) throw Error(relocate(e.what(), name, t.line_locs));
+    const std::string what = e.what(), prefix = e.loc().str() + ": ";
+    throw Error(loc, what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
+  }
+}
+
+}  // namespace strahl

@@ -1,0 +1,8 @@
+// libFuzzer target: the POV-Ray importer, then the scene reader and compile() (see fuzz_entries.h,
+// docs/testing.md).
+#include "fuzz_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  (void)strahl::fuzz::pov_input(data, size);
+  return 0;
+}

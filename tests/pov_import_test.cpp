@@ -1,0 +1,239 @@
+// The POV-Ray importer (scene/pov/): the benchmark's POV-Ray scenes read into the same pictures
+// as their YAML twins, pixel for pixel; POV-Ray's left-handed camera; its directives and
+// expressions; its texture rules; errors and warnings at the .pov file's line and column.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "strahl/scene/csg.h"
+#include "strahl/scene/pov/pov_scene.h"
+#include "strahl/scene/scene_file.h"
+#include "test_helpers.h"
+
+namespace strahl::pov_import_test {
+namespace {
+
+const fs::path kSource = STRAHL_SOURCE_DIR;
+
+Scene pov_scene(const std::string& text, int width = 48, int height = 36, const std::string& name = "test.pov") {
+  PovOptions o;
+  o.width = width;
+  o.height = height;
+  return parse_pov_scene(text, name, o);
+}
+
+// (With a right-handed camera: nothing mirrored.)
+std::string yaml_of(const std::string& text) {
+  return translate_pov("camera { right -x * 4 / 3 }\n" + text, "test.pov", PovOptions{}).yaml;
+}
+
+std::string pov_error(const std::string& text, const std::string& name = "test.pov") {
+  try {
+    (void)compile(pov_scene(text, 48, 36, name));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::size_t count(const std::string& haystack, const std::string& needle) {
+  std::size_t n = 0;
+  for (std::size_t i = haystack.find(needle); i != std::string::npos; i = haystack.find(needle, i + 1)) ++n;
+  return n;
+}
+
+// The benchmark's POV-Ray scenes (bench/povray-*.sh render them in POV-Ray) and their YAML
+// twins, written by hand to match: the same image, every pixel bit for bit.
+TEST(PovImport, TheBenchmarkScenesAreTheirYamlTwinsPixelForPixel) {
+  struct Case {
+    const char* pov;
+    const char* yaml;
+    double whitted;
+  };
+  for (const Case& c : {Case{"scenes/lecture.pov", "scenes/lecture.yaml", 0}, Case{"scenes/lecture.pov", "scenes/lecture-whitted.yaml", 1},
+                        Case{"bench/shapes.pov", "scenes/shapes-pov.yaml", 0}, Case{"bench/csg.pov", "scenes/csg-pov.yaml", 0},
+                        Case{"bench/plate.pov", "scenes/plate-pov.yaml", 0}}) {
+    SCOPED_TRACE(c.pov + std::string(" vs ") + c.yaml);
+    PovOptions o;
+    o.width = 96;
+    o.height = 54;
+    if (c.whitted != 0) o.declares.emplace_back("WHITTED", c.whitted);
+    const Scene from_pov = load_scene(kSource / c.pov, o);
+    Scene from_yaml = load_scene(kSource / c.yaml);
+    from_yaml.settings.width = 96;
+    from_yaml.settings.height = 54;
+    EXPECT_TRUE(from_pov.warnings.empty()) << from_pov.warnings.front();
+    const Image a = test::render_image(from_pov, 2), b = test::render_image(from_yaml, 2);
+    EXPECT_EQ(test::max_abs_diff(a, b), 0.0f);
+  }
+}
+
+// POV-Ray's default camera is left-handed: +x is to the right looking down +z. The importer
+// mirrors the scene (and the camera) in x, so the picture is POV-Ray's: a sphere at +x appears
+// on the right; with `right -x` (right-handed) on the left; and the left-handed picture is the
+// right-handed one of the scene mirrored by hand, bit for bit.
+TEST(PovImport, ALeftHandedCameraSeesPovRaysPicture) {
+  auto render = [&](const std::string& right, double x) {
+    return test::render_image(pov_scene("camera { location <0, 0, -5> look_at <0, 0, 0> " + right + " }\n"
+                                        "light_source { <0, 0, -10> color rgb 1 }\n"
+                                        "sphere { <" + std::to_string(x) + ", 0.3, 0>, 0.6 pigment { color rgb 1 } "
+                                        "finish { ambient 1 diffuse 0 } }\n",
+                                        64, 48));
+  };
+  // The columns of the sphere's pixels (ambient 1: exactly 1).
+  auto lit_columns = [](const Image& im) {
+    std::pair<int, int> span{im.width(), -1};
+    for (int y = 0; y < im.height(); ++y)
+      for (int x = 0; x < im.width(); ++x)
+        if (im.at(x, y).r == 1.0f) span = {std::min(span.first, x), std::max(span.second, x)};
+    return span;
+  };
+  EXPECT_GT(lit_columns(render("", 1.5)).first, 32) << "the sphere at +x is in the right half";
+  const Image left = render("right x*4/3", 1.5);  // (the default right is <1.33, 0, 0>)
+  EXPECT_GT(lit_columns(left).first, 32);
+  EXPECT_LT(lit_columns(render("right -x*4/3", 1.5)).second, 32) << "right-handed: in the left half";
+  EXPECT_EQ(test::max_abs_diff(left, render("right -x*4/3", -1.5)), 0.0f);
+}
+
+TEST(PovImport, DirectivesAndExpressions) {
+  const std::string y = yaml_of(
+      "#version 3.7;\n"
+      "#declare A = 2;\n"
+      "#declare V = <1, 2, 3> * A;\n"
+      "#if (A > 1) sphere { V, 1 } #else sphere { 0, 9 } #end\n"
+      "#if (A < 1) sphere { 0, 7 } #elseif (A = 2) sphere { 0, 0.25 } #else sphere { 0, 8 } #end\n"
+      "#ifndef (B) #declare B = 5; #end\n"
+      "#ifdef (B) #declare B = B + 1; #end\n"
+      "#for (I, 1, 3) sphere { <I, B, 0>, 0.5 } #end\n"
+      "#declare J = 0;\n"
+      "#while (J < 2) sphere { <0, 0, J>, sqrt(4) } #declare J = J + 1; #end\n"
+      "sphere { <V.y, vlength(<3, 4, 0>), pow(2, 3)>, max(1, 0.5) + (A = 2 ? 1 : 0) }\n"
+      "sphere { <-image_width / 1280, 2 * (1 + 2), radians(180) / pi>, 1 }\n"
+      "/* a /* nested */ comment */ // and a line comment\n");
+  EXPECT_EQ(count(y, "type: sphere"), 9u) << y;
+  for (const char* s : {"center: [2, 4, 6], radius: 1,", "center: [0, 0, 0], radius: 0.25,", "center: [1, 6, 0], radius: 0.5",
+                        "center: [3, 6, 0]", "center: [0, 0, 1], radius: 2", "center: [4, 5, 8], radius: 2",
+                        "center: [-1, 6, 1], radius: 1"})
+    EXPECT_NE(y.find(s), std::string::npos) << s << " in\n" << y;
+  EXPECT_EQ(y.find("radius: 9"), std::string::npos);
+  EXPECT_EQ(y.find("radius: 7"), std::string::npos);
+}
+
+// POV-Ray's texture rules: the default texture (black, ambient 0.1, diffuse 0.6, no highlight);
+// a union is a group whose parts take its transforms after their own and its texture where they
+// have none; rgbf is filtered transparency; roughness is 1/shininess; declared textures.
+TEST(PovImport, TexturesAndUnionsFollowPovRaysRules) {
+  const std::string y = yaml_of(
+      "#declare T = texture { pigment { color rgbf <0.7, 0.7, 1, 0.9> } finish { specular 0.6 roughness 0.01 "
+      "reflection { 0.1 } } }\n"
+      "sphere { 0, 1 }\n"
+      "union {\n"
+      "  sphere { <1, 0, 0>, 1 }\n"
+      "  sphere { <2, 0, 0>, 1 pigment { color rgb <0, 1, 0> } scale 2 }\n"
+      "  translate <0, 1, 0> pigment { color red 1 } }\n"
+      "sphere { 0, 1 texture { T } interior { ior 1.5 } }\n"
+      "plane { <0, 2, 0>, 1 pigment { checker color rgb 1, color rgb 0.1 scale 0.5 } }\n");
+  EXPECT_NE(y.find("{type: sphere, center: [0, 0, 0], radius: 1, material: {color: [0, 0, 0], ambient: 0.1, diffuse: 0.6, "
+                   "specular: 0, shininess: 20}}"),
+            std::string::npos)
+      << y;
+  EXPECT_NE(y.find("center: [1, 0, 0], radius: 1, transform: [{translate: [0, 1, 0]}], material: {color: [1, 0, 0]"),
+            std::string::npos)
+      << y;
+  EXPECT_NE(y.find("center: [2, 0, 0], radius: 1, transform: [{scale: [2, 2, 2]}, {translate: [0, 1, 0]}], material: "
+                   "{color: [0, 1, 0]"),
+            std::string::npos)
+      << y;
+  EXPECT_NE(y.find("material: {color: [0.7, 0.7, 1], ambient: 0.1, diffuse: 0.6, specular: 0.6, shininess: 100, "
+                   "reflectivity: 0.1, transparency: 0.9, filter: true, ior: 1.5}"),
+            std::string::npos)
+      << y;
+  // POV-Ray's plane {N, d} lies d along the unit normal.
+  EXPECT_NE(y.find("{type: plane, normal: [0, 1, 0], distance: 1, material: {color: [1, 1, 1]"), std::string::npos) << y;
+  EXPECT_NE(y.find("checker: {size: 0.5, color: [0.1, 0.1, 0.1]}"), std::string::npos) << y;
+}
+
+TEST(PovImport, MeshesAndIncludes) {
+  const test::TempDir dir;
+  test::write_text(dir / "quad.inc",
+                   "#declare Q = mesh2 {\n"
+                   "  vertex_vectors { 4, <0, 0, 0>, <1, 0, 0>, <1, 1, 0>, <0, 1, 0> }\n"
+                   "  normal_vectors { 4, <0, 0, -1>, <0, 0, -1>, <0, 0, -1>, <0, 0, -1> }\n"
+                   "  face_indices { 2, <0, 1, 2>, <0, 2, 3> }\n"
+                   "}\n");
+  test::write_text(dir / "main.pov",
+                   "#include \"quad.inc\"\n"
+                   "object { Q pigment { color rgb 1 } translate <0, 0, 1> }\n"
+                   "mesh { triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> } smooth_triangle { <0, 0, 0>, <0, 0, 1>, "
+                   "<1, 0, 0>, <0, 0, 1>, <0, 1, 0>, <0, 0, 1> } }\n");
+  const Scene s = load_scene(dir / "main.pov");
+  const RenderScene rs = compile(s);
+  EXPECT_EQ(rs.triangles.size(), 4u);
+  ASSERT_EQ(s.objects().size(), 2u);
+  const auto* quad = dynamic_cast<const Mesh*>(s.objects()[0].get());
+  ASSERT_NE(quad, nullptr);
+  EXPECT_EQ(quad->data.faces.size(), 2u);
+  EXPECT_EQ(quad->data.faces[1].n[2], 3);
+  EXPECT_EQ(quad->transform.translate, Vec3(0, 0, 1));
+
+  test::write_text(dir / "loop.pov", "#include \"loop.pov\"\n");
+  EXPECT_NE(pov_error(test::read_text(dir / "loop.pov"), (dir / "loop.pov").string()).find("more than 256 #include"),
+            std::string::npos);
+}
+
+TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
+  struct Case {
+    const char* text;
+    const char* message;
+  };
+  for (const Case& c : {
+           Case{"sphere { <0, 0, 0> 1 }", "test.pov:1:20: expected ',' after the sphere's centre, found the number 1"},
+           Case{"sphere { 0, 1 }\nsky_sphere { }", "test.pov:2:1: 'sky_sphere' is not supported by strahl's POV-Ray importer"},
+           Case{"sphere { 0, 1 }\n  sphere { 0, -1 }", "test.pov:2:3: sphere radius must be positive (got -1)"},
+           Case{"sphere { 0, 1 bozo }", "test.pov:1:15: 'bozo' in sphere is not supported"},
+           Case{"sphere { 0, 1 pigment { bozo } }", "test.pov:1:25: 'bozo' in pigment is not supported"},
+           Case{"#if (1)\nsphere { 0, 1 }", "test.pov:1:1: this #if has no #end"},
+           Case{"#if (0)\nsphere { 0, 1 }", "test.pov:1:1: this #if has no #end"},
+           Case{"#end", "test.pov:1:1: #end without #if, #while or #for"},
+           Case{"#while (1) #end", "test.pov:1:1: more than 1000000 loop iterations"},
+           Case{"#macro M() #end", "test.pov:1:1: #macro is not supported"},
+           Case{"sphere { Q, 1 }", "test.pov:1:10: unknown name 'Q' (not declared)"},
+           Case{"#include \"nothere.inc\"", "test.pov:1:10: #include \"nothere.inc\": no such file"},
+           Case{"/* open", "test.pov:1:1: this comment is never closed"},
+           Case{"sphere { 0, 1 }\n\"", "test.pov:2:1: this string is never closed"},
+           Case{"sphere { 0, 1 } $", "test.pov:1:17: unexpected character '$'"},
+           Case{"sphere { 0, 1 } \x01", "test.pov:1:17: unexpected byte 1"},
+           Case{"sphere { 0, 1e999 }", "test.pov:1:13: number '1e999' is out of range"},
+           Case{"camera { location 0 look_at 0 }", "test.pov:1:1: camera position and look_at coincide"},
+           Case{"sphere { 0, 1 scale <1, 0, 1> }", "test.pov:1:1: "},
+           Case{"#error \"stop here\"", "test.pov:1:1: #error: stop here"},
+       }) {
+    SCOPED_TRACE(c.text);
+    EXPECT_NE(pov_error(c.text).find(c.message), std::string::npos) << pov_error(c.text);
+  }
+  // Nesting is bounded (no stack overflow): parentheses, signs, objects in objects.
+  EXPECT_NE(pov_error("sphere { 0, " + std::string(5000, '(') + "1 }").find("nested more than 200 deep"), std::string::npos);
+  EXPECT_NE(pov_error("sphere { 0, " + std::string(5000, '-') + "1 }").find("nested more than 200 deep"), std::string::npos);
+  std::string unions;
+  for (int i = 0; i < 300; ++i) unions += "union { ";
+  EXPECT_NE(pov_error(unions).find("nested more than 200 deep"), std::string::npos);
+  // A NUL byte: not a text file.
+  EXPECT_NE(pov_error(std::string("sphere { 0,\n\0 1 }", 17)).find("test.pov:2: not a text file"), std::string::npos);
+}
+
+TEST(PovImport, WarningsNameWhatIsLeftOut) {
+  const Scene s = pov_scene(
+      "global_settings { assumed_gamma 2.2 }\n"
+      "sphere { 0, 1 pigment { color rgb 1 } finish { phong 0.5 } normal { bumps 0.4 } no_shadow }\n"
+      "difference { sphere { 0, 1 pigment { color rgb 1 } } sphere { <1, 0, 0>, 1 pigment { color rgb 0 } } }\n");
+  std::string all;
+  for (const std::string& w : s.warnings) all += w + "\n";
+  for (const char* w : {"test.pov:1:19: assumed_gamma 2.2 is ignored", "test.pov:2:48: phong is drawn as a Blinn-Phong highlight",
+                        "test.pov:2:60: normal (bump maps) is left out", "test.pov:2:81: no_shadow is left out",
+                        "test.pov:3:14: CSG operands' own textures are left out"})
+    EXPECT_NE(all.find(w), std::string::npos) << w << " in\n" << all;
+}
+
+}  // namespace
+}  // namespace strahl::pov_import_test
