@@ -146,7 +146,7 @@ TEST_F(Cli, ExplainPrintsTheRayTreeAndWritesNothing) {
 // Declare=NAME=VALUE; the picture is its YAML twin's.
 TEST_F(Cli, ReadsPovRayScenesWithDeclaredNames) {
   const fs::path scenes = fs::path(STRAHL_SOURCE_DIR) / "scenes";
-  ASSERT_EQ(run("'" + (scenes / "lecture.pov").string() + "' --declare WHITTED=1 --width 32 --height 18 -q -o out.pfm"), 0)
+  ASSERT_EQ(run("--declare WHITTED=1 '" + (scenes / "lecture.pov").string() + "' --width 32 --height 18 -q -o out.pfm"), 0)
       << log();
   Scene twin = load_scene(scenes / "lecture-whitted.yaml");
   twin.settings.width = 32;

@@ -97,6 +97,7 @@ ParseResult parse_options(int argc, char** argv, const char* program, const std:
            for (const std::string& d : all) o.declares.emplace_back(d.substr(0, d.find('=')), std::stod(d.substr(d.find('=') + 1)));
          },
          "NAME=VALUE: declare a float in a .pov scene before it is read (POV-Ray's Declare=NAME=VALUE); repeatable")
+      ->allow_extra_args(false)
       ->check([](const std::string& d) -> std::string {
         const std::size_t eq = d.find('=');
         if (eq == std::string::npos || eq == 0) return "expected NAME=VALUE, got '" + d + "'";

@@ -35,3 +35,4 @@ def test_python_md_examples_run(source_dir, tmp_path, monkeypatch, capsys):
     assert "bad.yaml 2 47" in out
     assert (tmp_path / "lecture.png").exists() and (tmp_path / "copy.yaml").exists()
     assert (tmp_path / "built.mesh0.obj").exists() and (tmp_path / "built.mesh1.obj").exists()
+    assert (tmp_path / "whitted-from-pov.yaml").exists()

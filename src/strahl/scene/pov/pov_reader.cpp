@@ -23,9 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr long kMaxLoopIterations = 1'000'000;  // #while and #for in all: no hang
 constexpr int kMaxIncludes = 256;
-constexpr std::size_t kMaxObjects = 1'000'000;
 constexpr int kMaxNesting = 200;
 
 // A float (dim 1) or a vector of 2 to 5 components. A float used as a colour sets all five
@@ -271,8 +269,8 @@ class Reader {
   }
 
   void count_iteration(const FileLoc& loc) {
-    if (++iterations_ > kMaxLoopIterations)
-      throw Error(loc, "more than " + std::to_string(kMaxLoopIterations) + " loop iterations (an endless #while?)");
+    if (++iterations_ > options_.max_loop_iterations)
+      throw Error(loc, "more than " + std::to_string(options_.max_loop_iterations) + " loop iterations (an endless #while?)");
   }
 
   bool condition(const Token& d) {
@@ -660,8 +658,8 @@ class Reader {
       for (Object& p : parts) add_top_level(std::move(p), o.steps, o.texture.given() ? &o.texture : nullptr);
       return;
     }
-    if (out_.objects.size() >= kMaxObjects)
-      throw Error(o.loc, "more than " + std::to_string(kMaxObjects) + " objects (strahl's importer's limit)");
+    if (out_.objects.size() >= options_.max_objects)
+      throw Error(o.loc, "more than " + std::to_string(options_.max_objects) + " objects (the importer's limit)");
     out_.objects.push_back(std::move(o));
   }
 

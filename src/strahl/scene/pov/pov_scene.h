@@ -5,6 +5,7 @@
 // warnings name the .pov file's line and column. Meshes (`mesh`, `mesh2`) go to the reader as
 // mesh data, not as YAML text.
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,11 @@ struct PovOptions {
   int width = 1280;   // image_width (POV-Ray's +W) and the render's width
   int height = 720;   // image_height (+H)
   std::vector<std::pair<std::string, double>> declares;  // POV-Ray's Declare=NAME=VALUE
+  // Bounds on what a file can make the importer do (errors past them): loop iterations
+  // (#while and #for together) and objects. A caller reading untrusted files in bounded time
+  // lowers them (the scene reader takes ~0.1 ms per object).
+  long max_loop_iterations = 1'000'000;
+  std::size_t max_objects = 1'000'000;
 };
 
 // The scene in strahl's format: YAML text, where each line came from (the .pov item it
