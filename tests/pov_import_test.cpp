@@ -165,12 +165,13 @@ TEST(PovImport, MeshesAndIncludes) {
   test::write_text(dir / "main.pov",
                    "#include \"quad.inc\"\n"
                    "object { Q pigment { color rgb 1 } translate <0, 0, 1> }\n"
+                   "object { Q translate <0, 0, 2> }\n"  // (a declared mesh used twice)
                    "mesh { triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> } smooth_triangle { <0, 0, 0>, <0, 0, 1>, "
                    "<1, 0, 0>, <0, 0, 1>, <0, 1, 0>, <0, 0, 1> } }\n");
   const Scene s = load_scene(dir / "main.pov");
   const RenderScene rs = compile(s);
-  EXPECT_EQ(rs.triangles.size(), 4u);
-  ASSERT_EQ(s.objects().size(), 2u);
+  EXPECT_EQ(rs.triangles.size(), 6u);
+  ASSERT_EQ(s.objects().size(), 3u);
   const auto* quad = dynamic_cast<const Mesh*>(s.objects()[0].get());
   ASSERT_NE(quad, nullptr);
   EXPECT_EQ(quad->data.faces.size(), 2u);
@@ -208,6 +209,9 @@ TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
            Case{"camera { location 0 look_at 0 }", "test.pov:1:1: camera position and look_at coincide"},
            Case{"sphere { 0, 1 scale <1, 0, 1> }", "test.pov:1:1: "},
            Case{"#error \"stop here\"", "test.pov:1:1: #error: stop here"},
+           // compile()'s own errors, at the item's line and column too.
+           Case{"sphere { 0, 1 }\n  difference { sphere { 0, 1 } box { 0, <1, 0, 1> } }", "test.pov:2:3: box is flat"},
+           Case{"light_source { <0, 0, 0> color rgb -1 }", "test.pov:1:1: light color must not have negative components"},
        }) {
     SCOPED_TRACE(c.text);
     EXPECT_NE(pov_error(c.text).find(c.message), std::string::npos) << pov_error(c.text);

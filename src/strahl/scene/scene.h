@@ -289,6 +289,7 @@ class Scene {
   }
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<FileLoc>& light_locs() const { return light_locs_; }
+  std::vector<FileLoc>& light_locs() { return light_locs_; }  // (one per light; its text may change)
 
   CameraDescription camera;
   RenderSettings settings;

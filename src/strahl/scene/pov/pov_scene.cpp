@@ -4,8 +4,11 @@
 
 #include "strahl/scene/pov/pov_scene.h"
 
+#include <cctype>
 #include <cmath>
+#include <functional>
 
+#include "strahl/scene/csg.h"
 #include "strahl/scene/pov/pov_reader.h"
 #include "strahl/scene/scene_file.h"
 #include "strahl/util/number_syntax.h"
@@ -29,7 +32,8 @@ double dot(const Vector& a, const Vector& b) { return a[0] * b[0] + a[1] * b[1] 
 
 class Writer {
  public:
-  explicit Writer(pov::Parsed& parsed, const PovOptions& options) : p_(parsed), options_(options) {}
+  Writer(pov::Parsed& parsed, const PovOptions& options, const std::string& name)
+      : p_(parsed), options_(options), file_{name, 0, 0} {}
 
   PovTranslation run() {
     t_.warnings = std::move(p_.warnings);
@@ -52,9 +56,10 @@ class Writer {
   }
 
  private:
+  // One line of YAML, from the item at `loc` (none: the file as a whole).
   void line(const std::string& text, const FileLoc& loc) {
     t_.yaml += text + "\n";
-    t_.line_locs.push_back(loc);
+    t_.line_locs.push_back(loc.file.empty() ? file_ : loc);
   }
 
   void camera() {
@@ -135,7 +140,17 @@ class Writer {
   // `last_step`: a step after the object's own (the mirror), for the outermost node.
   std::string shape(const pov::Object& o, const std::string& last_step = "") {
     std::string s = "{type: " + o.type;
-    if (o.mesh >= 0) s += ", file: pov-mesh-" + std::to_string(o.mesh);
+    if (o.mesh >= 0) {
+      // Each mesh goes to the reader once: a declared mesh used again is a copy.
+      std::size_t i = std::size_t(o.mesh);
+      if (i < mesh_used_.size() && mesh_used_[i]) {
+        p_.meshes.push_back(p_.meshes[i]);
+        i = p_.meshes.size() - 1;
+      }
+      mesh_used_.resize(p_.meshes.size());
+      mesh_used_[i] = true;
+      s += ", file: pov-mesh-" + std::to_string(i);
+    }
     s += o.keys;
     if (!o.children.empty()) {
       s += ", objects: [";
@@ -176,6 +191,8 @@ class Writer {
   PovTranslation t_;
   bool warned_operands_ = false;
   bool mirror_ = false;
+  FileLoc file_;
+  std::vector<bool> mesh_used_;
 };
 
 // "NAME:LINE:COLUMN: message" of the YAML text → the .pov location of that line's item.
@@ -193,11 +210,25 @@ std::string relocate(const std::string& message, const std::string& name, const 
   return (loc.file.empty() ? name : loc.str()) + message.substr(i);
 }
 
+// The locations a scene read from the translation holds (objects and their operands, lights,
+// camera, settings: compile() names them in its errors) taken back to the .pov file.
+void relocate(SceneObject& o, const std::function<void(FileLoc&)>& back) {
+  back(o.loc);
+  if (auto* csg = dynamic_cast<Csg*>(&o))
+    for (const auto& c : csg->children) relocate(*c, back);
+}
+void relocate(Scene& scene, const std::function<void(FileLoc&)>& back) {
+  for (const auto& o : scene.objects()) relocate(*o, back);
+  for (FileLoc& l : scene.light_locs()) back(l);
+  back(scene.camera.loc);
+  back(scene.settings.loc);
+}
+
 }  // namespace
 
 PovTranslation translate_pov(const std::string& text, const std::string& name, const PovOptions& options) {
   pov::Parsed parsed = pov::parse_pov(text, name, options);
-  return Writer(parsed, options).run();
+  return Writer(parsed, options, name).run();
 }
 
 Scene parse_pov_scene(const std::string& text, const std::string& pov_name, const PovOptions& options) {
@@ -211,6 +242,9 @@ Scene parse_pov_scene(const std::string& text, const std::string& pov_name, cons
   };
   try {
     Scene scene = parse_scene(t.yaml, name, fs::path(pov_name).parent_path(), meshes);
+    relocate(scene, [&](FileLoc& l) {
+      if (l.file == name && l.line >= 1 && std::size_t(l.line) <= t.line_locs.size()) l = t.line_locs[std::size_t(l.line - 1)];
+    });
     for (std::string& w : scene.warnings) w = relocate(w, name, t.line_locs);
     scene.warnings.insert(scene.warnings.begin(), t.warnings.begin(), t.warnings.end());
     return scene;
