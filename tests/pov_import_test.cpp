@@ -198,6 +198,8 @@ TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
            Case{"#if (0)\nsphere { 0, 1 }", "test.pov:1:1: this #if has no #end"},
            Case{"#end", "test.pov:1:1: #end without #if, #while or #for"},
            Case{"#while (1) #end", "test.pov:1:1: more than 1000000 loop iterations"},
+           Case{"sphere { 0, 1", "test.pov:1:1: this sphere is never closed"},
+           Case{"camera { location 0", "test.pov:1:20: the file ends inside camera"},
            Case{"#macro M() #end", "test.pov:1:1: #macro is not supported"},
            Case{"sphere { Q, 1 }", "test.pov:1:10: unknown name 'Q' (not declared)"},
            Case{"#include \"nothere.inc\"", "test.pov:1:10: #include \"nothere.inc\": no such file"},

@@ -151,6 +151,7 @@ class Reader {
     return "?";
   }
   [[noreturn]] void unsupported(const Token& t, const std::string& where) {
+    if (t.kind == TokenKind::End) throw Error(loc(t), "the file ends inside " + where + " (a '}' is missing)");
     throw Error(loc(t), "'" + t.text + "'" + (where.empty() ? "" : " in " + where) +
                            " is not supported by strahl's POV-Ray importer (docs/pov-import.md)");
   }
@@ -975,6 +976,7 @@ class Reader {
     while (!accept_symbol("}")) {
       const Token t = next();
       const std::string& n = t.text;
+      if (t.kind == TokenKind::End) throw Error(o.loc, "this " + what + " is never closed (the file ends before its '}')");
       if (t.kind != TokenKind::Identifier) throw Error(loc(t), "expected a modifier of " + what + " or '}', found " + describe(t));
       if (n == "translate") o.steps.push_back("{translate: " + vec(vector()) + "}");
       else if (n == "rotate") o.steps.push_back("{rotate: " + vec(vector()) + "}");

@@ -23,7 +23,7 @@ struct PovOptions {
   // (#while and #for together) and objects. A caller reading untrusted files in bounded time
   // lowers them (the scene reader takes ~0.1 ms per object).
   long max_loop_iterations = 1'000'000;
-  std::size_t max_objects = 1'000'000;
+  std::size_t max_objects = 200'000;
 };
 
 // The scene in strahl's format: YAML text, where each line came from (the .pov item it

@@ -1,0 +1,1 @@
+#include "colours-missing.inc"
