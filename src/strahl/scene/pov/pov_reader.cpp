@@ -579,6 +579,9 @@ class Reader {
     throw Error(loc(t), "unknown function '" + n + "' (not supported by strahl's POV-Ray importer)");
   }
 
+  // A count from a float, clamped to [lo, hi] before it becomes an int (NaN: lo).
+  static int whole(double v, int lo, int hi) { return v >= lo ? (v <= hi ? int(v) : hi) : lo; }
+
   Vector vector() { return to_vector(expression()); }
   double real() { return expression().f(); }
 
@@ -682,8 +685,8 @@ class Reader {
       else if (n == "aperture") c.aperture = real();
       else if (n == "focal_point") c.focal_point = vector(), c.has_focal_point = true;
       else if (n == "blur_samples") {
-        c.blur_samples = int(real());
-        if (accept_symbol(",")) c.blur_samples = int(real());
+        c.blur_samples = whole(real(), 1, 1 << 20);
+        if (accept_symbol(",")) c.blur_samples = whole(real(), 1, 1 << 20);
       } else if (n == "confidence" || n == "variance") real();
       else unsupported(t, "camera");
     }
@@ -723,7 +726,7 @@ class Reader {
         const double g = real();
         if (g != 1) warn(loc(t), "assumed_gamma " + fmt(g) + " is ignored: strahl's colours are linear (assumed_gamma 1)");
       } else if (n == "max_trace_level") {
-        out_.max_trace_level = int(real());
+        out_.max_trace_level = whole(real(), -1, 1000);
       } else if (n == "ambient_light") {
         out_.ambient_light = color();
       } else if (n == "adc_bailout" || n == "number_of_waves" || n == "noise_generator" || n == "charset" ||

@@ -89,7 +89,7 @@ class Writer {
   void render() {
     int depth = p_.max_trace_level;
     if (depth < 1 || depth > 64) {
-      t_.warnings.push_back("max_trace_level " + std::to_string(depth) + " is drawn as max_depth " + (depth < 1 ? "1" : "64"));
+      t_.warnings.push_back(file_.str() + ": max_trace_level " + std::to_string(depth) + " is drawn as max_depth " + (depth < 1 ? "1" : "64"));
       depth = depth < 1 ? 1 : 64;
     }
     std::string s = "render: {width: " + std::to_string(options_.width) + ", height: " + std::to_string(options_.height) +
