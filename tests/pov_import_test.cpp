@@ -133,7 +133,13 @@ TEST(PovImport, TexturesAndUnionsFollowPovRaysRules) {
       "  sphere { <2, 0, 0>, 1 pigment { color rgb <0, 1, 0> } scale 2 }\n"
       "  translate <0, 1, 0> pigment { color red 1 } }\n"
       "sphere { 0, 1 texture { T } interior { ior 1.5 } }\n"
-      "plane { <0, 2, 0>, 1 pigment { checker color rgb 1, color rgb 0.1 scale 0.5 } }\n");
+      "plane { <0, 2, 0>, 1 pigment { checker color rgb 1, color rgb 0.1 scale 0.5 } }\n"
+      "light_source { <1, 2, 3> color rgb <1, 0.5, 0> }\n"
+      "light_source { <0, 10, 0> color rgb 2 parallel point_at <1, 0, 0> }\n");
+  EXPECT_NE(y.find("  - {type: point, position: [1, 2, 3], color: [1, 0.5, 0]}\n"
+                   "  - {type: directional, direction: [1, -10, 0], color: [2, 2, 2]}\n"),
+            std::string::npos)
+      << y;
   EXPECT_NE(y.find("{type: sphere, center: [0, 0, 0], radius: 1, material: {color: [0, 0, 0], ambient: 0.1, diffuse: 0.6, "
                    "specular: 0, shininess: 20}}"),
             std::string::npos)

@@ -707,9 +707,17 @@ class Reader {
       } else if (n == "area_light") {
         vector(), accept_symbol(","), vector(), accept_symbol(","), real(), accept_symbol(","), real();
         warn(loc(t), "area_light is drawn as a point light (strahl's area lights are rect, disk and sphere emitters)");
-      } else if (n == "adaptive" || n == "jitter" || n == "circular" || n == "orient" || n == "fade_distance" ||
-                 n == "fade_power") {
-        if (n == "adaptive" || n == "fade_distance" || n == "fade_power") real();
+      } else if (n == "parallel") {
+        l.parallel = true;
+      } else if (n == "point_at") {
+        l.point_at = vector();
+      } else if (n == "fade_distance" || n == "fade_power") {
+        real();
+        warn(loc(t), n + " is left out: strahl's point lights do not fall off with distance");
+      } else if (n == "shadowless") {
+        warn(loc(t), "shadowless is left out: the light casts shadows");
+      } else if (n == "adaptive" || n == "jitter" || n == "circular" || n == "orient") {
+        if (n == "adaptive") real();
       } else {
         unsupported(t, "light_source");
       }

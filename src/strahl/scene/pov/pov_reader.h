@@ -59,6 +59,8 @@ struct Object {
 struct Light {
   Vector position{};
   Color color{1, 1, 1, 0, 0};
+  bool parallel = false;  // a directional light along point_at − position
+  Vector point_at{};
   FileLoc loc;
 };
 

@@ -47,7 +47,9 @@ class Writer {
     line("lights:", {});
     if (p_.lights.empty()) t_.yaml.back() = ' ', t_.yaml += "[]\n";
     for (const pov::Light& l : p_.lights)
-      line("  - {type: point, position: " + vec(mirrored(l.position)) + ", color: " + rgb(l.color) + "}", l.loc);
+      line(l.parallel ? "  - {type: directional, direction: " + vec(mirrored(minus(l.point_at, l.position))) + ", color: " + rgb(l.color) + "}"
+                      : "  - {type: point, position: " + vec(mirrored(l.position)) + ", color: " + rgb(l.color) + "}",
+           l.loc);
     line("objects:", {});
     if (p_.objects.empty()) t_.yaml.back() = ' ', t_.yaml += "[]\n";
     for (const pov::Object& o : p_.objects) line("  - " + object(o, &p_.default_texture), o.loc);
