@@ -44,7 +44,7 @@ TEST(FuzzRegression, ValidSeedsAreAccepted) {
   };
   const fs::path corpus = fs::path(STRAHL_SOURCE_DIR) / "tests" / "fuzz" / "corpus";
   EXPECT_TRUE(accepted(&fuzz::scene_input, corpus / "scene" / "lecture-whitted.yaml"));
-  for (const char* pov : {"lecture.pov", "shapes.pov", "csg.pov", "directives.pov", "meshes.pov"})
+  for (const char* pov : {"lecture.pov", "shapes.pov", "csg.pov", "directives.pov", "meshes.pov", "macros.pov"})
     EXPECT_TRUE(accepted(&fuzz::pov_input, corpus / "pov" / pov)) << pov;
   EXPECT_TRUE(accepted(&fuzz::obj_input, corpus / "obj" / "quad-normals-uv.obj"));
   EXPECT_TRUE(accepted(&fuzz::obj_input, corpus / "obj" / "icosahedron.obj"));

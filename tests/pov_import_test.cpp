@@ -120,6 +120,41 @@ TEST(PovImport, DirectivesAndExpressions) {
   EXPECT_EQ(y.find("radius: 7"), std::string::npos);
 }
 
+TEST(PovImport, MacrosAndIncludesInLoops) {
+  const std::string y = yaml_of(
+      "#macro Ring(N, R)\n"
+      "  #local I = 0;\n"
+      "  #while (I < N)\n"
+      "    sphere { <R * cos(2 * pi * I / N), 0, R * sin(2 * pi * I / N)>, 0.1 }\n"
+      "    #local I = I + 1;\n"
+      "  #end\n"
+      "#end\n"
+      "#macro Sq(A) (A * A) #end\n"
+      "#macro Ball(C) sphere { C, 0.5 } #end\n"
+      "#declare I = 42;\n"
+      "Ring(4, 2)\n"
+      "sphere { <Sq(3), I, 0>, 1 }\n"  // (I is 42 again after Ring's #local I)
+      "#declare S = Sq(Sq(2));\n"
+      "sphere { 0, S }\n"
+      "union { Ring(2, 1) sphere { <0, 5, 0>, 1 } }\n"
+      "#declare B = Ball(<1, 2, 3>);\n"
+      "object { B }\n"
+      "#ifdef (A) sphere { 0, 99 } #end\n");  // (a parameter is gone after the call)
+  EXPECT_EQ(count(y, "type: sphere"), 10u) << y;
+  for (const char* s : {"center: [2, 0, 0], radius: 0.1", "center: [9, 42, 0], radius: 1,", "center: [0, 0, 0], radius: 16,",
+                        "center: [-1, 0, 1.2246467991473532e-16], radius: 0.1", "center: [1, 2, 3], radius: 0.5"})
+    EXPECT_NE(y.find(s), std::string::npos) << s << " in\n" << y;
+
+  const test::TempDir dir;
+  test::write_text(dir / "ball.inc", "sphere { <I, 0, 0>, 1 }\n");
+  test::write_text(dir / "row.pov", "camera { right -x * 4 / 3 }\n#for (I, 0, 2)\n  #include \"ball.inc\"\n#end\n"
+                                    "#macro Two() #include \"ball.inc\" #include \"ball.inc\" #end\n#declare I = 7;\nTwo()\n");
+  const std::string row = translate_pov(test::read_text(dir / "row.pov"), (dir / "row.pov").string(), PovOptions{}).yaml;
+  EXPECT_EQ(count(row, "type: sphere"), 5u) << row;
+  for (const char* s : {"center: [0, 0, 0]", "center: [1, 0, 0]", "center: [2, 0, 0]", "center: [7, 0, 0]"})
+    EXPECT_NE(row.find(s), std::string::npos) << s << " in\n" << row;
+}
+
 // POV-Ray's texture rules: the default texture (black, ambient 0.1, diffuse 0.6, no highlight);
 // a union is a group whose parts take its transforms after their own and its texture where they
 // have none; rgbf is filtered transparency; roughness is 1/shininess; declared textures.
@@ -202,11 +237,14 @@ TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
            Case{"sphere { 0, 1 pigment { bozo } }", "test.pov:1:25: 'bozo' in pigment is not supported"},
            Case{"#if (1)\nsphere { 0, 1 }", "test.pov:1:1: this #if has no #end"},
            Case{"#if (0)\nsphere { 0, 1 }", "test.pov:1:1: this #if has no #end"},
-           Case{"#end", "test.pov:1:1: #end without #if, #while or #for"},
+           Case{"#end", "test.pov:1:1: #end without #if, #while, #for or #macro"},
            Case{"#while (1) #end", "test.pov:1:1: more than 1000000 loop iterations"},
            Case{"sphere { 0, 1", "test.pov:1:1: this sphere is never closed"},
            Case{"camera { location 0", "test.pov:1:20: the file ends inside camera"},
-           Case{"#macro M() #end", "test.pov:1:1: #macro is not supported"},
+           Case{"#switch (1) #end", "test.pov:1:1: #switch is not supported"},
+           Case{"#macro M(A) sphere { 0, A } #end\nM(1, 2)", "test.pov:2:1: the macro M takes 1 arguments, not 2"},
+           Case{"#macro M(A) M(A) #end\nM(1)", "test.pov:1:13: macros called more than 200 deep"},
+           Case{"#macro M(A) A A #end\nsphere { 0, M(1) }", "test.pov:1:15: the macro M gives more than one value here"},
            Case{"sphere { Q, 1 }", "test.pov:1:10: unknown name 'Q' (not declared)"},
            Case{"#include \"nothere.inc\"", "test.pov:1:10: #include \"nothere.inc\": no such file"},
            Case{"/* open", "test.pov:1:1: this comment is never closed"},
@@ -245,6 +283,11 @@ TEST(PovImport, WarningsNameWhatIsLeftOut) {
                         "test.pov:2:60: normal (bump maps) is left out", "test.pov:2:81: no_shadow is left out",
                         "test.pov:3:14: CSG operands' own textures are left out"})
     EXPECT_NE(all.find(w), std::string::npos) << w << " in\n" << all;
+  // Without #version 3.7 or assumed_gamma, POV-Ray draws with its legacy gamma.
+  const std::vector<std::string> legacy = pov_scene("sphere { 0, 1 }").warnings;
+  ASSERT_EQ(legacy.size(), 1u);
+  EXPECT_EQ(legacy[0].rfind("test.pov: no #version 3.7 and no assumed_gamma", 0), 0u) << legacy[0];
+  EXPECT_TRUE(pov_scene("#version 3.7;\nsphere { 0, 1 }").warnings.empty());
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -25,6 +26,7 @@ namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxIncludes = 256;
 constexpr int kMaxNesting = 200;
+constexpr std::size_t kMaxTokens = 24'000'000;  // the scene and its includes (~56 bytes each)
 
 // A float (dim 1) or a vector of 2 to 5 components. A float used as a colour sets all five
 // components (POV-Ray's rule: `color 0.5` is rgbft <0.5, 0.5, 0.5, 0.5, 0.5>).
@@ -85,6 +87,10 @@ class Reader {
   Parsed run() {
     while (peek().kind != TokenKind::End) statement();
     if (!controls_.empty()) throw Error(controls_.back().loc, "this #" + controls_.back().name + " has no #end");
+    if (!gamma_given_ && !(version_ >= 3.7))
+      out_.warnings.push_back(files_.front() +
+                              ": no #version 3.7 and no assumed_gamma: POV-Ray draws this scene with its legacy "
+                              "gamma, writing the linear values to 8-bit images (strahl's --linear does the same)");
     return std::move(out_);
   }
 
@@ -161,11 +167,18 @@ class Reader {
   }
 
   struct Control {
-    std::string name;      // if, while, for
-    std::size_t loop = 0;  // while: the #while token; for: the first token of the body
-    std::string var;
+    std::string name;      // if, while, for, macro
+    std::size_t loop = 0;  // while: the #while token; for: the first token of the body; macro: where it returns
+    std::string var;       // for: its variable; macro: its name
     double end = 0, step = 1;
     FileLoc loc;
+    // macro: the names its parameters and #local hide, with what they were (none: undeclared).
+    std::vector<std::pair<std::string, std::optional<Value>>> hidden = {};
+  };
+
+  struct Macro {
+    std::vector<std::string> params;
+    std::size_t body = 0;  // the first token after its parameter list
   };
 
   void directive() {
@@ -178,17 +191,34 @@ class Reader {
       expect_symbol("=", ("after #" + n + " " + name.text).c_str());
       Value v = value();
       accept_raw_symbol(";");
+      if (n == "local") hide_in_macro(name.text);
       symbols_[name.text] = std::move(v);
+    } else if (n == "macro") {
+      const Token name = next();
+      if (name.kind != TokenKind::Identifier) throw Error(loc(name), "expected a name after #macro, found " + describe(name));
+      expect_symbol("(", "after the macro's name");
+      Macro m;
+      if (!accept_symbol(")")) {
+        do {
+          const Token p = next();
+          if (p.kind != TokenKind::Identifier) throw Error(loc(p), "expected a parameter name, found " + describe(p));
+          m.params.push_back(p.text);
+        } while (accept_symbol(","));
+        expect_symbol(")", "to close the macro's parameters");
+      }
+      m.body = pos_;
+      macros_[name.text] = std::move(m);
+      skip_to_end(d);
     } else if (n == "undef") {
       const Token name = next();
       symbols_.erase(name.text);
     } else if (n == "version") {
-      expression();
+      version_ = expression().f();
       accept_raw_symbol(";");
     } else if (n == "include") {
       const Token file = next();
       if (file.kind != TokenKind::String) throw Error(loc(file), "#include needs a file name in quotes");
-      include(file);
+      include(file, at);
     } else if (n == "if" || n == "ifdef" || n == "ifndef") {
       bool taken;
       if (n == "if") {
@@ -235,10 +265,17 @@ class Reader {
         skip_to_end(d);
       }
     } else if (n == "end") {
-      if (controls_.empty()) throw Error(loc(d), "#end without #if, #while or #for");
+      if (controls_.empty()) throw Error(loc(d), "#end without #if, #while, #for or #macro");
       Control& c = controls_.back();
       count_iteration(c.loc);
-      if (c.name == "while") {
+      if (c.name == "macro") {
+        pos_ = c.loop;
+        for (auto it = c.hidden.rbegin(); it != c.hidden.rend(); ++it) {
+          if (it->second) symbols_[it->first] = std::move(*it->second);
+          else symbols_.erase(it->first);
+        }
+        controls_.pop_back();
+      } else if (c.name == "while") {
         pos_ = c.loop;
         controls_.pop_back();
       } else if (c.name == "for") {
@@ -320,7 +357,55 @@ class Reader {
     }
   }
 
-  void include(const Token& file) {
+  // A macro's parameter or #local name: what it was is given back when the macro returns.
+  void hide_in_macro(const std::string& name) {
+    for (auto c = controls_.rbegin(); c != controls_.rend(); ++c) {
+      if (c->name != "macro") continue;
+      for (const auto& h : c->hidden)
+        if (h.first == name) return;
+      const auto it = symbols_.find(name);
+      c->hidden.emplace_back(name, it == symbols_.end() ? std::nullopt : std::optional<Value>(it->second));
+      return;
+    }
+  }
+
+  bool is_macro(const Token& t) const { return t.kind == TokenKind::Identifier && macros_.count(t.text) > 0; }
+
+  // NAME(arguments): the arguments are evaluated, the parameters declared (hiding what they
+  // named) and reading goes on in the body until its #end, which returns here.
+  void call_macro(const Token& name) {
+    const Macro& m = macros_.at(name.text);
+    expect_symbol("(", ("after the macro " + name.text).c_str());
+    std::vector<Value> args;
+    if (!accept_symbol(")")) {
+      do args.push_back(value());
+      while (accept_symbol(","));
+      expect_symbol(")", ("to close " + name.text + "(").c_str());
+    }
+    if (args.size() != m.params.size())
+      throw Error(loc(name), "the macro " + name.text + " takes " + std::to_string(m.params.size()) + " arguments, not " +
+                                 std::to_string(args.size()));
+    if (std::count_if(controls_.begin(), controls_.end(), [](const Control& c) { return c.name == "macro"; }) >= kMaxNesting)
+      throw Error(loc(name), "macros called more than " + std::to_string(kMaxNesting) + " deep");
+    count_iteration(loc(name));
+    controls_.push_back(Control{"macro", pos_, name.text, 0, 1, loc(name)});
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      hide_in_macro(m.params[i]);
+      symbols_[m.params[i]] = std::move(args[i]);
+    }
+    pos_ = m.body;
+  }
+
+  // After a value read from a macro's body: its #end (and any directives before it) must follow.
+  void finish_macro(std::size_t depth, const Token& name) {
+    while (controls_.size() > depth) {
+      if (raw().kind != TokenKind::Directive)
+        throw Error(loc(raw()), "the macro " + name.text + " gives more than one value here (expected its #end)");
+      directive();
+    }
+  }
+
+  void include(const Token& file, std::size_t at) {
     if (++includes_ > kMaxIncludes) throw Error(loc(file), "more than " + std::to_string(kMaxIncludes) + " #include (an include loop?)");
     fs::path p = fs::path(loc(file).file).parent_path() / file.text;
     std::error_code ec;
@@ -331,7 +416,18 @@ class Reader {
     if (!fs::exists(p, ec)) throw Error(loc(file), "#include \"" + file.text + "\": no such file beside the scene (nor in POV-Ray's include directory)");
     std::vector<Token> more = read_tokens(p, loc(file));
     more.pop_back();  // its End
-    tokens_.insert(tokens_.begin() + std::ptrdiff_t(pos_), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+    if (tokens_.size() + more.size() > kMaxTokens)
+      throw Error(loc(file), "the scene and its includes hold more than " + std::to_string(kMaxTokens) + " tokens");
+    // The directive is replaced by the file's tokens (a loop that comes back here reads them,
+    // not the directive again); positions kept past it move with them.
+    const std::ptrdiff_t delta = std::ptrdiff_t(more.size()) - std::ptrdiff_t(pos_ - at);
+    tokens_.erase(tokens_.begin() + std::ptrdiff_t(at), tokens_.begin() + std::ptrdiff_t(pos_));
+    tokens_.insert(tokens_.begin() + std::ptrdiff_t(at), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+    pos_ = at;
+    for (Control& c : controls_)
+      if (c.loop > at) c.loop = std::size_t(std::ptrdiff_t(c.loop) + delta);
+    for (auto& [name, m] : macros_)
+      if (m.body > at) m.body = std::size_t(std::ptrdiff_t(m.body) + delta);
   }
 
   // ---- expressions --------------------------------------------------------------------------
@@ -365,6 +461,14 @@ class Reader {
       if (const auto it = symbols_.find(t.text); it != symbols_.end() && it->second.kind != Value::Kind::Number) {
         next();
         return it->second;
+      }
+      if (is_macro(t)) {
+        const Token name = next();
+        const std::size_t depth = controls_.size();
+        call_macro(name);
+        Value v = value();
+        finish_macro(depth, name);
+        return v;
       }
     }
     if (t.kind == TokenKind::String) {
@@ -520,6 +624,16 @@ class Reader {
       if (it->second.kind != Value::Kind::Number) throw Error(loc(t), "'" + n + "' is not a number or vector here");
       return it->second.num;
     }
+    if (is_macro(t)) {
+      const std::size_t depth = controls_.size();
+      call_macro(t);
+      const int saved = in_vector_;
+      in_vector_ = 0;
+      const Num v = expression();
+      in_vector_ = saved;
+      finish_macro(depth, t);
+      return v;
+    }
     if (is_symbol(peek(), "(")) return function(t);
     throw Error(loc(t), "unknown name '" + n + "' (not declared)");
   }
@@ -644,6 +758,7 @@ class Reader {
       add_top_level(std::move(o), {}, nullptr);
       return;
     }
+    if (is_macro(t)) return call_macro(t);  // (its body's items follow)
     if (n == "sky_sphere" || n == "fog" || n == "media" || n == "rainbow" || n == "photons" || n == "radiosity")
       unsupported(t, "");
     if (const auto it = symbols_.find(n); it != symbols_.end()) {
@@ -731,6 +846,7 @@ class Reader {
       const Token t = next();
       const std::string& n = t.text;
       if (n == "assumed_gamma") {
+        gamma_given_ = true;
         const double g = real();
         if (g != 1) warn(loc(t), "assumed_gamma " + fmt(g) + " is ignored: strahl's colours are linear (assumed_gamma 1)");
       } else if (n == "max_trace_level") {
@@ -975,7 +1091,12 @@ class Reader {
       o = isosurface(kw);
     } else {  // union, intersection, difference, merge
       o.type = n;
-      while (kShapes.count(peek().text) && peek().kind == TokenKind::Identifier) o.children.push_back(object(next()));
+      for (;;) {
+        const Token t = peek();
+        if (is_macro(t)) call_macro(next());  // (its objects are operands)
+        else if (t.kind == TokenKind::Identifier && kShapes.count(t.text)) o.children.push_back(object(next()));
+        else break;
+      }
       if (o.children.empty()) throw Error(loc(kw), n + " needs at least one object");
     }
     modifiers(o, kw.text);
@@ -1237,12 +1358,15 @@ class Reader {
   std::size_t pos_ = 0;
   std::vector<std::string> files_;
   std::map<std::string, Value> symbols_;
+  std::map<std::string, Macro> macros_;
   std::vector<Control> controls_;
   std::set<std::string> warned_;
   long iterations_ = 0;
   int includes_ = 0;
   int in_vector_ = 0;
   int nesting_ = 0;
+  double version_ = 0;  // #version (0: none)
+  bool gamma_given_ = false;
   Parsed out_;
 };
 
