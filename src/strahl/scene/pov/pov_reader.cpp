@@ -23,7 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxIncludes = 256;
 constexpr int kMaxNesting = 200;
 constexpr std::size_t kMaxTokens = 24'000'000;  // the scene and its includes (~56 bytes each)
@@ -43,9 +42,6 @@ struct Value {
   Texture texture;  // Pigment, Finish, Interior and Texture values live in a texture
   std::shared_ptr<const Object> object;
 };
-
-std::string fmt(double v) { return number::shortest(v); }
-std::string vec(const Vector& v) { return "[" + fmt(v[0]) + ", " + fmt(v[1]) + ", " + fmt(v[2]) + "]"; }
 
 Vector to_vector(const Num& n) {
   if (n.dim == 1) return {n.c[0], n.c[0], n.c[0]};
@@ -70,7 +66,6 @@ Num vector_num(const Vector& v) {
   return n;
 }
 
-double length(const Vector& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
 // Items that `#declare` may name and `object { NAME }` may use.
 const std::set<std::string> kShapes = {"sphere",       "plane",   "box",   "cylinder",  "cone",     "torus",
@@ -147,7 +142,7 @@ class Reader {
   }
   static std::string describe(const Token& t) {
     switch (t.kind) {
-      case TokenKind::Number: return "the number " + fmt(t.number);
+      case TokenKind::Number: return "the number " + yaml_number(t.number);
       case TokenKind::String: return "a string";
       case TokenKind::Identifier: return "'" + t.text + "'";
       case TokenKind::Directive: return "#" + t.text;
@@ -848,7 +843,7 @@ class Reader {
       if (n == "assumed_gamma") {
         gamma_given_ = true;
         const double g = real();
-        if (g != 1) warn(loc(t), "assumed_gamma " + fmt(g) + " is ignored: strahl's colours are linear (assumed_gamma 1)");
+        if (g != 1) warn(loc(t), "assumed_gamma " + yaml_number(g) + " is ignored: strahl's colours are linear (assumed_gamma 1)");
       } else if (n == "max_trace_level") {
         out_.max_trace_level = whole(real(), -1, 1000);
       } else if (n == "ambient_light") {
@@ -1039,44 +1034,44 @@ class Reader {
       o.type = "sphere";
       const Vector c = vector();
       expect_symbol(",", "after the sphere's centre");
-      o.keys = ", center: " + vec(c) + ", radius: " + fmt(real());
+      o.keys = ", center: " + yaml_vector(c) + ", radius: " + yaml_number(real());
     } else if (n == "plane") {
       o.type = "plane";
       const Vector v = vector();
       expect_symbol(",", "after the plane's normal");
       const double d = real(), l = length(v);
-      o.keys = ", normal: " + vec(l > 0 ? Vector{v[0] / l, v[1] / l, v[2] / l} : v) + ", distance: " + fmt(d);
+      o.keys = ", normal: " + yaml_vector(l > 0 ? Vector{v[0] / l, v[1] / l, v[2] / l} : v) + ", distance: " + yaml_number(d);
     } else if (n == "box") {
       o.type = "box";
       const Vector a = vector();
       expect_symbol(",", "after the box's first corner");
-      o.keys = ", corners: [" + vec(a) + ", " + vec(vector()) + "]";
+      o.keys = ", corners: [" + yaml_vector(a) + ", " + yaml_vector(vector()) + "]";
     } else if (n == "cylinder" || n == "cone") {
       o.type = n;
       const Vector base = vector();
       expect_symbol(",", "after the base");
       std::string base_radius;
       if (n == "cone") {
-        base_radius = fmt(real());
+        base_radius = yaml_number(real());
         expect_symbol(",", "after the base radius");
       }
       const Vector cap = vector();
       expect_symbol(",", "after the cap");
       const double r = real();
-      o.keys = ", base: " + vec(base) + ", cap: " + vec(cap) +
-               (n == "cone" ? ", base_radius: " + base_radius + ", cap_radius: " + fmt(r) : ", radius: " + fmt(r));
+      o.keys = ", base: " + yaml_vector(base) + ", cap: " + yaml_vector(cap) +
+               (n == "cone" ? ", base_radius: " + base_radius + ", cap_radius: " + yaml_number(r) : ", radius: " + yaml_number(r));
     } else if (n == "torus") {
       o.type = "torus";
       const double major = real();
       expect_symbol(",", "after the torus's major radius");
-      o.keys = ", center: [0, 0, 0], major_radius: " + fmt(major) + ", minor_radius: " + fmt(real());
+      o.keys = ", center: [0, 0, 0], major_radius: " + yaml_number(major) + ", minor_radius: " + yaml_number(real());
     } else if (n == "disc") {
       o.type = "disk";
       const Vector c = vector();
       expect_symbol(",", "after the disc's centre");
       const Vector nn = vector();
       expect_symbol(",", "after the disc's normal");
-      o.keys = ", center: " + vec(c) + ", normal: " + vec(nn) + ", radius: " + fmt(real());
+      o.keys = ", center: " + yaml_vector(c) + ", normal: " + yaml_vector(nn) + ", radius: " + yaml_number(real());
       if (accept_symbol(",") && real() != 0) throw Error(loc(kw), "a disc with a hole is not supported by strahl's POV-Ray importer");
     } else if (n == "triangle") {
       o.type = "triangle";
@@ -1084,7 +1079,7 @@ class Reader {
       expect_symbol(",", "after a vertex");
       const Vector b = vector();
       expect_symbol(",", "after a vertex");
-      o.keys = ", vertices: [" + vec(a) + ", " + vec(b) + ", " + vec(vector()) + "]";
+      o.keys = ", vertices: [" + yaml_vector(a) + ", " + yaml_vector(b) + ", " + yaml_vector(vector()) + "]";
     } else if (n == "smooth_triangle" || n == "mesh" || n == "mesh2") {
       o = mesh(kw);
     } else if (n == "isosurface") {
@@ -1110,9 +1105,9 @@ class Reader {
       const std::string& n = t.text;
       if (t.kind == TokenKind::End) throw Error(o.loc, "this " + what + " is never closed (the file ends before its '}')");
       if (t.kind != TokenKind::Identifier) throw Error(loc(t), "expected a modifier of " + what + " or '}', found " + describe(t));
-      if (n == "translate") o.steps.push_back("{translate: " + vec(vector()) + "}");
-      else if (n == "rotate") o.steps.push_back("{rotate: " + vec(vector()) + "}");
-      else if (n == "scale") o.steps.push_back("{scale: " + vec(vector()) + "}");
+      if (n == "translate") o.steps.push_back("{translate: " + yaml_vector(vector()) + "}");
+      else if (n == "rotate") o.steps.push_back("{rotate: " + yaml_vector(vector()) + "}");
+      else if (n == "scale") o.steps.push_back("{scale: " + yaml_vector(vector()) + "}");
       else if (n == "matrix") o.steps.push_back(matrix_step());
       else if (n == "inverse") o.inverse = !o.inverse;
       else if (n == "open") {
@@ -1150,7 +1145,7 @@ class Reader {
     expect_symbol(">", "to close the matrix (12 numbers)");
     std::string s = "{matrix: [";
     for (std::size_t r = 0; r < 3; ++r)
-      s += std::string(r ? ", " : "") + "[" + fmt(m[r]) + ", " + fmt(m[3 + r]) + ", " + fmt(m[6 + r]) + ", " + fmt(m[9 + r]) + "]";
+      s += std::string(r ? ", " : "") + "[" + yaml_number(m[r]) + ", " + yaml_number(m[3 + r]) + ", " + yaml_number(m[6 + r]) + ", " + yaml_number(m[9 + r]) + "]";
     return s + "]}";
   }
 
@@ -1299,8 +1294,8 @@ class Reader {
         expect_symbol("{", ("after " + s.text).c_str());
         const Vector a = vector();
         expect_symbol(",", ("in " + s.text).c_str());
-        if (s.text == "sphere") contained = "{type: sphere, center: " + vec(a) + ", radius: " + fmt(real()) + "}";
-        else if (s.text == "box") contained = "{type: box, corners: [" + vec(a) + ", " + vec(vector()) + "]}";
+        if (s.text == "sphere") contained = "{type: sphere, center: " + yaml_vector(a) + ", radius: " + yaml_number(real()) + "}";
+        else if (s.text == "box") contained = "{type: box, corners: [" + yaml_vector(a) + ", " + yaml_vector(vector()) + "]}";
         else throw Error(loc(s), "contained_by needs a sphere or a box");
         expect_symbol("}", ("to close " + s.text).c_str());
         expect_symbol("}", "to close contained_by");
@@ -1317,9 +1312,9 @@ class Reader {
       }
     }
     if (function.empty()) throw Error(loc(kw), "isosurface needs a function { … }");
-    if (threshold != 0) function = "(" + function + ") - " + fmt(threshold);
-    o.keys = ", expression: \"" + function + "\", contained_by: " + contained + ", max_gradient: " + fmt(max_gradient) +
-             ", accuracy: " + fmt(accuracy);
+    if (threshold != 0) function = "(" + function + ") - " + yaml_number(threshold);
+    o.keys = ", expression: \"" + function + "\", contained_by: " + contained + ", max_gradient: " + yaml_number(max_gradient) +
+             ", accuracy: " + yaml_number(accuracy);
     return o;
   }
 
@@ -1333,13 +1328,13 @@ class Reader {
       if (t.kind == TokenKind::End) throw Error(loc(kw), "function { is never closed");
       if (is_symbol(t, "{")) throw Error(loc(t), "'{' inside a function is not supported");
       if (is_symbol(t, "}") && --depth == 0) break;
-      if (t.kind == TokenKind::Number) s += fmt(t.number);
+      if (t.kind == TokenKind::Number) s += yaml_number(t.number);
       else if (t.kind == TokenKind::Symbol) s += t.text == "," ? ", " : " " + t.text + " ";
       else if (t.kind == TokenKind::Identifier) {
         if (t.text == "x" || t.text == "y" || t.text == "z" || is_function_name(t.text)) s += t.text;
-        else if (t.text == "pi") s += fmt(kPi);
+        else if (t.text == "pi") s += yaml_number(kPi);
         else if (const auto it = symbols_.find(t.text); it != symbols_.end() && it->second.kind == Value::Kind::Number && it->second.num.dim == 1)
-          s += "(" + fmt(it->second.num.f()) + ")";
+          s += "(" + yaml_number(it->second.num.f()) + ")";
         else throw Error(loc(t), "'" + t.text + "' in a function is not supported by strahl's POV-Ray importer");
       } else {
         throw Error(loc(t), describe(t) + " in a function is not supported");

@@ -4,6 +4,7 @@
 // translation into strahl's scene format (pov_scene.cpp) reads these records.
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,11 +12,28 @@
 #include "strahl/scene/mesh_data.h"
 #include "strahl/scene/pov/pov_scene.h"
 #include "strahl/util/error.h"
+#include "strahl/util/number_syntax.h"
 
 namespace strahl::pov {
 
 using Color = std::array<double, 5>;  // red, green, blue, filter, transmit
 using Vector = std::array<double, 3>;
+
+inline constexpr double kPi = 3.14159265358979323846;  // (in double whatever strahl's Real is)
+
+// The few vector operations the importer needs, in double.
+inline double length(const Vector& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+inline Vector minus(const Vector& a, const Vector& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline double dot(const Vector& a, const Vector& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vector cross(const Vector& a, const Vector& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// Numbers and vectors as YAML text: the shortest form that reads back to the same double.
+inline std::string yaml_number(double v) { return number::shortest(v); }
+inline std::string yaml_vector(const Vector& v) {
+  return "[" + yaml_number(v[0]) + ", " + yaml_number(v[1]) + ", " + yaml_number(v[2]) + "]";
+}
 
 struct Pigment {
   Color color{};  // POV-Ray's default pigment is black

@@ -18,17 +18,15 @@ namespace {
 
 namespace fs = std::filesystem;
 using pov::Color;
+using pov::cross;
+using pov::dot;
+using pov::length;
+using pov::minus;
 using pov::Vector;
+using pov::yaml_number;
+using pov::yaml_vector;
 
-std::string fmt(double v) { return number::shortest(v); }
-std::string vec(const Vector& v) { return "[" + fmt(v[0]) + ", " + fmt(v[1]) + ", " + fmt(v[2]) + "]"; }
-std::string rgb(const Color& c) { return "[" + fmt(c[0]) + ", " + fmt(c[1]) + ", " + fmt(c[2]) + "]"; }
-double length(const Vector& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-Vector minus(const Vector& a, const Vector& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vector cross(const Vector& a, const Vector& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vector& a, const Vector& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+std::string rgb(const Color& c) { return yaml_vector({c[0], c[1], c[2]}); }
 
 class Writer {
  public:
@@ -47,8 +45,8 @@ class Writer {
     line("lights:", {});
     if (p_.lights.empty()) t_.yaml.back() = ' ', t_.yaml += "[]\n";
     for (const pov::Light& l : p_.lights)
-      line(l.parallel ? "  - {type: directional, direction: " + vec(mirrored(minus(l.point_at, l.position))) + ", color: " + rgb(l.color) + "}"
-                      : "  - {type: point, position: " + vec(mirrored(l.position)) + ", color: " + rgb(l.color) + "}",
+      line(l.parallel ? "  - {type: directional, direction: " + yaml_vector(mirrored(minus(l.point_at, l.position))) + ", color: " + rgb(l.color) + "}"
+                      : "  - {type: point, position: " + yaml_vector(mirrored(l.position)) + ", color: " + rgb(l.color) + "}",
            l.loc);
     line("objects:", {});
     if (p_.objects.empty()) t_.yaml.back() = ' ', t_.yaml += "[]\n";
@@ -69,21 +67,21 @@ class Writer {
     // POV-Ray's camera ray: direction + s·right + t·up, s and t in [−1/2, 1/2]; `angle` sets
     // |direction| = |right|/2 / tan(angle/2).
     const double right = length(c.right), up = length(c.up);
-    const double d = c.has_angle ? right / 2 / std::tan(c.angle * 3.14159265358979323846 / 360) : length(c.direction);
+    const double d = c.has_angle ? right / 2 / std::tan(c.angle * pov::kPi / 360) : length(c.direction);
     const Vector look_at = c.has_look_at ? c.look_at : Vector{c.location[0] + c.direction[0], c.location[1] + c.direction[1], c.location[2] + c.direction[2]};
-    std::string s = "camera: {position: " + vec(mirrored(c.location)) + ", look_at: " + vec(mirrored(look_at)) +
-                    ", up: " + vec(mirrored(c.has_look_at ? c.sky : c.up));
+    std::string s = "camera: {position: " + yaml_vector(mirrored(c.location)) + ", look_at: " + yaml_vector(mirrored(look_at)) +
+                    ", up: " + yaml_vector(mirrored(c.has_look_at ? c.sky : c.up));
     const double aspect = double(options_.width) / options_.height;
     if (c.has_angle && std::fabs(right / up - aspect) <= 1e-12 * aspect) {
-      s += ", fov: " + fmt(c.angle) + ", fov_axis: horizontal";
+      s += ", fov: " + yaml_number(c.angle) + ", fov_axis: horizontal";
     } else {
-      s += ", image_plane: {l: " + fmt(-right / 2) + ", r: " + fmt(right / 2) + ", b: " + fmt(-up / 2) + ", t: " + fmt(up / 2) +
-           ", d: " + fmt(d) + "}";
+      s += ", image_plane: {l: " + yaml_number(-right / 2) + ", r: " + yaml_number(right / 2) + ", b: " + yaml_number(-up / 2) + ", t: " + yaml_number(up / 2) +
+           ", d: " + yaml_number(d) + "}";
     }
     if (c.aperture > 0 && c.has_focal_point) {
       // POV-Ray's lens offsets are aperture/2 times points of a disc of radius 1/2 (its
       // JitterCameraRay): a thin lens of radius aperture/4, focused at |focal_point − location|.
-      s += ", aperture: " + fmt(c.aperture / 4) + ", focus_distance: " + fmt(length(minus(c.focal_point, c.location)));
+      s += ", aperture: " + yaml_number(c.aperture / 4) + ", focus_distance: " + yaml_number(length(minus(c.focal_point, c.location)));
     }
     line(s + "}", c.loc);
   }
@@ -106,20 +104,20 @@ class Writer {
     const pov::Pigment& p = t.pigment;
     const pov::Finish& f = t.finish;
     const bool phong = f.phong > 0 && f.specular == 0;
-    std::string s = "{color: " + rgb(p.color) + ", ambient: " + fmt(f.ambient) + ", diffuse: " + fmt(f.diffuse) +
-                    ", specular: " + fmt(phong ? f.phong : f.specular) +
-                    ", shininess: " + fmt(phong ? 4 * f.phong_size : 1 / f.roughness);
-    if (f.reflection != 0) s += ", reflectivity: " + fmt(f.reflection);
+    std::string s = "{color: " + rgb(p.color) + ", ambient: " + yaml_number(f.ambient) + ", diffuse: " + yaml_number(f.diffuse) +
+                    ", specular: " + yaml_number(phong ? f.phong : f.specular) +
+                    ", shininess: " + yaml_number(phong ? 4 * f.phong_size : 1 / f.roughness);
+    if (f.reflection != 0) s += ", reflectivity: " + yaml_number(f.reflection);
     const double filter = p.color[3], transmit = p.color[4];
     if (filter + transmit != 0) {
-      s += ", transparency: " + fmt(filter + transmit);
+      s += ", transparency: " + yaml_number(filter + transmit);
       if (filter > 0) s += ", filter: true";
       if (filter > 0 && transmit > 0)
         warn(loc, "a pigment's filter and transmit together are drawn as filter (strahl tints all transmitted light)");
     }
-    if (t.interior.ior != 1) s += ", ior: " + fmt(t.interior.ior);
+    if (t.interior.ior != 1) s += ", ior: " + yaml_number(t.interior.ior);
     if (f.fresnel || t.interior.fresnel) s += ", fresnel: true";
-    if (p.checker) s += ", checker: {size: " + fmt(p.scale) + ", color: " + rgb(p.color2) + "}";
+    if (p.checker) s += ", checker: {size: " + yaml_number(p.scale) + ", color: " + rgb(p.color2) + "}";
     return s + "}";
   }
 
