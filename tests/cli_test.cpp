@@ -135,6 +135,9 @@ TEST_F(Cli, ExplainPrintsTheRayTreeAndWritesNothing) {
                        "pixel (0 to 0)"),
             std::string::npos)
       << log();
+  ASSERT_EQ(run("scene.yaml --width 16 --height 12 --explain 8,6 --device auto"), 0) << log();
+  EXPECT_NE(log().find("strahl: note: --explain traces on the CPU (--device auto is not used)\n"), std::string::npos) << log();
+  EXPECT_NE(log().find("pixel (8, 6) of 16×12"), std::string::npos) << log();
   EXPECT_EQ(run("scene.yaml --explain 1,1,1"), 1) << log();
   EXPECT_EQ(run("scene.yaml --explain 1"), 1) << log();
   EXPECT_EQ(run("scene.yaml --explain 1,-1"), 1) << log();

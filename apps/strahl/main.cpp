@@ -162,7 +162,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    if (!explain.empty()) return explain_sample(*parsed.options);
+    if (!explain.empty()) {
+      // The explanation is the CPU's walk of the ray tree; a GPU computes the same numbers.
+      if (device != "cpu") strahl::console::err("strahl: note: --explain traces on the CPU (--device {} is not used)\n", device);
+      return explain_sample(*parsed.options);
+    }
     return run(*parsed.options);
   } catch (const strahl::Cancelled&) {  // a signal while loading or building
     strahl::console::err("strahl: interrupted ({}) before rendering; nothing written\n",
