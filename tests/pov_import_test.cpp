@@ -145,6 +145,25 @@ TEST(PovImport, MacrosAndIncludesInLoops) {
                         "center: [-1, 0, 1.2246467991473532e-16], radius: 0.1", "center: [1, 2, 3], radius: 0.5"})
     EXPECT_NE(y.find(s), std::string::npos) << s << " in\n" << y;
 
+  // #switch: the first clause that holds, falling through to #break; #break from inside an #if.
+  const std::string sw = yaml_of(
+      "#macro Pick(V)\n"
+      "  #switch (V)\n"
+      "    #case (1) sphere { <1, 0, 0>, 1 } #break\n"
+      "    #range (2, 3) sphere { <2, 0, 0>, 1 }\n"
+      "    #case (4) sphere { <4, 0, 0>, 1 } #if (V = 3) #break #end\n"
+      "    #case (5) sphere { <5, 0, 0>, 1 } #break\n"
+      "    #else sphere { <9, 0, 0>, 1 }\n"
+      "  #end\n"
+      "#end\n"
+      "Pick(1) Pick(2.5) Pick(3) Pick(7)\n");
+  EXPECT_EQ(count(sw, "type: sphere"), 7u) << sw;
+  EXPECT_EQ(count(sw, "center: [1, 0, 0]"), 1u) << sw;
+  EXPECT_EQ(count(sw, "center: [2, 0, 0]"), 2u) << sw;
+  EXPECT_EQ(count(sw, "center: [4, 0, 0]"), 2u) << sw;
+  EXPECT_EQ(count(sw, "center: [5, 0, 0]"), 1u) << sw;  // (2.5 falls through to 5; 3 breaks at 4)
+  EXPECT_EQ(count(sw, "center: [9, 0, 0]"), 1u) << sw;
+
   const test::TempDir dir;
   test::write_text(dir / "ball.inc", "sphere { <I, 0, 0>, 1 }\n");
   test::write_text(dir / "row.pov", "camera { right -x * 4 / 3 }\n#for (I, 0, 2)\n  #include \"ball.inc\"\n#end\n"
@@ -169,6 +188,7 @@ TEST(PovImport, TexturesAndUnionsFollowPovRaysRules) {
       "  translate <0, 1, 0> pigment { color red 1 } }\n"
       "sphere { 0, 1 texture { T } interior { ior 1.5 } }\n"
       "plane { <0, 2, 0>, 1 pigment { checker color rgb 1, color rgb 0.1 scale 0.5 } }\n"
+      "quadric { <1, 0, 1>, <0, 0, 0>, <0, 0, 0>, -1 clipped_by { box { <-2, 0, -2>, <2, 1, 2> } } }\n"
       "light_source { <1, 2, 3> color rgb <1, 0.5, 0> }\n"
       "light_source { <0, 10, 0> color rgb 2 parallel point_at <1, 0, 0> }\n");
   EXPECT_NE(y.find("  - {type: point, position: [1, 2, 3], color: [1, 0.5, 0]}\n"
@@ -193,6 +213,10 @@ TEST(PovImport, TexturesAndUnionsFollowPovRaysRules) {
   // POV-Ray's plane {N, d} lies d along the unit normal.
   EXPECT_NE(y.find("{type: plane, normal: [0, 1, 0], distance: 1, material: {color: [1, 1, 1]"), std::string::npos) << y;
   EXPECT_NE(y.find("checker: {size: 0.5, color: [0.1, 0.1, 0.1]}"), std::string::npos) << y;
+  EXPECT_NE(y.find("{type: quadric, coefficients: [1, 0, 1, 0, 0, 0, 0, 0, 0, -1], clipped_by: {type: box, corners: "
+                   "[[-2, 0, -2], [2, 1, 2]]}, material:"),
+            std::string::npos)
+      << y;
 }
 
 TEST(PovImport, MeshesAndIncludes) {
@@ -237,12 +261,14 @@ TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
            Case{"sphere { 0, 1 pigment { bozo } }", "test.pov:1:25: 'bozo' in pigment is not supported"},
            Case{"#if (1)\nsphere { 0, 1 }", "test.pov:1:1: this #if has no #end"},
            Case{"#if (0)\nsphere { 0, 1 }", "test.pov:1:1: this #if has no #end"},
-           Case{"#end", "test.pov:1:1: #end without #if, #while, #for or #macro"},
+           Case{"#end", "test.pov:1:1: #end without #if, #while, #for, #switch or #macro"},
            Case{"#while (1) #end", "test.pov:1:1: more than 1000000 loop iterations"},
            Case{"sphere { 0, 1", "test.pov:1:1: this sphere is never closed"},
            Case{"camera { location 0", "test.pov:1:20: the file ends inside camera"},
-           Case{"#switch (1) #end", "test.pov:1:1: #switch is not supported"},
-           Case{"#macro M(A) sphere { 0, A } #end\nM(1, 2)", "test.pov:2:1: the macro M takes 1 arguments, not 2"},
+           Case{"#fopen F \"x.txt\" read", "test.pov:1:1: #fopen is not supported"},
+           Case{"#break", "test.pov:1:1: #break outside a #switch"},
+           Case{"#switch (1) #case (1) sphere { 0, 1 }", "test.pov:1:1: this #switch has no #end"},
+           Case{"sphere { 0, 1 clipped_by { box { -1, 1 } } }", "test.pov:1:15: 'clipped_by' in sphere is not supported"},           Case{"#macro M(A) sphere { 0, A } #end\nM(1, 2)", "test.pov:2:1: the macro M takes 1 arguments, not 2"},
            Case{"#macro M(A) M(A) #end\nM(1)", "test.pov:1:13: macros called more than 200 deep"},
            Case{"#macro M(A) A A #end\nsphere { 0, M(1) }", "test.pov:1:15: the macro M gives more than one value here"},
            Case{"sphere { Q, 1 }", "test.pov:1:10: unknown name 'Q' (not declared)"},

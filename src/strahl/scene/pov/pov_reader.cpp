@@ -70,7 +70,7 @@ Num vector_num(const Vector& v) {
 // Items that `#declare` may name and `object { NAME }` may use.
 const std::set<std::string> kShapes = {"sphere",       "plane",   "box",   "cylinder",  "cone",     "torus",
                                        "disc",         "triangle", "smooth_triangle", "mesh", "mesh2", "isosurface",
-                                       "union",        "intersection", "difference", "merge", "object"};
+                                       "quadric",      "union",        "intersection", "difference", "merge", "object"};
 
 class Reader {
  public:
@@ -231,6 +231,22 @@ class Reader {
       } else {
         skip_to_else(d);
       }
+    } else if (n == "switch") {
+      switch_directive(d);
+    } else if ((n == "case" || n == "range" || n == "else") && !controls_.empty() && controls_.back().name == "switch") {
+      if (n != "else") case_holds(d, 0);  // falling through: read past its value
+    } else if (n == "break") {
+      // Out of the innermost #switch, and out of the #if, #while and #for inside it.
+      std::size_t open = 0;
+      while (open < controls_.size() && controls_[controls_.size() - 1 - open].name != "switch") {
+        if (controls_[controls_.size() - 1 - open].name == "macro") open = controls_.size();
+        else ++open;
+      }
+      if (open == controls_.size()) throw Error(loc(d), "#break outside a #switch");
+      for (std::size_t i = 0; i <= open; ++i) {
+        controls_.pop_back();
+        skip_to_end(d);
+      }
     } else if (n == "else" || n == "elseif") {
       if (controls_.empty() || controls_.back().name != "if") throw Error(loc(d), "#" + n + " without #if");
       controls_.pop_back();
@@ -260,7 +276,7 @@ class Reader {
         skip_to_end(d);
       }
     } else if (n == "end") {
-      if (controls_.empty()) throw Error(loc(d), "#end without #if, #while, #for or #macro");
+      if (controls_.empty()) throw Error(loc(d), "#end without #if, #while, #for, #switch or #macro");
       Control& c = controls_.back();
       count_iteration(c.loc);
       if (c.name == "macro") {
@@ -315,7 +331,7 @@ class Reader {
   // Skips a branch not taken: to the matching #else (then reads on), a true #elseif, or #end.
   void skip_to_else(const Token& d) {
     for (;;) {
-      const Token t = skip_to_directive(d, true);
+      const Token t = skip_to_directive(d, Stop::Else);
       if (t.text == "end") return;
       if (t.text == "else") {
         controls_.push_back(Control{"if", 0, {}, 0, 1, loc(d)});
@@ -329,11 +345,41 @@ class Reader {
     }
   }
   void skip_to_end(const Token& d) {
-    while (skip_to_directive(d, false).text != "end") {
+    while (skip_to_directive(d, Stop::End).text != "end") {
     }
   }
-  // Moves past the next #end (or, with `stop_at_else`, #else/#elseif) at this level.
-  Token skip_to_directive(const Token& d, bool stop_at_else) {
+
+  // #switch (value): on at the first #case (v) with v = value, #range (lo, hi) holding it, or
+  // #else; then through the clauses after it (POV-Ray's fall-through) to #break or #end.
+  void switch_directive(const Token& d) {
+    const double value = expression().f();
+    for (;;) {
+      const Token t = skip_to_directive(d, Stop::Case);
+      if (t.text == "end") return;
+      if (t.text == "else" || case_holds(t, value)) {
+        controls_.push_back(Control{"switch", 0, {}, 0, 1, loc(d)});
+        return;
+      }
+    }
+  }
+  bool case_holds(const Token& t, double value) {
+    expect_symbol("(", ("after #" + t.text).c_str());
+    const double a = expression().f();
+    if (t.text == "case") {
+      expect_symbol(")", "after #case's value");
+      return value == a;
+    }
+    expect_symbol(",", "between #range's bounds");
+    const double b = expression().f();
+    expect_symbol(")", "after #range's bounds");
+    return a <= value && value <= b;
+  }
+
+  // Where skip_to_directive stops at this level, besides #end.
+  enum class Stop { End, Else, Case };  // Else: #else, #elseif; Case: #case, #range, #else
+
+  // Moves past the next #end (or the directives `stop` names) at this level.
+  Token skip_to_directive(const Token& d, Stop stop) {
     int depth = 0;
     for (;;) {
       const Token& t = tokens_[pos_];
@@ -346,7 +392,9 @@ class Reader {
       } else if (t.text == "end") {
         if (depth == 0) return t;
         --depth;
-      } else if (depth == 0 && stop_at_else && (t.text == "else" || t.text == "elseif")) {
+      } else if (depth == 0 && stop == Stop::Else && (t.text == "else" || t.text == "elseif")) {
+        return t;
+      } else if (depth == 0 && stop == Stop::Case && (t.text == "case" || t.text == "range" || t.text == "else")) {
         return t;
       }
     }
@@ -1080,6 +1128,16 @@ class Reader {
       const Vector b = vector();
       expect_symbol(",", "after a vertex");
       o.keys = ", vertices: [" + yaml_vector(a) + ", " + yaml_vector(b) + ", " + yaml_vector(vector()) + "]";
+    } else if (n == "quadric") {
+      // quadric { <A, B, C>, <D, E, F>, <G, H, I>, J }: strahl's ten coefficients in this order.
+      o.type = "quadric";
+      std::string c;
+      for (int i = 0; i < 3; ++i) {
+        const Vector v = vector();
+        expect_symbol(",", "after the quadric's coefficients");
+        c += yaml_number(v[0]) + ", " + yaml_number(v[1]) + ", " + yaml_number(v[2]) + ", ";
+      }
+      o.keys = ", coefficients: [" + c + yaml_number(real()) + "]";
     } else if (n == "smooth_triangle" || n == "mesh" || n == "mesh2") {
       o = mesh(kw);
     } else if (n == "isosurface") {
@@ -1117,6 +1175,16 @@ class Reader {
         if (n == "hollow" && !is_symbol(peek(), "}") && peek().kind == TokenKind::Number) real();
       } else if (n == "no_shadow" || n == "no_reflection" || n == "no_image" || n == "double_illuminate") {
         warn(loc(t), n + " is left out");
+      } else if (n == "clipped_by" && o.type == "quadric") {
+        expect_symbol("{", "after clipped_by");
+        const Token box = next();
+        if (!is_word(box, "box")) throw Error(loc(box), "strahl clips a quadric by a box only, found " + describe(box));
+        expect_symbol("{", "after box");
+        const Vector a = vector();
+        expect_symbol(",", "after the box's first corner");
+        o.keys += ", clipped_by: {type: box, corners: [" + yaml_vector(a) + ", " + yaml_vector(vector()) + "]}";
+        expect_symbol("}", "to close the box");
+        expect_symbol("}", "to close clipped_by");
       } else if (n == "photons" || n == "bounded_by") {
         warn(loc(t), n + " { … } is left out");
         skip_block();
