@@ -174,6 +174,38 @@ TEST(PovImport, MacrosAndIncludesInLoops) {
     EXPECT_NE(row.find(s), std::string::npos) << s << " in\n" << row;
 }
 
+// Include files such as textures.inc declare much the importer does not read: such a name is
+// unusable, not the file, and using it is the error. Strings, and POV-Ray's random streams (the
+// numbers POV-Ray 3.7 prints for the same calls).
+TEST(PovImport, UnreadableDeclarationsStringsAndRandomNumbers) {
+  const Scene s = pov_scene(
+      "#version 3.7;\n"
+      "#declare Bad = pigment { bozo color_map { [0 rgb 0] [1 rgb 1] } }\n"
+      "#declare Layered = texture { pigment { rgb 1 } } texture { pigment { rgb 0 } }\n"
+      "#declare F = function { x + y }\n"
+      "#declare G = F(1, 2, 3);\n"
+      "#declare S = seed(1);\n"
+      "#declare R1 = rand(S);\n"
+      "#declare R2 = rand(S);\n"
+      "#declare T = seed(-7);\n"
+      "#warning concat(\"R \", str(R1, 0, 12), \" \", str(R2, 0, 12), \" \", str(rand(T), 0, 12), chr(33))\n"
+      "#ifdef (Bad) sphere { 0, 1 texture { Layered } } #end\n");
+  ASSERT_EQ(s.objects().size(), 1u);
+  std::string all;
+  for (const std::string& w : s.warnings) all += w + "\n";
+  EXPECT_NE(all.find("test.pov:10:1: #warning: R 0.421992875268 0.487121198207 0.046072868175!\n"), std::string::npos) << all;
+  EXPECT_NE(all.find("test.pov:3:20: a layered texture is drawn as its first layer"), std::string::npos) << all;
+  EXPECT_NE(pov_error("#declare Bad = pigment { bozo }\nsphere { 0, 1 pigment { Bad } }")
+                .find("test.pov:2:25: 'Bad' cannot be used: its declaration holds what strahl's POV-Ray importer does not "
+                      "read (test.pov:1:26: 'bozo' in pigment is not supported"),
+            std::string::npos)
+      << pov_error("#declare Bad = pigment { bozo }\nsphere { 0, 1 pigment { Bad } }");
+  EXPECT_NE(pov_error("#declare F = function { x }\n#declare G = F(1);\nsphere { 0, G }").find("test.pov:3:13: 'G' cannot be used"),
+            std::string::npos);
+  // A value that is not an item in braces is an error where it stands.
+  EXPECT_NE(pov_error("#declare X = 1 + Q;").find("test.pov:1:18: unknown name 'Q'"), std::string::npos);
+}
+
 // POV-Ray's texture rules: the default texture (black, ambient 0.1, diffuse 0.6, no highlight);
 // a union is a group whose parts take its transforms after their own and its texture where they
 // have none; rgbf is filtered transparency; roughness is 1/shininess; declared textures.

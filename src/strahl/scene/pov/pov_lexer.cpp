@@ -127,11 +127,11 @@ class Lexer {
     advance();  // the opening quote
     std::string out;
     for (;;) {
-      if (i_ >= s_.size() || s_[i_] == '\n') throw Error(loc, "this string is never closed (no \" on its line)");
+      if (i_ >= s_.size()) throw Error(loc, "this string is never closed (no \" before the end of the file)");
       const char c = s_[i_];
       advance();
       if (c == '"') return out;
-      if (c == '\\' && i_ < s_.size() && s_[i_] != '\n') {
+      if (c == '\\' && i_ < s_.size()) {
         const char e = s_[i_];
         advance();
         out += e == 'n' ? '\n' : e == 't' ? '\t' : e;

@@ -7,7 +7,10 @@
 #include "strahl/scene/pov/pov_reader.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -117,7 +120,24 @@ class Reader {
   // (A copy: a directive carried out later, an #include, may move the tokens.)
   Token peek() {
     while (tokens_[pos_].kind == TokenKind::Directive) directive();
-    return tokens_[pos_];
+    const Token& t = tokens_[pos_];
+    if (t.kind == TokenKind::Identifier && !unusable_.empty())
+      if (const auto it = unusable_.find(t.text); it != unusable_.end())
+        throw Unusable(loc(t), "'" + t.text + "' cannot be used: its declaration holds what strahl's POV-Ray importer does "
+                                              "not read (" + it->second + ")");
+    return t;
+  }
+  // The error of using such a name (a declaration that uses one is unusable too).
+  struct Unusable : Error {
+    using Error::Error;
+  };
+
+  // A name right after a directive (#declare NAME, #ifdef (NAME) …): read as it stands.
+  Token name_after_directive(const char* what) {
+    const Token t = tokens_[pos_];
+    if (t.kind != TokenKind::Identifier) throw Error(loc(t), std::string("expected a name ") + what + ", found " + describe(t));
+    ++pos_;
+    return t;
   }
   Token next() {
     Token t = peek();
@@ -156,6 +176,19 @@ class Reader {
     throw Error(loc(t), "'" + t.text + "'" + (where.empty() ? "" : " in " + where) +
                            " is not supported by strahl's POV-Ray importer (docs/pov-import.md)");
   }
+  // A texture's note (Texture::notes) while one is being read, else a warning.
+  void note(const FileLoc& where, const std::string& message) {
+    if (!noting_) return warn(where, message);
+    const std::string n = where.str() + ": " + message;
+    if (std::find(noting_->notes.begin(), noting_->notes.end(), n) == noting_->notes.end()) noting_->notes.push_back(n);
+  }
+  struct Noting {
+    Noting(Reader& r, Texture& t) : reader(r), saved(r.noting_) { r.noting_ = &t; }
+    ~Noting() { reader.noting_ = saved; }
+    Reader& reader;
+    Texture* saved;
+  };
+
   void warn(const FileLoc& loc, const std::string& message) {
     const std::string w = loc.str() + ": " + message;
     if (warned_.insert(message).second) out_.warnings.push_back(w);
@@ -181,38 +214,40 @@ class Reader {
     const Token d = tokens_[pos_++];
     const std::string& n = d.text;
     if (n == "declare" || n == "local") {
-      const Token name = next();
-      if (name.kind != TokenKind::Identifier) throw Error(loc(name), "expected a name after #" + n + ", found " + describe(name));
+      Token name = name_after_directive(("after #" + n).c_str());
+      if (name.text == "deprecated") {  // #declare deprecated [once] "message" NAME = …
+        if (is_word(tokens_[pos_], "once")) ++pos_;
+        if (tokens_[pos_].kind == TokenKind::String) ++pos_;
+        name = name_after_directive("after #declare deprecated");
+      }
       expect_symbol("=", ("after #" + n + " " + name.text).c_str());
-      Value v = value();
-      accept_raw_symbol(";");
       if (n == "local") hide_in_macro(name.text);
-      symbols_[name.text] = std::move(v);
+      declare(name);
     } else if (n == "macro") {
       const Token name = next();
       if (name.kind != TokenKind::Identifier) throw Error(loc(name), "expected a name after #macro, found " + describe(name));
       expect_symbol("(", "after the macro's name");
       Macro m;
-      if (!accept_symbol(")")) {
-        do {
-          const Token p = next();
-          if (p.kind != TokenKind::Identifier) throw Error(loc(p), "expected a parameter name, found " + describe(p));
-          m.params.push_back(p.text);
-        } while (accept_symbol(","));
-        expect_symbol(")", "to close the macro's parameters");
+      // Names separated by commas (POV-Ray also reads them without, and with one after the last).
+      while (!accept_symbol(")")) {
+        const Token p = next();
+        if (p.kind != TokenKind::Identifier) throw Error(loc(p), "expected a parameter name or ')', found " + describe(p));
+        m.params.push_back(p.text);
+        accept_symbol(",");
       }
       m.body = pos_;
       macros_[name.text] = std::move(m);
       skip_to_end(d);
     } else if (n == "undef") {
-      const Token name = next();
+      const Token name = name_after_directive("after #undef");
       symbols_.erase(name.text);
+      unusable_.erase(name.text);
     } else if (n == "version") {
       version_ = expression().f();
       accept_raw_symbol(";");
     } else if (n == "include") {
-      const Token file = next();
-      if (file.kind != TokenKind::String) throw Error(loc(file), "#include needs a file name in quotes");
+      Token file = peek();
+      file.text = string_value();
       include(file, at);
     } else if (n == "if" || n == "ifdef" || n == "ifndef") {
       bool taken;
@@ -220,10 +255,9 @@ class Reader {
         taken = condition(d);
       } else {
         expect_symbol("(", ("after #" + n).c_str());
-        const Token name = next();
-        if (name.kind != TokenKind::Identifier) throw Error(loc(name), "#" + n + " needs a name");
+        const Token name = name_after_directive(("in #" + n).c_str());
         expect_symbol(")", ("after #" + n + " (" + name.text).c_str());
-        taken = symbols_.count(name.text) > 0;
+        taken = symbols_.count(name.text) > 0 || unusable_.count(name.text) > 0;
         if (n == "ifndef") taken = !taken;
       }
       if (taken) {
@@ -281,11 +315,7 @@ class Reader {
       count_iteration(c.loc);
       if (c.name == "macro") {
         pos_ = c.loop;
-        for (auto it = c.hidden.rbegin(); it != c.hidden.rend(); ++it) {
-          if (it->second) symbols_[it->first] = std::move(*it->second);
-          else symbols_.erase(it->first);
-        }
-        controls_.pop_back();
+        unwind_to(controls_.size() - 1);
       } else if (c.name == "while") {
         pos_ = c.loop;
         controls_.pop_back();
@@ -301,11 +331,10 @@ class Reader {
         controls_.pop_back();
       }
     } else if (n == "debug" || n == "warning") {
-      const Token text = next();
-      if (n == "warning") warn(loc(d), "#warning: " + text.text);
+      const std::string text = string_value();
+      if (n == "warning") warn(loc(d), "#warning: " + text);
     } else if (n == "error") {
-      const Token text = next();
-      throw Error(loc(d), "#error: " + text.text);
+      throw Error(loc(d), "#error: " + string_value());
     } else if (n == "default") {
       expect_symbol("{", "after #default");
       while (!accept_symbol("}")) {
@@ -400,6 +429,87 @@ class Reader {
     }
   }
 
+  // #declare NAME = value. A declared item (a pigment, finish, texture, object, function … in
+  // braces) that holds what the importer does not read makes NAME unusable, not the file: include
+  // files such as textures.inc declare many, and a scene uses few. Using it is the error.
+  void declare(const Token& name) {
+    while (tokens_[pos_].kind == TokenKind::Directive) directive();
+    const Token first = tokens_[pos_];  // (as it stands: an unusable name is caught below)
+    const bool item = first.kind == TokenKind::Identifier && pos_ + 1 < tokens_.size() &&
+                      (is_symbol(tokens_[pos_ + 1], "{") || (first.text == "function" && is_symbol(tokens_[pos_ + 1], "(")));
+    const std::size_t start = pos_, depth = controls_.size();
+    const int in_vector = in_vector_;
+    try {
+      Value v = value();
+      accept_raw_symbol(";");
+      symbols_[name.text] = std::move(v);
+      unusable_.erase(name.text);
+    } catch (const Error& e) {
+      const bool uses_unusable = dynamic_cast<const Unusable*>(&e) != nullptr;
+      if (!item && !uses_unusable) throw;
+      in_vector_ = in_vector;
+      unwind_to(depth);
+      pos_ = start;
+      if (item) {
+        ++pos_;
+        if (is_symbol(tokens_[pos_], "(")) skip_balanced("(", ")");
+        skip_balanced("{", "}");
+        skip_layers();
+        accept_raw_symbol(";");
+      } else if (!skip_to_semicolon()) {
+        throw;
+      }
+      symbols_.erase(name.text);
+      unusable_[name.text] = e.what();
+    }
+  }
+  // Past the ';' that ends a declaration, if one does (before the next directive).
+  bool skip_to_semicolon() {
+    for (int level = 0;;) {
+      const Token& t = tokens_[pos_];
+      if (t.kind == TokenKind::End || t.kind == TokenKind::Directive) return false;
+      ++pos_;
+      if (is_symbol(t, "(") || is_symbol(t, "{") || is_symbol(t, "<")) ++level;
+      if (is_symbol(t, ")") || is_symbol(t, "}") || is_symbol(t, ">")) --level;
+      if (level <= 0 && is_symbol(t, ";")) return true;
+    }
+  }
+  // Closes the frames opened since `depth` (a declaration given up): macros give back what they hid.
+  void unwind_to(std::size_t depth) {
+    while (controls_.size() > depth) {
+      Control& c = controls_.back();
+      for (auto it = c.hidden.rbegin(); it != c.hidden.rend(); ++it) {
+        if (it->second) symbols_[it->first] = std::move(*it->second);
+        else symbols_.erase(it->first);
+      }
+      controls_.pop_back();
+    }
+  }
+  // A layered texture's further layers (texture { … } texture { … }): read past. Returns whether
+  // there were any.
+  bool skip_layers() {
+    bool any = false;
+    while (is_word(tokens_[pos_], "texture") && pos_ + 1 < tokens_.size() && is_symbol(tokens_[pos_ + 1], "{")) {
+      ++pos_;
+      skip_balanced("{", "}");
+      any = true;
+    }
+    return any;
+  }
+
+  // From an opening bracket to its partner, reading nothing.
+  void skip_balanced(const char* open, const char* close) {
+    const Token start = tokens_[pos_];
+    if (!is_symbol(start, open)) throw Error(loc(start), std::string("expected '") + open + "'");
+    for (int level = 0;;) {
+      const Token& t = tokens_[pos_];
+      if (t.kind == TokenKind::End) throw Error(loc(start), std::string("this '") + open + "' is never closed");
+      ++pos_;
+      if (is_symbol(t, open)) ++level;
+      if (is_symbol(t, close) && --level == 0) return;
+    }
+  }
+
   // A macro's parameter or #local name: what it was is given back when the macro returns.
   void hide_in_macro(const std::string& name) {
     for (auto c = controls_.rbegin(); c != controls_.rend(); ++c) {
@@ -485,6 +595,10 @@ class Reader {
                  : t.text == "interior" ? Value::Kind::Interior : Value::Kind::Texture;
         const std::string what = t.text;
         texture_block(what, v.texture);
+        if (what == "texture" && skip_layers()) {
+          const Noting noting(*this, v.texture);
+          note(loc(t), "a layered texture is drawn as its first layer");
+        }
         return v;
       }
       if (kShapes.count(t.text)) {
@@ -514,10 +628,10 @@ class Reader {
         return v;
       }
     }
-    if (t.kind == TokenKind::String) {
+    if (t.kind == TokenKind::String || (t.kind == TokenKind::Identifier && (t.text == "concat" || t.text == "str" || t.text == "chr"))) {
       Value v;
       v.kind = Value::Kind::String;
-      v.str = next().text;
+      v.str = string_value();
       return v;
     }
     Value v;
@@ -716,6 +830,20 @@ class Reader {
       for (const Num& a : args) r = n == "min" ? std::min(r, a.f()) : std::max(r, a.f());
       return number(r);
     }
+    if (n == "seed") {
+      // POV-Ray's random streams: seed(n) starts one (its number), rand(stream) draws from it.
+      need(1);
+      streams_.push_back(static_cast<std::uint32_t>(static_cast<std::int64_t>(whole(args[0].f(), INT32_MIN, INT32_MAX))));
+      return number(double(streams_.size() - 1));
+    }
+    if (n == "rand") {
+      need(1);
+      const double i = args[0].f();
+      if (!(i >= 0 && i < double(streams_.size()))) throw Error(loc(t), "rand() needs a stream made by seed()");
+      std::uint32_t& state = streams_[std::size_t(i)];
+      state = state * 1812433253u + 12345u;  // (POV-Ray's generator: the same numbers)
+      return number(double(state) / 4294967295.0);
+    }
     if (n == "vlength") return need(1), number(length(to_vector(args[0])));
     if (n == "vnormalize") {
       need(1);
@@ -738,6 +866,50 @@ class Reader {
 
   // A count from a float, clamped to [lo, hi] before it becomes an int (NaN: lo).
   static int whole(double v, int lo, int hi) { return v >= lo ? (v <= hi ? int(v) : hi) : lo; }
+
+  // Whether `t` begins a float (an optional value such as metallic's).
+  bool starts_value(const Token& t) const {
+    if (t.kind == TokenKind::Number) return true;
+    if (t.kind == TokenKind::Symbol) return t.text == "(" || t.text == "-" || t.text == "+" || t.text == "!";
+    if (t.kind != TokenKind::Identifier) return false;
+    const auto it = symbols_.find(t.text);
+    return (it != symbols_.end() && it->second.kind == Value::Kind::Number) || is_macro(t) || t.text == "pi";
+  }
+
+  // A string: "text", a declared string, concat(…), str(float, width, digits), chr(code).
+  std::string string_value() {
+    const Token t = next();
+    if (t.kind == TokenKind::String) return t.text;
+    if (t.kind == TokenKind::Identifier) {
+      if (const auto it = symbols_.find(t.text); it != symbols_.end() && it->second.kind == Value::Kind::String) return it->second.str;
+      if (t.text == "concat") {
+        expect_symbol("(", "after concat");
+        std::string s = string_value();
+        while (accept_symbol(",")) s += string_value();
+        expect_symbol(")", "to close concat(");
+        return s;
+      }
+      if (t.text == "str") {
+        expect_symbol("(", "after str");
+        const double v = real();
+        expect_symbol(",", "in str(value, width, digits)");
+        const int width = whole(real(), -64, 64);
+        expect_symbol(",", "in str(value, width, digits)");
+        const int digits = whole(real(), -1, 32);
+        expect_symbol(")", "to close str(");
+        char buffer[128];
+        std::snprintf(buffer, sizeof buffer, "%*.*f", width < 0 ? -width : width, digits < 0 ? 6 : digits, v);
+        return buffer;
+      }
+      if (t.text == "chr") {
+        expect_symbol("(", "after chr");
+        const int code = whole(real(), 0, 127);
+        expect_symbol(")", "to close chr(");
+        return std::string(1, char(code));
+      }
+    }
+    throw Error(loc(t), "expected a string, found " + describe(t));
+  }
 
   Vector vector() { return to_vector(expression()); }
   double real() { return expression().f(); }
@@ -859,7 +1031,7 @@ class Reader {
       const Token t = next();
       const std::string& n = t.text;
       if (is_symbol(t, ",")) continue;
-      if (n == "color" || n == "colour" || n.rfind("rgb", 0) == 0) {
+      if (n == "color" || n == "colour" || n.rfind("rgb", 0) == 0 || starts_value(t)) {
         --pos_;
         l.color = color();
       } else if (n == "area_light") {
@@ -909,13 +1081,14 @@ class Reader {
 
   // A texture's parts: pigment, finish, interior, texture and the bump map `normal` (left out).
   bool texture_item(const Token& t, Texture& tex) {
+    const Noting noting(*this, tex);
     const std::string& n = t.text;
     if (n == "pigment" || n == "finish" || n == "interior" || n == "texture") {
       texture_block(n, tex);
       return true;
     }
     if (n == "normal") {
-      warn(loc(t), "normal (bump maps) is left out");
+      note(loc(t), "normal (bump maps) is left out");
       skip_block();
       return true;
     }
@@ -935,12 +1108,14 @@ class Reader {
   // pigment { … }, finish { … }, interior { … } or texture { … }, starting from a declared one
   // of the same kind if the block begins with its name.
   void texture_block(const std::string& kind, Texture& tex) {
+    const Noting noting(*this, tex);
     expect_symbol("{", ("after " + kind).c_str());
     const Token& first = peek();
     if (first.kind == TokenKind::Identifier) {
       if (const auto it = symbols_.find(first.text); it != symbols_.end() && it->second.kind != Value::Kind::Number) {
         const Texture& d = it->second.texture;
         next();
+        tex.notes.insert(tex.notes.end(), d.notes.begin(), d.notes.end());
         if (kind == "texture" || kind == "pigment") tex.pigment = d.pigment, tex.has_pigment |= d.has_pigment;
         if (kind == "texture" || kind == "finish") tex.finish = d.finish, tex.has_finish |= d.has_finish;
         if (kind == "texture" || kind == "interior") tex.interior = d.interior, tex.has_interior |= d.has_interior;
@@ -979,12 +1154,12 @@ class Reader {
     } else if (n == "scale") {
       next();
       const Num s = expression();
-      if (s.dim != 1 && !(s.c[0] == s.c[1] && s.c[1] == s.c[2])) warn(loc(t), "a pigment's uneven scale is left out");
+      if (s.dim != 1 && !(s.c[0] == s.c[1] && s.c[1] == s.c[2])) note(loc(t), "a pigment's uneven scale is left out");
       p.scale *= s.c[0];
     } else if (n == "translate" || n == "rotate") {
       next();
       vector();
-      warn(loc(t), "a pigment's translate and rotate are left out");
+      note(loc(t), "a pigment's translate and rotate are left out");
     } else if (n == "quick_color" || n == "quick_colour") {
       next();
       color();
@@ -1006,7 +1181,7 @@ class Reader {
   }
   double grey(const Color& c, const FileLoc& loc, const std::string& what) {
     if (c[0] == c[1] && c[1] == c[2]) return c[0];
-    warn(loc, "a coloured " + what + " is drawn grey (its mean): strahl's " + what + " is one number");
+    note(loc, "a coloured " + what + " is drawn grey (its mean): strahl's " + what + " is one number");
     return (c[0] + c[1] + c[2]) / 3;
   }
 
@@ -1019,7 +1194,7 @@ class Reader {
     else if (n == "roughness") f.roughness = real();
     else if (n == "phong") {
       f.phong = real();
-      warn(loc(t), "phong is drawn as a Blinn-Phong highlight (specular phong, shininess 4 × phong_size)");
+      note(loc(t), "phong is drawn as a Blinn-Phong highlight (specular phong, shininess 4 × phong_size)");
     } else if (n == "phong_size") f.phong_size = real();
     else if (n == "reflection") {
       if (accept_symbol("{")) {
@@ -1039,8 +1214,8 @@ class Reader {
       }
     } else if (n == "brilliance" || n == "metallic" || n == "crand" || n == "emission") {
       if (n == "emission") finish_color();
-      else if (n != "metallic" || peek().kind == TokenKind::Number) real();
-      warn(loc(t), n + " is left out");
+      else if (n != "metallic" || starts_value(peek())) real();
+      note(loc(t), n + " is left out");
     } else if (n == "conserve_energy") {
     } else {
       unsupported(t, "finish");
@@ -1054,7 +1229,7 @@ class Reader {
     else if (n == "fresnel") in.fresnel = real() != 0;
     else if (n == "caustics" || n == "dispersion" || n == "fade_distance" || n == "fade_power") {
       real();
-      warn(loc(t), n + " is left out");
+      note(loc(t), n + " is left out");
     } else if (n == "dispersion_samples") real();
     else unsupported(t, "interior");
   }
@@ -1172,7 +1347,7 @@ class Reader {
         if (o.type != "cylinder" && o.type != "cone") unsupported(t, what);
         o.keys += ", open: true";
       } else if (n == "sturm" || n == "hollow" || n == "smooth") {
-        if (n == "hollow" && !is_symbol(peek(), "}") && peek().kind == TokenKind::Number) real();
+        if (n == "hollow" && starts_value(peek())) real();
       } else if (n == "no_shadow" || n == "no_reflection" || n == "no_image" || n == "double_illuminate") {
         warn(loc(t), n + " is left out");
       } else if (n == "clipped_by" && o.type == "quadric") {
@@ -1422,12 +1597,15 @@ class Reader {
   std::vector<std::string> files_;
   std::map<std::string, Value> symbols_;
   std::map<std::string, Macro> macros_;
+  std::vector<std::uint32_t> streams_;  // seed() and rand()
+  std::map<std::string, std::string> unusable_;  // declared names holding what is not read: why
   std::vector<Control> controls_;
   std::set<std::string> warned_;
   long iterations_ = 0;
   int includes_ = 0;
   int in_vector_ = 0;
   int nesting_ = 0;
+  Texture* noting_ = nullptr;  // the texture being read (note())
   double version_ = 0;  // #version (0: none)
   bool gamma_given_ = false;
   Parsed out_;

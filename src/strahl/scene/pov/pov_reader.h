@@ -59,6 +59,9 @@ struct Texture {
   Pigment pigment;
   Finish finish;
   Interior interior;
+  // What it holds that strahl draws otherwise or leaves out ("file:line:column: what"): warnings
+  // where an object uses it, not where it is declared (an include file's unused textures say nothing).
+  std::vector<std::string> notes;
   bool given() const { return has_pigment || has_finish || has_interior; }
 };
 

@@ -4,6 +4,7 @@
 
 #include "strahl/scene/pov/pov_scene.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <functional>
@@ -101,6 +102,8 @@ class Writer {
   }
 
   std::string material(const pov::Texture& t, const FileLoc& loc) {
+    for (const std::string& n : t.notes)
+      if (std::find(t_.warnings.begin(), t_.warnings.end(), n) == t_.warnings.end()) t_.warnings.push_back(n);
     const pov::Pigment& p = t.pigment;
     const pov::Finish& f = t.finish;
     const bool phong = f.phong > 0 && f.specular == 0;
