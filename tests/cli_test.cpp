@@ -157,6 +157,8 @@ TEST_F(Cli, ReadsPovRayScenesWithDeclaredNames) {
   EXPECT_TRUE(read_image(dir_ / "out.pfm") == test::render_image(twin));
   ASSERT_EQ(run("'" + (scenes / "lecture.pov").string() + "' --width 32 --height 18 -q -o plain.pfm"), 0) << log();
   EXPECT_FALSE(read_image(dir_ / "plain.pfm") == test::render_image(twin));
+  ASSERT_EQ(run("'" + (scenes / "lecture.pov").string() + "' --declare TINY=1e-320 --width 8 --height 8 -q -o tiny.png"), 0)
+      << log();  // (a subnormal number is a number)
   for (const char* bad : {"--declare WHITTED", "--declare =1", "--declare 1X=2", "--declare W=one", "--declare W=inf"}) {
     EXPECT_EQ(run(std::string("scene.yaml -q ") + bad), 1) << bad << ": " << log();
     EXPECT_NE(log().find("--declare"), std::string::npos) << log();

@@ -85,7 +85,7 @@ void add_sampling_options(CLI::App& app, Options& o) {
 
 ParseResult parse_options(int argc, char** argv, const char* program, const std::function<void(CLI::App&)>& more) {
   Options o;
-  CLI::App app{"strahl — a Whitted-style ray tracer. Renders a scene file (.yaml/.json), or the lecture's scene "
+  CLI::App app{"strahl — a Whitted-style ray tracer. Renders a scene file (.yaml/.json/.pov), or the lecture's scene "
                "when none is given.",
                program};
   app.add_option("scene", o.scene,
@@ -94,7 +94,8 @@ ParseResult parse_options(int argc, char** argv, const char* program, const std:
   app.add_option_function<std::vector<std::string>>(
          "--declare",
          [&o](const std::vector<std::string>& all) {
-           for (const std::string& d : all) o.declares.emplace_back(d.substr(0, d.find('=')), std::stod(d.substr(d.find('=') + 1)));
+           for (const std::string& d : all)
+             o.declares.emplace_back(d.substr(0, d.find('=')), std::strtod(d.c_str() + d.find('=') + 1, nullptr));
          },
          "NAME=VALUE: declare a float in a .pov scene before it is read (POV-Ray's Declare=NAME=VALUE); repeatable")
       ->allow_extra_args(false)

@@ -718,17 +718,23 @@ void bind_scene_class(py::module_& m) {
       });
 
   m.def("lecture_scene", &lecture_scene, "The lecture's scene (five spheres, a plane, one light): what `strahl` renders without a scene file.");
-  m.def("load", [](const std::filesystem::path& path, int width, int height, const std::map<std::string, double>& declare) {
+  m.def("load", [](const std::filesystem::path& path, std::optional<int> width, std::optional<int> height,
+                   const std::map<std::string, double>& declare) {
+    // As the CLI's --width, --height and --declare (apps/strahl/setup.cpp).
     PovOptions pov;
-    pov.width = width;
-    pov.height = height;
+    if (width) pov.width = *width;
+    if (height) pov.height = *height;
     pov.declares.assign(declare.begin(), declare.end());
-    return interruptible<Scene>([&] { return load_scene(path, pov); });
-  }, py::arg("path"), py::kw_only(), py::arg("width") = PovOptions{}.width, py::arg("height") = PovOptions{}.height,
+    Scene scene = interruptible<Scene>([&] { return load_scene(path, pov); });
+    if (width) scene.settings.width = *width;
+    if (height) scene.settings.height = *height;
+    return scene;
+  }, py::arg("path"), py::kw_only(), py::arg("width") = py::none(), py::arg("height") = py::none(),
   py::arg("declare") = std::map<std::string, double>{},
   "Reads a scene file (.yaml, .yml, .json, or a POV-Ray scene .pov: docs/pov-import.md); errors raise strahl.Error with "
-  "file, line and column. Ctrl-C (KeyboardInterrupt) stops it. For a .pov scene, width and height are its image_width "
-  "and image_height (and the render's size) and declare its Declare=NAME=VALUE floats, e.g. {\"WHITTED\": 1}.");
+  "file, line and column. Ctrl-C (KeyboardInterrupt) stops it. width and height override the scene's size, as the CLI's "
+  "--width and --height: for a .pov scene they are also its image_width and image_height (default 1280×720). declare: a "
+  ".pov scene's Declare=NAME=VALUE floats, e.g. {\"WHITTED\": 1}.");
   m.def("loads", [](const std::string& text, const std::string& name, const std::filesystem::path& base_dir) {
     return interruptible<Scene>([&] { return parse_scene(text, name, base_dir); });
   }, py::arg("text"), py::arg("name") = "<string>", py::arg("base_dir") = ".",

@@ -111,5 +111,9 @@ def test_pov_ray_scenes_load_with_their_size_and_declared_names(tmp_path, source
     with pytest.raises(strahl.Error) as info:
         strahl.load(bad)
     assert (info.value.file, info.value.line, info.value.column) == (str(bad), 2, 1)
+    # width and height override any scene's size, as the CLI's flags do.
+    small = strahl.load(f"{source_dir}/scenes/lecture-whitted.yaml", width=32, height=18)
+    assert (small.settings.width, small.settings.height) == (32, 18)
+    assert np.array_equal(strahl.render(small), twin)
     whitted.save(tmp_path / "whitted.yaml")
     assert np.array_equal(strahl.render(strahl.load(tmp_path / "whitted.yaml")), twin)
