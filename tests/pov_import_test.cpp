@@ -299,6 +299,8 @@ TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
            Case{"camera { location 0", "test.pov:1:20: the file ends inside camera"},
            Case{"#fopen F \"x.txt\" read", "test.pov:1:1: #fopen is not supported"},
            Case{"#break", "test.pov:1:1: #break outside a #switch"},
+           Case{"#declare S = sphere { 0, 1 }\nsphere { 0, 1 pigment { S } }", "test.pov:2:25: 'S' is not a pigment, finish"},
+           Case{"cylinder { 0, y, 1 open open }", "(no error)"},
            Case{"#switch (1) #case (1) sphere { 0, 1 }", "test.pov:1:1: this #switch has no #end"},
            Case{"sphere { 0, 1 clipped_by { box { -1, 1 } } }", "test.pov:1:15: 'clipped_by' in sphere is not supported"},           Case{"#macro M(A) sphere { 0, A } #end\nM(1, 2)", "test.pov:2:1: the macro M takes 1 arguments, not 2"},
            Case{"#macro M(A) M(A) #end\nM(1)", "test.pov:1:13: macros called more than 200 deep"},

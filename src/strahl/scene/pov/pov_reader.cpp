@@ -1112,7 +1112,13 @@ class Reader {
     expect_symbol("{", ("after " + kind).c_str());
     const Token& first = peek();
     if (first.kind == TokenKind::Identifier) {
-      if (const auto it = symbols_.find(first.text); it != symbols_.end() && it->second.kind != Value::Kind::Number) {
+      const auto it = symbols_.find(first.text);
+      const bool texture_value = it != symbols_.end() &&
+                                 (it->second.kind == Value::Kind::Pigment || it->second.kind == Value::Kind::Finish ||
+                                  it->second.kind == Value::Kind::Interior || it->second.kind == Value::Kind::Texture);
+      if (it != symbols_.end() && !texture_value && it->second.kind != Value::Kind::Number)
+        throw Error(loc(first), "'" + first.text + "' is not a pigment, finish, interior or texture");
+      if (texture_value) {
         const Texture& d = it->second.texture;
         next();
         tex.notes.insert(tex.notes.end(), d.notes.begin(), d.notes.end());
@@ -1345,7 +1351,7 @@ class Reader {
       else if (n == "inverse") o.inverse = !o.inverse;
       else if (n == "open") {
         if (o.type != "cylinder" && o.type != "cone") unsupported(t, what);
-        o.keys += ", open: true";
+        if (o.keys.find(", open: true") == std::string::npos) o.keys += ", open: true";
       } else if (n == "sturm" || n == "hollow" || n == "smooth") {
         if (n == "hollow" && starts_value(peek())) real();
       } else if (n == "no_shadow" || n == "no_reflection" || n == "no_image" || n == "double_illuminate") {
