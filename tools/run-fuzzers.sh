@@ -38,6 +38,14 @@ finish_batch() {
 }
 
 kinds="scene pov obj ply expression"
+# Every target must be there (the build preset `fuzz` names them all): a missing one would
+# otherwise print nothing and pass.
+for kind in $kinds; do
+  if [ ! -x "$build/fuzz/strahl_fuzz_$kind" ]; then
+    echo "fuzz: $build/fuzz/strahl_fuzz_$kind is not built (cmake --build --preset fuzz)" >&2
+    exit 1
+  fi
+done
 batch=""
 running=0
 for kind in $kinds; do
@@ -51,6 +59,11 @@ finish_batch
 for kind in $kinds; do
   if ls "$build/fuzz-artifacts/$kind-"* >/dev/null 2>&1; then
     echo "fuzz: $kind found a crash: $(ls "$build/fuzz-artifacts/$kind-"*)" >&2
+    exit 1
+  fi
+  # (A run that ended without its final statistics did not fuzz for its time.)
+  if ! grep -q '^stat::number_of_executed_units' "$build/fuzz-logs/$kind.log"; then
+    echo "fuzz: $kind did not run to its end (no final statistics in $build/fuzz-logs/$kind.log)" >&2
     exit 1
   fi
 done
