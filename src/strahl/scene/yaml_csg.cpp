@@ -1,9 +1,13 @@
-// Reads CSG nodes of YAML scene files (scene/yaml_csg.h).
-
-#include "strahl/scene/yaml_csg.h"
+// The CSG nodes of YAML scene files (docs/scene-format.md, "CSG"): union, intersection,
+// difference, merge and inverse with their `objects` (yaml_reader.h).
 
 #include <algorithm>
 #include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "strahl/scene/yaml_reader.h"
 
 namespace strahl {
 namespace {
@@ -27,15 +31,14 @@ bool is_csg_type(const std::string& type) {
   return std::any_of(kOperations.begin(), kOperations.end(), [&](const Named& o) { return type == o.name; });
 }
 
-Csg read_csg(const YAML::Node& n, const std::string& type, const CsgReader& r, int depth) {
+Csg YamlReader::csg(const YAML::Node& n, const std::string& type, int depth) const {
   CsgOperation op = CsgOperation::Union;
   for (const Named& o : kOperations)
     if (type == o.name) op = o.op;
-  const auto fail = [&](const YAML::Node& at, const std::string& message) { throw Error(r.loc(at), message); };
-  if (depth == 1) r.keys(n, {"type", "objects", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, type);
+  if (depth == 1) keys(n, {"type", "objects", "material", "motion", "scale", "rotate", "translate", "matrix", "transform"}, type);
   else
-    r.keys(n, {"type", "objects", "scale", "rotate", "translate", "matrix", "transform"},
-           type + " (inside a CSG: the outermost one's material applies)");
+    keys(n, {"type", "objects", "scale", "rotate", "translate", "matrix", "transform"},
+         type + " (inside a CSG: the outermost one's material applies)");
   if (depth > kMaxCsgDepth)
     fail(n, type + " is nested too deeply: CSG nodes may be nested at most " + std::to_string(kMaxCsgDepth) +
                 " levels deep");
@@ -52,7 +55,7 @@ Csg read_csg(const YAML::Node& n, const std::string& type, const CsgReader& r, i
     if (!t || !t.IsScalar()) fail(child, "a " + type + " object needs 'type'");
     const std::string child_type = t.Scalar();
     if (is_csg_type(child_type)) {
-      children.push_back(std::make_unique<Csg>(read_csg(child, child_type, r, depth + 1)));
+      children.push_back(std::make_unique<Csg>(csg(child, child_type, depth + 1)));
       continue;
     }
     if (std::find_if(kOperandTypes.begin(), kOperandTypes.end(), [&](const char* k) { return child_type == k; }) ==
@@ -63,11 +66,13 @@ Csg read_csg(const YAML::Node& n, const std::string& type, const CsgReader& r, i
     if (const YAML::Node m = child["material"])
       fail(m, "an object of a CSG takes the CSG's material: give 'material' on the outermost " + type +
                   " (split it into separate objects to give parts their own)");
-    children.push_back(r.solid(child));
+    Scene operand;
+    object(child, operand);
+    children.push_back(operand.take_last());
   }
-  Csg c(op, std::move(children), depth == 1 ? r.material(n) : Material{});
-  c.loc = r.loc(n);
-  c.placement = r.placement(n);
+  Csg c(op, std::move(children), depth == 1 ? object_material(n) : Material{});
+  c.loc = loc(n);
+  c.placement = placement(n);
   return c;
 }
 

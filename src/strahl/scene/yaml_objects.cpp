@@ -12,7 +12,6 @@
 #include "strahl/scene/place_solid.h"
 #include "strahl/scene/solids.h"
 #include "strahl/scene/validate.h"
-#include "strahl/scene/yaml_csg.h"
 
 namespace strahl {
 
@@ -111,21 +110,6 @@ void YamlReader::object(const YAML::Node& n, Scene& scene) const {
   added->loc = loc(n);
   if (type != "mesh" && type != "plane" && type != "triangle") added->placement = placement(n);
   if (const auto m = n["motion"]) added->motion = motion(m);
-}
-
-// A CSG node (scene/yaml_csg.cpp); its solid operands are read here as objects of their own.
-Csg YamlReader::csg(const YAML::Node& n, const std::string& type) const {
-  CsgReader r;
-  r.loc = [this](const YAML::Node& x) { return loc(x); };
-  r.keys = [this](const YAML::Node& x, Keys allowed, const std::string& what) { keys(x, allowed, what); };
-  r.material = [this](const YAML::Node& x) { return object_material(x); };
-  r.placement = [this](const YAML::Node& x) { return placement(x); };
-  r.solid = [this](const YAML::Node& x) {
-    Scene operand;
-    object(x, operand);
-    return operand.take_last();
-  };
-  return read_csg(n, type, r);
 }
 
 // [[x, y, z], [x, y, z]]: two opposite corners.

@@ -7,7 +7,8 @@
 //   yaml_values.cpp     numbers, whole numbers, booleans, vectors, colours, keys
 //   yaml_settings.cpp   render and sampling settings, camera, materials, lights
 //   yaml_placement.cpp  transforms and motion
-//   yaml_objects.cpp    objects, solids, implicit surfaces, CSG, groups and instances
+//   yaml_objects.cpp    objects, solids, implicit surfaces, groups and instances
+//   yaml_csg.cpp        CSG nodes: union, intersection, difference, merge, inverse
 
 #include <yaml-cpp/yaml.h>
 
@@ -28,6 +29,9 @@
 namespace strahl {
 
 // One element of the top-level objects list, read on its own.
+// union, intersection, difference, merge or inverse (yaml_csg.cpp).
+bool is_csg_type(const std::string& type);
+
 struct ObjectText {
   int line;          // of its first line in the file, 0-based
   std::string text;  // from there on, the `- ` before it blanked
@@ -88,7 +92,9 @@ class YamlReader {
   void groups(const YAML::Node& n, Scene& scene);
   SceneObject* instance(const YAML::Node& n, Scene& scene) const;
   void object(const YAML::Node& n, Scene& scene) const;
-  Csg csg(const YAML::Node& n, const std::string& type) const;
+  // A CSG node (yaml_csg.cpp); `depth`: 1 for one in the objects list, one more for each node it
+  // is an operand of. Its solid operands are read by object().
+  Csg csg(const YAML::Node& n, const std::string& type, int depth = 1) const;
   void corners(const YAML::Node& n, const std::string& what, Vec3& a, Vec3& b) const;
   void bound(const YAML::Node& n, const std::string& what, bool sphere_allowed, ImplicitSurface* s, ClipBox* clip) const;
   SceneObject* solid(const std::string& type, const YAML::Node& n, Scene& scene) const;
