@@ -9,11 +9,18 @@
 #include <condition_variable>
 #include <cstring>
 #include <mutex>
+#include <sstream>
 #include <thread>
 
 #include "strahl/util/cancel.h"
 
 namespace strahl::python {
+
+std::string repr(const Vec3& v) {
+  std::ostringstream out;
+  out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+  return out.str();
+}
 
 FileLoc caller_loc() {
   FileLoc loc;

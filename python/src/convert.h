@@ -57,6 +57,9 @@ namespace strahl::python {
 
 namespace py = pybind11;
 
+// (x, y, z) as text, for __repr__.
+std::string repr(const Vec3& v);
+
 // Where the Python code that is running now is (file and line), for objects built in Python:
 // compile() names it in its errors as a scene file's objects name their line.
 FileLoc caller_loc();

@@ -1,0 +1,116 @@
+// The lights in Python (docs/python.md): point and directional lights and the rect, disk and
+// sphere area lights, their radiance from an intensity or a total power.
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "bindings.h"
+#include "convert.h"
+#include "shape_args.h"
+#include "strahl/scene/scene.h"
+#include "strahl/scene/validate.h"
+#include "strahl/shading/area_light.h"
+
+namespace strahl::python {
+namespace {
+
+// Area lights: radiance = colour × intensity, or from the total power (Φ = π·L·area).
+Light finish_light(Light l, const Vec3& color, const std::optional<double>& intensity, const std::optional<double>& power,
+                   int samples) {
+  validate::non_negative(color, {}, "light color");
+  if (intensity && power) throw py::type_error("give either intensity or power, not both");
+  validate::int_range(samples, 1, 64, {}, "light samples");
+  l.samples = samples;
+  if (power) {
+    validate::non_negative(*power, {}, "power");
+    l.radiance = color * radiance_from_power(l, *power);
+  } else {
+    const double i = intensity.value_or(1.0);
+    validate::non_negative(i, {}, "intensity");
+    l.radiance = color * i;
+  }
+  return l;
+}
+
+const char* light_kind_name(LightKind k) {
+  switch (k) {
+    case LightKind::Point: return "point";
+    case LightKind::Directional: return "directional";
+    case LightKind::Rect: return "rect";
+    case LightKind::Disk: return "disk";
+    case LightKind::Sphere: return "sphere";
+  }
+  return "?";
+}
+
+}  // namespace
+
+void bind_lights(py::module_& m) {
+  const auto white = py::make_tuple(1, 1, 1);
+  py::class_<Light>(m, "Light", "A light source; made by PointLight, DirectionalLight, RectLight, DiskLight, SphereLight.")
+      .def_property_readonly("kind", [](const Light& l) { return light_kind_name(l.kind); })
+      .def_readonly("position", &Light::position)
+      .def_readonly("direction", &Light::direction)
+      .def_readonly("radiance", &Light::radiance)
+      .def_readonly("edge_u", &Light::edge_u)
+      .def_readonly("edge_v", &Light::edge_v)
+      .def_readonly("normal", &Light::normal)
+      .def_readonly("radius", &Light::radius)
+      .def_readonly("samples", &Light::samples)
+      .def("__repr__", [](const Light& l) {
+        return std::string("strahl.Light(") + light_kind_name(l.kind) + ", position=" + repr(l.position) +
+               ", radiance=" + repr(l.radiance) + ")";
+      });
+  m.def("PointLight", [](const Vec3& position, const py::object& color, double intensity) {
+        validate::finite(position, {}, "light position");
+        const Vec3 c = color_arg(color, "light color");
+        validate::non_negative(c, {}, "light color");
+        validate::non_negative(intensity, {}, "intensity");
+        return point_light(position, c, intensity);
+      }, py::arg("position"), py::arg("color") = white, py::arg("intensity") = 1.0,
+      "A point light: radiance colour × intensity, falling off with the squared distance.");
+  m.def("DirectionalLight", [](const Vec3& direction, const py::object& color, double intensity) {
+        validate::non_zero(direction, {}, "light direction");
+        const Vec3 c = color_arg(color, "light color");
+        validate::non_negative(c, {}, "light color");
+        validate::non_negative(intensity, {}, "intensity");
+        return directional_light(direction, c, intensity);
+      }, py::arg("direction"), py::arg("color") = white, py::arg("intensity") = 1.0,
+      "A light from infinitely far away; `direction` is the way its light travels.");
+  m.def("RectLight", [](const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v, const py::object& color,
+                        std::optional<double> intensity, std::optional<double> power, int samples) {
+        validate::finite(corner, {}, "light corner");
+        validate::non_zero(edge_u, {}, "edge_u");
+        validate::non_zero(edge_v, {}, "edge_v");
+        if (std::fabs(dot(normalize(edge_u), normalize(edge_v))) > 1e-6) throw Error("rect light edges must be perpendicular");
+        Light l = rect_light(corner, edge_u, edge_v, Vec3(1), samples);
+        l.normal = normalize(l.normal);  // (for radiance_from_power; compile() sets it again from the edges)
+        return finish_light(l, color_arg(color, "light color"), intensity, power, samples);
+      }, py::arg("corner"), py::arg("edge_u"), py::arg("edge_v"), py::arg("color") = white, py::kw_only(),
+      py::arg("intensity") = py::none(), py::arg("power") = py::none(), py::arg("samples") = 4,
+      "A rectangular area light; it emits towards edge_u × edge_v.");
+  m.def("DiskLight", [](const Vec3& center, const Vec3& normal, double radius, const py::object& color,
+                        std::optional<double> intensity, std::optional<double> power, int samples) {
+        validate::finite(center, {}, "light center");
+        validate::non_zero(normal, {}, "light normal");
+        validate::positive(radius, {}, "light radius");
+        const Light l = disk_light(center, normal, radius, Vec3(1), samples);  // compile() normalises the normal
+        return finish_light(l, color_arg(color, "light color"), intensity, power, samples);
+      }, py::arg("center"), py::arg("normal"), py::arg("radius"), py::arg("color") = white, py::kw_only(),
+      py::arg("intensity") = py::none(), py::arg("power") = py::none(), py::arg("samples") = 4,
+      "A disk-shaped area light emitting towards `normal`.");
+  m.def("SphereLight", [](const Vec3& center, double radius, const py::object& color, std::optional<double> intensity,
+                          std::optional<double> power, int samples) {
+        validate::finite(center, {}, "light center");
+        validate::positive(radius, {}, "light radius");
+        const Light l = sphere_light(center, radius, Vec3(1), samples);
+        return finish_light(l, color_arg(color, "light color"), intensity, power, samples);
+      }, py::arg("center"), py::arg("radius"), py::arg("color") = white, py::kw_only(),
+      py::arg("intensity") = py::none(), py::arg("power") = py::none(), py::arg("samples") = 4,
+      "A spherical area light emitting from its whole surface.");
+}
+
+}  // namespace strahl::python
