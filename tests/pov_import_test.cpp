@@ -330,6 +330,25 @@ TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
   EXPECT_NE(pov_error(unions).find("nested more than 200 deep"), std::string::npos);
   // A NUL byte: not a text file.
   EXPECT_NE(pov_error(std::string("sphere { 0,\n\0 1 }", 17)).find("test.pov:2: not a text file"), std::string::npos);
+  // Loops and macros read their bodies again: besides their turns, the tokens they read are
+  // bounded (a turn may read far). Lowered here from the default 50,000,000.
+  std::string sum = "1";
+  for (int i = 0; i < 40; ++i) sum += " + 1";  // 81 tokens
+  const std::string loop = "#declare J = 0;\n#while (J < 1000)\n  #declare X = " + sum + ";\n  #declare J = J + 1;\n#end\n",
+                    macro = "#macro M() #declare X = " + sum + "; #end\n#for (I, 1, 1000)\n  M()\n#end\n";
+  for (const std::string& text : {loop, macro}) {
+    SCOPED_TRACE(text);
+    PovOptions o;
+    o.max_tokens_read = 10'000;
+    try {
+      (void)translate_pov(text + "sphere { 0, 1 }", "test.pov", o);
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("the scene's loops and macros read more than 10000 tokens"), std::string::npos) << e.what();
+    }
+    o.max_tokens_read = 100'000'000;  // ~100,000 tokens read: within it
+    EXPECT_NO_THROW((void)translate_pov(text + "sphere { 0, 1 }", "test.pov", o));
+  }
 }
 
 TEST(PovImport, WarningsNameWhatIsLeftOut) {

@@ -57,8 +57,8 @@ inline Outcome scene_input(const std::uint8_t* data, std::size_t size) {
 }
 
 // A POV-Ray scene's text (scene/pov/): translated and read as a scene file's, then the same
-// checks; #include finds nothing (the directory does not exist). The loop and object bounds are
-// lowered so that each input is read in bounded time.
+// checks; #include finds nothing (the directory does not exist). The loop, token and object
+// bounds are lowered so that each input is read in bounded time.
 inline Outcome pov_input(const std::uint8_t* data, std::size_t size) {
   Scene scene;
   try {
@@ -66,6 +66,7 @@ inline Outcome pov_input(const std::uint8_t* data, std::size_t size) {
     options.width = 32;
     options.height = 18;
     options.max_loop_iterations = 20'000;  // (bounded time: an input is not a hang for being large)
+    options.max_tokens_read = 2'000'000;
     options.max_objects = 1'000;
     scene = parse_pov_scene(std::string(reinterpret_cast<const char*>(data), size),
                             "/nonexistent-strahl-fuzz-dir/fuzz.pov", options);

@@ -120,16 +120,16 @@ void Parser::directive() {
     Control& c = controls_.back();
     count_iteration(c.loc);
     if (c.name == "macro") {
-      pos_ = c.loop;
+      jump(c.loop, loc(d));
       unwind_to(controls_.size() - 1);
     } else if (c.name == "while") {
-      pos_ = c.loop;
+      jump(c.loop, loc(d));
       controls_.pop_back();
     } else if (c.name == "for") {
       const double v = symbol_number(c.var, loc(d)) + c.step;
       symbols_[c.var] = Value{Value::Kind::Number, number(v), {}, {}, {}};
       if (c.step > 0 ? v <= c.end : v >= c.end) {
-        pos_ = c.loop;
+        jump(c.loop, loc(d));
       } else {
         controls_.pop_back();
       }
@@ -150,6 +150,18 @@ void Parser::directive() {
   } else {
     throw Error(loc(d), "#" + n + " is not supported by strahl's POV-Ray importer (docs/pov-import.md)");
   }
+}
+
+// Reading goes on at `to`: a loop's start, a macro's body or where it returns, a declaration read
+// again, an included file. What was read since the last jump counts towards the bound on tokens
+// read (a loop may skip far on each turn: its turns alone do not bound the work).
+void Parser::jump(std::size_t to, const FileLoc& where) {
+  if (pos_ > segment_) tokens_read_ += pos_ - segment_;
+  if (tokens_read_ > options_.max_tokens_read)
+    throw Error(where, "the scene's loops and macros read more than " + std::to_string(options_.max_tokens_read) +
+                           " tokens (an endless #while?)");
+  pos_ = to;
+  segment_ = to;
 }
 
 void Parser::count_iteration(const FileLoc& loc) {
@@ -254,7 +266,7 @@ void Parser::declare(const Token& name) {
     if (!item && !uses_unusable) throw;
     in_vector_ = in_vector;
     unwind_to(depth);
-    pos_ = start;
+    jump(start, loc(name));
     if (item) {
       ++pos_;
       if (is_symbol(tokens_[pos_], "(")) skip_balanced("(", ")");
@@ -315,7 +327,7 @@ void Parser::call_macro(const Token& name) {
     hide_in_macro(m.params[i]);
     symbols_[m.params[i]] = std::move(args[i]);
   }
-  pos_ = m.body;
+  jump(m.body, loc(name));
 }
 
 // After a value read from a macro's body: its #end (and any directives before it) must follow.
@@ -345,7 +357,7 @@ void Parser::include(const Token& file, std::size_t at) {
   const std::ptrdiff_t delta = std::ptrdiff_t(more.size()) - std::ptrdiff_t(pos_ - at);
   tokens_.erase(tokens_.begin() + std::ptrdiff_t(at), tokens_.begin() + std::ptrdiff_t(pos_));
   tokens_.insert(tokens_.begin() + std::ptrdiff_t(at), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
-  pos_ = at;
+  jump(at, loc(file));
   for (Control& c : controls_)
     if (c.loop > at) c.loop = std::size_t(std::ptrdiff_t(c.loop) + delta);
   for (auto& [name, m] : macros_)

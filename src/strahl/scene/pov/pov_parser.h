@@ -148,6 +148,7 @@ class Parser {
 
   // ---- directives (pov_directives.cpp) --------------------------------------------------------
   void directive();
+  void jump(std::size_t to, const FileLoc& where);
   void count_iteration(const FileLoc& loc);
   bool condition(const Token& d);
   void skip_to_else(const Token& d);
@@ -212,6 +213,8 @@ class Parser {
   const PovOptions& options_;
   std::vector<Token> tokens_;
   std::size_t pos_ = 0;
+  std::size_t segment_ = 0;       // where reading went on after the last jump()
+  std::size_t tokens_read_ = 0;   // before that jump
   std::vector<std::string> files_;
   std::map<std::string, Value> symbols_;
   std::map<std::string, Macro> macros_;

@@ -20,9 +20,11 @@ struct PovOptions {
   int height = 720;   // image_height (+H)
   std::vector<std::pair<std::string, double>> declares;  // POV-Ray's Declare=NAME=VALUE
   // Bounds on what a file can make the importer do (errors past them): loop iterations
-  // (#while and #for together) and objects. A caller reading untrusted files in bounded time
-  // lowers them (the scene reader takes ~0.1 ms per object).
+  // (#while and #for together, and macro calls), tokens read (loops and macros read their
+  // bodies again) and objects. A caller reading untrusted files in bounded time lowers them (the
+  // scene reader takes ~0.1 ms per object).
   long max_loop_iterations = 1'000'000;
+  std::size_t max_tokens_read = 50'000'000;
   std::size_t max_objects = 200'000;
 };
 
