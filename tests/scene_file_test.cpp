@@ -327,6 +327,32 @@ TEST(SceneFile, YamlSyntaxError) {
   EXPECT_EQ(unclosed.rfind("test.yaml:2:", 0), 0u) << unclosed;
 }
 
+// The objects list's elements are parsed a batch (512) at a time on all cores and read in the
+// file's order: the objects keep their order, and of two errors in different batches the first in
+// the file is reported, whichever thread met the other.
+TEST(SceneFile, ObjectsParsedInBatchesKeepTheFilesOrder) {
+  const auto scene_text = [](int bad_radius, int bad_merge) {
+    std::string text = "objects:\n";
+    for (int i = 0; i < 1200; ++i) {
+      if (i == bad_radius) text += "  - {type: sphere, center: [0, 0, 0], radius: -1}\n";
+      else if (i == bad_merge) text += "  - {<<: 1, type: sphere, center: [0, 0, 0], radius: 1}\n";
+      else text += "  - {type: sphere, center: [" + std::to_string(i) + ", 0, 0], radius: 1}\n";
+    }
+    return text;
+  };
+  const Scene scene = parse_scene(scene_text(-1, -1), "test.yaml", ".");
+  ASSERT_EQ(scene.objects().size(), 1200u);
+  for (int i = 0; i < 1200; ++i) {
+    const auto* sphere = dynamic_cast<const Sphere*>(scene.objects()[std::size_t(i)].get());
+    ASSERT_NE(sphere, nullptr);
+    EXPECT_EQ(sphere->center.x, Real(i));
+    EXPECT_EQ(sphere->loc.line, i + 2);
+  }
+  EXPECT_TRUE(error_at(scene_text(700, 900), "-1}", "radius"));
+  EXPECT_TRUE(error_at(scene_text(900, 700), "1, type", "merge key"));
+  EXPECT_TRUE(error_at(scene_text(100, 1100), "-1}", "radius"));
+}
+
 TEST(SceneFile, CameraUpParallelToView) {
   // Either the camera section or the up vector may carry the blame; both name the right place.
   const std::string text = "camera:\n  position: [0, 0, 5]\n  look_at: [0, 0, 0]\n  up: [0, 0, 1]\n" + kSphere;

@@ -1,13 +1,17 @@
 // Reads YAML/JSON scene files into a Scene (scene_file.h): the entry of the YAML reader
 // (yaml_reader.h). Limits are checked before any tree is built; then the scene's sections are read
-// and the top-level objects one at a time, each from its own text.
+// and the top-level objects, each parsed from its own text (a batch at a time on all cores).
 
 #include <yaml-cpp/yaml.h>
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <exception>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -46,18 +50,35 @@ Scene YamlReader::read(const YAML::Node& root, const std::vector<ObjectText>& ob
     for (const YAML::Node& l : n) light(l, scene);
   }
   if (!objects.empty()) {
-    for (const ObjectText& o : objects) {
+    // The elements' texts are parsed a batch at a time on all cores, then read in the file's
+    // order, so that errors come as a reading from the top meets them; memory holds one batch.
+    constexpr std::size_t kBatch = 512;
+    std::vector<std::optional<YAML::Node>> elements;
+    std::vector<std::exception_ptr> failures;
+    for (std::size_t first = 0; first < objects.size(); first += kBatch) {
       check_cancelled("yaml");
-      YAML::Node element;
-      try {
-        element = YAML::Load(o.text);
-      } catch (const YAML::Exception& e) {
-        throw Error(FileLoc{name_, o.line + e.mark.line + 1, e.mark.column + 1}, "syntax error: " + e.msg);
+      const std::size_t count = std::min(kBatch, objects.size() - first);
+      elements.assign(count, std::nullopt);
+      failures.assign(count, nullptr);
+      tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) {
+        const ObjectText& o = objects[first + k];
+        try {
+          YAML::Node element = YAML::Load(o.text);
+          if (may_hold_merge_keys(o.text)) expand_merge_keys(element, name_, o.line);
+          elements[k].emplace(element);
+        } catch (const YAML::Exception& e) {
+          failures[k] = std::make_exception_ptr(
+              Error(FileLoc{name_, o.line + e.mark.line + 1, e.mark.column + 1}, "syntax error: " + e.msg));
+        } catch (...) {
+          failures[k] = std::current_exception();
+        }
+      });
+      for (std::size_t k = 0; k < count; ++k) {
+        if (failures[k]) std::rethrow_exception(failures[k]);
+        line_offset_ = objects[first + k].line;
+        object(*elements[k], scene);
+        line_offset_ = 0;
       }
-      if (may_hold_merge_keys(o.text)) expand_merge_keys(element, name_, o.line);
-      line_offset_ = o.line;
-      object(element, scene);
-      line_offset_ = 0;
     }
   } else if (const YAML::Node n = root["objects"]) {
     sequence(n, "objects");
@@ -155,8 +176,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const fs::pa
     throw Error(FileLoc{name, line, column}, "not a text file (a NUL byte; scene files are UTF-8 text)");
   }
   // Before the tree is built: an input too large for the format is refused at constant memory.
-  // Then the objects are read one at a time where the text allows it, so that memory holds one
-  // object's tree, not the whole file's (docs/scene-format.md, "Size limits").
+  // Then the objects are read each from its own text where the text allows it, so that memory
+  // holds a batch's trees, not the whole file's (docs/scene-format.md, "Size limits").
   SplitText split = split_objects(text, check_yaml_limits(text, name));
   YAML::Node root;
   try {

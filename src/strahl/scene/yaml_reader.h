@@ -3,7 +3,7 @@
 // the interface: parse_scene, load_scene). Strict: unknown keys, wrong types and impossible values
 // are errors naming the file:line:column of the offending node.
 //
-//   yaml_loader.cpp     the entry: limits, the objects read one at a time, the scene's sections
+//   yaml_loader.cpp     the entry: limits, the objects parsed in batches, the scene's sections
 //   yaml_values.cpp     numbers, whole numbers, booleans, vectors, colours, keys
 //   yaml_settings.cpp   render and sampling settings, camera, materials, lights
 //   yaml_placement.cpp  transforms and motion
