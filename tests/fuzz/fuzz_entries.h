@@ -66,7 +66,7 @@ inline Outcome pov_input(const std::uint8_t* data, std::size_t size) {
     options.width = 32;
     options.height = 18;
     options.max_loop_iterations = 20'000;  // (bounded time: an input is not a hang for being large)
-    options.max_tokens_read = 2'000'000;
+    options.max_tokens_read = 200'000;
     options.max_objects = 1'000;
     scene = parse_pov_scene(std::string(reinterpret_cast<const char*>(data), size),
                             "/nonexistent-strahl-fuzz-dir/fuzz.pov", options);
