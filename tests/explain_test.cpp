@@ -25,7 +25,7 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 TEST(Explain, RadianceAndRaysAreTheRenderersSample) {
   for (const char* file : {"lecture.yaml", "lecture-whitted.yaml", "refraction.yaml", "glossy.yaml", "soft-shadows.yaml",
                            "depth-of-field.yaml", "motion-blur.yaml", "csg.yaml", "instances-windmills.yaml",
-                           "motion-tumble.yaml", "whitted-1979.yaml"}) {
+                           "motion-tumble.yaml", "whitted-1979.yaml", "spotlights.yaml"}) {
     Scene scene = load_scene(fs::path(STRAHL_SOURCE_DIR) / "scenes" / file);
     scene.settings.width = 24;
     scene.settings.height = 14;
@@ -55,6 +55,12 @@ TEST(Explain, RadianceAndRaysAreTheRenderersSample) {
       const std::string t = explain_pixel(rs, 12, 10).text;
       EXPECT_TRUE(contains(t, "light 0 (rect, 4×4 samples): sampled with this sample's random numbers")) << t;
       EXPECT_TRUE(contains(t, "the area lights' samples add local − the terms above = (")) << t;
+    }
+    if (std::string(file) == "spotlights.yaml") {  // on the floor beside the mirror: lit by one spot
+      const std::string t = explain_pixel(rs, 16, 12).text;
+      EXPECT_TRUE(contains(t, "light 0 (spot at (-5, 6, 2) towards (")) << t;
+      EXPECT_TRUE(contains(t, "angle 12°, falloff 20°, tightness 10")) << t;
+      EXPECT_TRUE(contains(t, "outside its cone, adds 0")) << t;
     }
     if (std::string(file) == "lecture-whitted.yaml") {
       EXPECT_GT(multi, 4);

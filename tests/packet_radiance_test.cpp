@@ -103,7 +103,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"csg.yaml", SamplerKind::Stratified, 16}, Case{"implicit.yaml", SamplerKind::Grid, 16},
                       Case{"instances.yaml", SamplerKind::Grid, 16}, Case{"motion-blur.yaml", SamplerKind::Stratified, 16},
                       Case{"depth-of-field.yaml", SamplerKind::Sobol, 16}, Case{"soft-shadows.yaml", SamplerKind::Grid, 16},
-                      Case{"glossy.yaml", SamplerKind::Stratified, 16}, Case{"refraction.yaml", SamplerKind::Grid, 16}),
+                      Case{"glossy.yaml", SamplerKind::Stratified, 16}, Case{"refraction.yaml", SamplerKind::Grid, 16},
+                      Case{"spotlights.yaml", SamplerKind::Grid, 16}),
     [](const ::testing::TestParamInfo<Case>& param) {
       std::string name = param.param.file;
       name = name.substr(0, name.find('.'));
@@ -169,6 +170,18 @@ TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
   Tally tally;
   expect_scene_packets_match(scene, "mixed materials", tally);
   EXPECT_GT(tally.secondary, 0u);
+}
+
+// Spotlights whose cone edges cross the spheres: lanes inside, on the step and outside (no
+// shadow ray there) side by side — each sample as it would be alone, the ray counts too.
+TEST(PacketFrontEnd, SpotLitLanesOfMixedMaterialsShadeAsAlone) {
+  Scene scene = mixed_materials_scene();
+  scene.add(spot_light(Vec3(0, 1.5, 1.5), Vec3(0.1, 0.3, 0.4) - Vec3(0, 1.5, 1.5), 4, 9, 2, Vec3(1, 0.9, 0.8), 3));
+  scene.add(point_light(Vec3(-1, 2, 2), Vec3(0.2, 0.2, 0.2)));
+  scene.add(spot_light(Vec3(1, 1, 2), Vec3(-1, -0.5, -1), 10, 5));  // a hard edge
+  Tally tally;
+  expect_scene_packets_match(scene, "mixed materials, spotlights", tally);
+  EXPECT_GT(tally.shadow, 0u);
 }
 
 // The same lanes under area lights (add_area_light_lanes: each lane's strata from its own stream,

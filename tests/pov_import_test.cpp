@@ -222,9 +222,16 @@ TEST(PovImport, TexturesAndUnionsFollowPovRaysRules) {
       "plane { <0, 2, 0>, 1 pigment { checker color rgb 1, color rgb 0.1 scale 0.5 } }\n"
       "quadric { <1, 0, 1>, <0, 0, 0>, <0, 0, 0>, -1 clipped_by { box { <-2, 0, -2>, <2, 1, 2> } } }\n"
       "light_source { <1, 2, 3> color rgb <1, 0.5, 0> }\n"
-      "light_source { <0, 10, 0> color rgb 2 parallel point_at <1, 0, 0> }\n");
+      "light_source { <0, 10, 0> color rgb 2 parallel point_at <1, 0, 0> }\n"
+      "light_source { <0, 5, 0> color rgb 1 spotlight point_at <1, 0, 0> radius 10 falloff 15 tightness 4 }\n"
+      "light_source { <0, 5, 0> color rgb 1 spotlight }\n");
   EXPECT_NE(y.find("  - {type: point, position: [1, 2, 3], color: [1, 0.5, 0]}\n"
-                   "  - {type: directional, direction: [1, -10, 0], color: [2, 2, 2]}\n"),
+                   "  - {type: directional, direction: [1, -10, 0], color: [2, 2, 2]}\n"
+                   "  - {type: spot, position: [0, 5, 0], point_at: [1, 0, 0], angle: 10, falloff: 15, tightness: 4, "
+                   "color: [1, 1, 1]}\n"
+                   // POV-Ray's defaults: point_at <0, 0, 1>, radius 30, falloff 45, tightness 0
+                   "  - {type: spot, position: [0, 5, 0], point_at: [0, 0, 1], angle: 30, falloff: 45, tightness: 0, "
+                   "color: [1, 1, 1]}\n"),
             std::string::npos)
       << y;
   EXPECT_NE(y.find("{type: sphere, center: [0, 0, 0], radius: 1, material: {color: [0, 0, 0], ambient: 0.1, diffuse: 0.6, "
@@ -318,6 +325,9 @@ TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
            // compile()'s own errors, at the item's line and column too.
            Case{"sphere { 0, 1 }\n  difference { sphere { 0, 1 } box { 0, <1, 0, 1> } }", "test.pov:2:3: box is flat"},
            Case{"light_source { <0, 0, 0> color rgb -1 }", "test.pov:1:1: light color must not have negative components"},
+           Case{"light_source { 0, 1 spotlight radius 95 }", "test.pov:1:31: spotlight radius must lie in [0, 90] degrees"},
+           Case{"light_source { 0, 1 spotlight tightness -1 }", "test.pov:1:31: spotlight tightness must not be negative"},
+           Case{"light_source { <0, 0, 1>, 1 spotlight }", "test.pov:1:1: spotlight direction (point_at − position) must"},
        }) {
     SCOPED_TRACE(c.text);
     EXPECT_NE(pov_error(c.text).find(c.message), std::string::npos) << pov_error(c.text);

@@ -234,8 +234,42 @@ TEST(SceneFile, UnknownNames) {
   EXPECT_TRUE(error_at("render:\n  medium_ior: -1\n" + kSphere, "-1", "medium_ior"));
   EXPECT_TRUE(error_at("materials:\n  glass: {ior: 0}\n" + kSphere, "0}", "ior"));
   EXPECT_TRUE(error_at("objects:\n  - {type: cube, center: [0, 0, 0]}\n", "cube", "cube"));
-  EXPECT_TRUE(error_at(kSphere + "lights:\n  - {type: spot, position: [0, 1, 0]}\n", "spot", "spot"));
+  EXPECT_TRUE(error_at(kSphere + "lights:\n  - {type: laser, position: [0, 1, 0]}\n", "laser", "laser"));
   EXPECT_TRUE(error_at("camera:\n  fov_axis: diagonal\n" + kSphere, "diagonal", "fov_axis"));
+}
+
+// A spot light: its axis from point_at or direction, its angles in degrees (defaults 30 and 45,
+// tightness 0), colour × intensity; what is wrong is named where it stands.
+TEST(SceneFile, SpotLights) {
+  const Scene s = parse_scene(kSphere + "lights:\n"
+                                        "  - {type: spot, position: [0, 4, 0], point_at: [1, 0, 0]}\n"
+                                        "  - {type: spot, position: [1, 2, 3], direction: [0, -2, 0], angle: 10, falloff: 12.5, "
+                                        "tightness: 4, color: [1, 0.5, 0.25], intensity: 2}\n",
+                              "test.yaml", ".");
+  ASSERT_EQ(s.lights().size(), 2u);
+  const Light& a = s.lights()[0];
+  EXPECT_EQ(a.kind, LightKind::Spot);
+  EXPECT_EQ(a.position, Vec3(0, 4, 0));
+  EXPECT_EQ(a.direction, Vec3(1, -4, 0));  // point_at − position (compile() normalises it)
+  EXPECT_EQ(a.angle, 30);
+  EXPECT_EQ(a.falloff, 45);
+  EXPECT_EQ(a.tightness, 0);
+  EXPECT_EQ(a.radiance, Vec3(1));
+  const Light& b = s.lights()[1];
+  EXPECT_EQ(b.direction, Vec3(0, -2, 0));
+  EXPECT_EQ(b.angle, 10);
+  EXPECT_EQ(b.falloff, 12.5);
+  EXPECT_EQ(b.tightness, 4);
+  EXPECT_EQ(b.radiance, Vec3(2, 1, 0.5));
+  const std::string spot = kSphere + "lights:\n  - {type: spot, position: [0, 4, 0], ";
+  EXPECT_TRUE(error_at(spot + "point_at: [0, 0, 0], direction: [0, -1, 0]}\n", "[0, -1, 0]", "not both"));
+  EXPECT_TRUE(error_at(spot + "angle: 10}\n", "{type: spot", "point_at or direction"));
+  EXPECT_TRUE(error_at(spot + "point_at: [0, 4, 0]}\n", "[0, 4, 0]}", "spotlight direction"));
+  EXPECT_TRUE(error_at(spot + "direction: [0, 0.0, 0]}\n", "[0, 0.0, 0]", "spotlight direction"));
+  EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], angle: 91}\n", "91", "spotlight angle must lie in [0, 90]"));
+  EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], falloff: -1}\n", "-1}", "spotlight falloff"));
+  EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], tightness: -2}\n", "-2", "spotlight tightness"));
+  EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], radius: 2}\n", "radius: 2", "unknown key 'radius'"));
 }
 
 TEST(SceneFile, RepeatedKeysAndMaterialNames) {

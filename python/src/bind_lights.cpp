@@ -1,4 +1,4 @@
-// The lights in Python (docs/python.md): point and directional lights and the rect, disk and
+// The lights in Python (docs/python.md): point, spot and directional lights and the rect, disk and
 // sphere area lights, their radiance from an intensity or a total power.
 
 #include <pybind11/stl.h>
@@ -39,6 +39,7 @@ const char* light_kind_name(LightKind k) {
   switch (k) {
     case LightKind::Point: return "point";
     case LightKind::Directional: return "directional";
+    case LightKind::Spot: return "spot";
     case LightKind::Rect: return "rect";
     case LightKind::Disk: return "disk";
     case LightKind::Sphere: return "sphere";
@@ -60,6 +61,9 @@ void bind_lights(py::module_& m) {
       .def_readonly("normal", &Light::normal)
       .def_readonly("radius", &Light::radius)
       .def_readonly("samples", &Light::samples)
+      .def_readonly("angle", &Light::angle)
+      .def_readonly("falloff", &Light::falloff)
+      .def_readonly("tightness", &Light::tightness)
       .def("__repr__", [](const Light& l) {
         return std::string("strahl.Light(") + light_kind_name(l.kind) + ", position=" + repr(l.position) +
                ", radiance=" + repr(l.radiance) + ")";
@@ -71,7 +75,24 @@ void bind_lights(py::module_& m) {
         validate::non_negative(intensity, {}, "intensity");
         return point_light(position, c, intensity);
       }, py::arg("position"), py::arg("color") = white, py::arg("intensity") = 1.0,
-      "A point light: radiance colour × intensity, falling off with the squared distance.");
+      "A point light of intensity colour × intensity; as in the lecture, it does not fall off with distance.");
+  m.def("SpotLight", [](const Vec3& position, const Vec3& point_at, const py::object& color, double intensity,
+                        double angle, double falloff, double tightness) {
+        validate::finite(position, {}, "light position");
+        validate::finite(point_at, {}, "spotlight point_at");
+        validate::non_zero(point_at - position, {}, "spotlight direction (point_at − position)");
+        const Vec3 c = color_arg(color, "light color");
+        validate::non_negative(c, {}, "light color");
+        validate::non_negative(intensity, {}, "intensity");
+        validate::in_range(angle, 0, 90, {}, "spotlight angle");
+        validate::in_range(falloff, 0, 90, {}, "spotlight falloff");
+        validate::non_negative(tightness, {}, "spotlight tightness");
+        return spot_light(position, point_at - position, angle, falloff, tightness, c, intensity);
+      }, py::arg("position"), py::arg("point_at"), py::arg("color") = white, py::arg("intensity") = 1.0, py::kw_only(),
+      py::arg("angle") = 30.0, py::arg("falloff") = 45.0, py::arg("tightness") = 0.0,
+      "A spotlight (POV-Ray's): a point light at `position` shining towards `point_at`, at full strength within "
+      "`angle` degrees of that axis, none beyond `falloff` degrees, a smooth step between; all times "
+      "cos(θ)^tightness.");
   m.def("DirectionalLight", [](const Vec3& direction, const py::object& color, double intensity) {
         validate::non_zero(direction, {}, "light direction");
         const Vec3 c = color_arg(color, "light color");

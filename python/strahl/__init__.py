@@ -44,6 +44,7 @@ from ._strahl import (  # noqa: F401
     Sphere,
     SphereLight,
     Spin,
+    SpotLight,
     Torus,
     Transform,
     Triangle,
@@ -62,7 +63,7 @@ __all__ = [
     "Box", "Camera", "Cone", "Csg", "Cylinder", "Difference", "DirectionalLight", "Disk", "DiskLight", "Error",
     "Image", "Implicit", "Instance", "Intersection", "Inverse", "Light", "Material", "Merge", "Mesh", "Motion",
     "Plane", "PointLight", "Quadric", "RectLight", "RenderSettings", "Scene", "SceneObject", "Sphere", "SphereLight",
-    "Spin", "Torus", "Transform", "Triangle", "Union", "explain", "lecture_scene", "load", "loads", "read", "render", "version",
+    "Spin", "SpotLight", "Torus", "Transform", "Triangle", "Union", "explain", "lecture_scene", "load", "loads", "read", "render", "version",
     "write",
 ]
 

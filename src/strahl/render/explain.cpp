@@ -39,6 +39,7 @@ const char* light_name(LightKind kind) {
   switch (kind) {
     case LightKind::Point: return "point";
     case LightKind::Directional: return "directional";
+    case LightKind::Spot: return "spot";
     case LightKind::Rect: return "rect";
     case LightKind::Disk: return "disk";
     case LightKind::Sphere: return "sphere";
@@ -103,11 +104,24 @@ class Explainer {
                     " samples): sampled with this sample's random numbers, not broken down here");
         continue;
       }
-      text += light.kind == LightKind::Point ? " at " + vec(light.position) : " along " + vec(light.direction);
+      text += light.kind == LightKind::Directional ? " along " + vec(light.direction) : " at " + vec(light.position);
+      if (light.kind == LightKind::Spot)
+        text += " towards " + vec(light.direction) + ", angle " + num(light.angle) + "°, falloff " + num(light.falloff) +
+                "°, tightness " + num(light.tightness);
       text += ", I = " + vec(light.radiance) + "): ";
       const LightSample ls = sample_light(light, sp.p);
+      const Real spot = spot_factor(light, ls.to_light);
+      const Vec3 intensity = light.radiance * spot;
       const Real n_dot_l = dot(n, ls.to_light);
       text += "L = " + vec(ls.to_light) + ", N·L = " + num(n_dot_l);
+      if (light.kind == LightKind::Spot) {
+        text += ", the spot's share " + num(spot);
+        if (!(spot > 0)) {
+          line(d, text + ": outside its cone, adds 0");
+          continue;
+        }
+        text += " (I = " + vec(intensity) + ")";
+      }
       if (n_dot_l <= 0) {
         line(d, text + ": behind the surface, adds 0");
         continue;
@@ -117,7 +131,7 @@ class Explainer {
       known.transmittance = transmittance(s_, shadow_ray(sp, ls.to_light), ls.distance);
       known.n_dot_h = dot(n, normalize(ls.to_light + view));
       const Vec3 share =
-          shade_from(s_, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance, scratch, &known);
+          shade_from(s_, sp, n, view, c, m, ls.to_light, ls.distance, intensity, scratch, &known);
       sum += share;
       line(d, text);
       if (is_black(known.transmittance)) {

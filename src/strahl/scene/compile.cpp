@@ -382,6 +382,15 @@ static SamplingSettings compile_sampling(const RenderSettings& s) {
 }
 
 namespace {
+// A spotlight's angles (degrees) and tightness, and the cosines the shading compares with.
+void validate_spot_angles(Light& light, const FileLoc& loc) {
+  validate::in_range(light.angle, 0, 90, loc, "spotlight angle");
+  validate::in_range(light.falloff, 0, 90, loc, "spotlight falloff");
+  validate::non_negative(light.tightness, loc, "spotlight tightness");
+  light.cos_angle = std::cos(light.angle * kPi / 180);
+  light.cos_falloff = std::cos(light.falloff * kPi / 180);
+}
+
 void validate_area_light(Light& light, const FileLoc& loc) {
   validate::coordinates(light.position, loc, light.kind == LightKind::Rect ? "light corner" : "light center");
   validate::int_range(light.samples, 1, 64, loc, "light samples");
@@ -459,6 +468,11 @@ RenderScene compile(const Scene& scene) {
     } else if (light.kind == LightKind::Directional) {
       validate::non_zero(light.direction, loc, "light direction");
       light.direction = validate::direction(light.direction);
+    } else if (light.kind == LightKind::Spot) {
+      validate::coordinates(light.position, loc, "light position");
+      validate::non_zero(light.direction, loc, "spotlight direction");
+      light.direction = validate::direction(light.direction);
+      validate_spot_angles(light, loc);
     } else {
       validate_area_light(light, loc);
     }

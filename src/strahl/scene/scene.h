@@ -195,6 +195,23 @@ inline Light point_light(const Vec3& position, const Vec3& color = Vec3(1), Real
   return l;
 }
 
+// A spotlight (POV-Ray's): a point light at `position` that shines into a cone about
+// `direction` (the axis, from the light into the scene): full light within `angle` degrees of
+// the axis, none beyond `falloff` degrees, a smooth step between, all times cos^tightness
+// (shading/light.h, spot_factor). compile() normalises the axis and takes the cosines.
+inline Light spot_light(const Vec3& position, const Vec3& direction, Real angle = 30, Real falloff = 45,
+                        Real tightness = 0, const Vec3& color = Vec3(1), Real intensity = 1) {
+  Light l;
+  l.kind = LightKind::Spot;
+  l.position = position;
+  l.direction = direction;
+  l.angle = angle;
+  l.falloff = falloff;
+  l.tightness = tightness;
+  l.radiance = color * intensity;
+  return l;
+}
+
 // `direction` is the way the light travels (from the light into the scene).
 inline Light directional_light(const Vec3& direction, const Vec3& color = Vec3(1), Real intensity = 1) {
   Light l;

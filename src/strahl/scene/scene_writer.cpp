@@ -279,6 +279,12 @@ void light(Writer& w, const Light& l) {
     case LightKind::Directional:
       w.line(2, "- {type: directional, direction: " + W::vec(l.direction, "light direction") + color + "}");
       return;
+    case LightKind::Spot:
+      w.line(2, "- {type: spot, position: " + W::vec(l.position, "light position") + ", direction: " +
+                    W::vec(l.direction, "spotlight direction") + ", angle: " + W::num(l.angle, "spotlight angle") +
+                    ", falloff: " + W::num(l.falloff, "spotlight falloff") +
+                    ", tightness: " + W::num(l.tightness, "spotlight tightness") + color + "}");
+      return;
     case LightKind::Rect:
       w.line(2, "- {type: rect, corner: " + W::vec(l.position, "light corner") + ", edge_u: " + W::vec(l.edge_u, "edge_u") +
                     ", edge_v: " + W::vec(l.edge_v, "edge_v") + color + ", samples: " + W::integer(l.samples) + "}");

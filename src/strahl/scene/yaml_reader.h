@@ -76,6 +76,7 @@ class YamlReader {
   Material material(const YAML::Node& n) const;
   Material object_material(const YAML::Node& object) const;
   void light(const YAML::Node& n, Scene& scene) const;
+  void spot_light(const YAML::Node& n, const Vec3& c, Real intensity, Scene& scene) const;
   void area_light(const YAML::Node& n, const std::string& type, const Vec3& c, Scene& scene) const;
 
   // ---- placement and motion (yaml_placement.cpp) ----------------------------------------------

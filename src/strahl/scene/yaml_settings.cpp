@@ -1,5 +1,5 @@
 // A YAML scene's settings (yaml_reader.h): render and sampling settings, the camera, materials and
-// lights (point, directional, and the rect, disk and sphere area lights).
+// lights (point, spot, directional, and the rect, disk and sphere area lights).
 
 #include "strahl/scene/yaml_reader.h"
 
@@ -168,11 +168,35 @@ void YamlReader::light(const YAML::Node& n, Scene& scene) const {
     const Vec3 dir = vec3(d, "light direction");
     validate::non_zero(dir, loc(d), "light direction");
     scene.add(directional_light(dir, c, intensity), loc(n));
+  } else if (type == "spot") {
+    spot_light(n, c, intensity, scene);
   } else if (type == "rect" || type == "disk" || type == "sphere") {
     area_light(n, type, c, scene);
   } else {
-    fail(n["type"], "unknown light type '" + type + "' (point, directional, rect, disk or sphere)");
+    fail(n["type"], "unknown light type '" + type + "' (point, spot, directional, rect, disk or sphere)");
   }
+}
+
+// A spotlight: its axis from `point_at` or `direction` (one of the two), its angles in degrees.
+void YamlReader::spot_light(const YAML::Node& n, const Vec3& c, Real intensity, Scene& scene) const {
+  keys(n, {"type", "position", "point_at", "direction", "angle", "falloff", "tightness", "color", "intensity"},
+       "spot light");
+  const Vec3 position = vec3(required(n, "position", "spot light"), "light position");
+  if (n["point_at"] && n["direction"]) fail(n["direction"], "a spot light takes point_at or direction, not both");
+  if (!n["point_at"] && !n["direction"]) fail(n, "a spot light needs point_at or direction");
+  const YAML::Node aim = n["point_at"] ? n["point_at"] : n["direction"];
+  const Vec3 axis = n["point_at"] ? vec3(aim, "spotlight point_at") - position : vec3(aim, "spotlight direction");
+  validate::non_zero(axis, loc(aim), n["point_at"] ? "spotlight direction (point_at − position)" : "spotlight direction");
+  const auto degrees = [&](const char* key, Real fallback) {
+    const YAML::Node v = n[key];
+    if (!v) return fallback;
+    const Real a = number(v, std::string("spotlight ") + key);
+    if (!(a >= 0 && a <= 90)) fail(v, std::string("spotlight ") + key + " must lie in [0, 90] degrees");
+    return a;
+  };
+  const Real angle = degrees("angle", 30), falloff = degrees("falloff", 45);
+  const Real tightness = n["tightness"] ? non_negative(n["tightness"], "spotlight tightness") : Real(0);
+  scene.add(strahl::spot_light(position, axis, angle, falloff, tightness, c, intensity), loc(n));
 }
 
 // Area lights: radiance L = color × intensity, or from `power` Φ (one-sided: Φ = π·L·area).

@@ -1,21 +1,28 @@
 #pragma once
 // Light sources of the lecture's local illumination: point lights (the lecture's
-// addLightSource) and directional lights, and the area lights of distributed ray tracing
-// (rectangle, disk, sphere; sampled in shading/area_light.h). Intensities add up over all lights.
+// addLightSource), spotlights (point lights that shine into a cone, as POV-Ray's) and
+// directional lights, and the area lights of distributed ray tracing (rectangle, disk, sphere;
+// sampled in shading/area_light.h). Intensities add up over all lights.
 
+#include <cmath>
 #include <cstdint>
 
 #include "strahl/math/vec3.h"
 
 namespace strahl {
 
-enum class LightKind : std::uint8_t { Point, Directional, Rect, Disk, Sphere };
+enum class LightKind : std::uint8_t { Point, Directional, Spot, Rect, Disk, Sphere };
 
 struct Light {
   LightKind kind = LightKind::Point;
-  Vec3 position;   // Point: where the light is; Rect: a corner; Disk, Sphere: the centre
-  Vec3 direction;  // Directional: unit vector the light travels along
+  Vec3 position;   // Point, Spot: where the light is; Rect: a corner; Disk, Sphere: the centre
+  Vec3 direction;  // Directional: unit vector the light travels along; Spot: the cone's axis
+                   // (unit once compiled), from the light into the scene
   Vec3 radiance{1};  // colour × intensity; area lights: the emitted radiance L
+  // Spot only: full light within `angle` degrees of the axis, none beyond `falloff` degrees, a
+  // smooth step between; everything times cos^tightness of the angle. compile() sets the cosines.
+  Real angle = 30, falloff = 45, tightness = 0;
+  Real cos_angle = 1, cos_falloff = 1;
   // Area lights only.
   Vec3 edge_u, edge_v;  // Rect: the two edges from the corner; it emits towards edge_u × edge_v
   Vec3 normal;          // Rect, Disk: unit normal of the emitting side
@@ -30,6 +37,25 @@ struct LightSample {
   Vec3 to_light;
   Real distance;
 };
+
+// The share of a spotlight's intensity that leaves it towards a point seen in unit direction
+// `to_light` from there (1 for every other light): POV-Ray's spotlight (Attenuate_Light in its
+// core/lighting/lightsource.cpp). With c the cosine of the angle between the axis and the way to
+// the point: 0 where c ≤ 0, else c^tightness, times — where the cone has an edge (cos_angle > 0)
+// and c < cos_angle — the cubic step (3 − 2x)·x² of x = (c − cos_falloff)/(cos_angle − cos_falloff),
+// 0 below cos_falloff (outside the falloff angle, or anywhere off full light when falloff ≤ angle).
+STRAHL_HOST_DEVICE inline Real spot_factor(const Light& light, const Vec3& to_light) {
+  if (light.kind != LightKind::Spot) return 1;
+  const Real c = -dot(to_light, light.direction);
+  if (!(c > 0)) return 0;
+  Real share = light.tightness > 0 ? std::pow(c, light.tightness) : Real(1);
+  if (light.cos_angle > 0 && c < light.cos_angle) {
+    if (c < light.cos_falloff) return 0;
+    const Real x = (c - light.cos_falloff) / (light.cos_angle - light.cos_falloff);
+    share *= (3 - 2 * x) * x * x;
+  }
+  return share;
+}
 
 STRAHL_HOST_DEVICE inline LightSample sample_light(const Light& light, const Vec3& p) {
   if (light.kind == LightKind::Directional) return {-light.direction, kInfinity};

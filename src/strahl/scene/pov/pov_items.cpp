@@ -93,6 +93,13 @@ Light Parser::light(const Token& kw) {
       warn(loc(t), "area_light is drawn as a point light (strahl's area lights are rect, disk and sphere emitters)");
     } else if (n == "parallel") {
       l.parallel = true;
+    } else if (n == "spotlight") {
+      l.spotlight = true;
+    } else if (n == "radius" || n == "falloff" || n == "tightness") {
+      const double v = real();
+      if (n != "tightness" && !(v >= 0 && v <= 90)) throw Error(loc(t), "spotlight " + n + " must lie in [0, 90] degrees");
+      if (n == "tightness" && !(v >= 0)) throw Error(loc(t), "spotlight tightness must not be negative");
+      (n == "radius" ? l.radius : n == "falloff" ? l.falloff : l.tightness) = v;
     } else if (n == "point_at") {
       l.point_at = vector();
     } else if (n == "fade_distance" || n == "fade_power") {

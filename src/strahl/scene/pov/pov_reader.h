@@ -80,8 +80,10 @@ struct Object {
 struct Light {
   Vector position{};
   Color color{1, 1, 1, 0, 0};
-  bool parallel = false;  // a directional light along point_at − position
-  Vector point_at{};
+  bool parallel = false;   // a directional light along point_at − position
+  bool spotlight = false;  // a spot light along point_at − position (radius, falloff in degrees)
+  Vector point_at{0, 0, 1};
+  double radius = 30, falloff = 45, tightness = 0;
   FileLoc loc;
 };
 

@@ -45,10 +45,7 @@ class Writer {
     render();
     line("lights:", {});
     if (p_.lights.empty()) t_.yaml.back() = ' ', t_.yaml += "[]\n";
-    for (const pov::Light& l : p_.lights)
-      line(l.parallel ? "  - {type: directional, direction: " + yaml_vector(mirrored(minus(l.point_at, l.position))) + ", color: " + rgb(l.color) + "}"
-                      : "  - {type: point, position: " + yaml_vector(mirrored(l.position)) + ", color: " + rgb(l.color) + "}",
-           l.loc);
+    for (const pov::Light& l : p_.lights) line(light(l), l.loc);
     line("objects:", {});
     if (p_.objects.empty()) t_.yaml.back() = ' ', t_.yaml += "[]\n";
     for (const pov::Object& o : p_.objects) line("  - " + object(o, &p_.default_texture), o.loc);
@@ -61,6 +58,17 @@ class Writer {
   void line(const std::string& text, const FileLoc& loc) {
     t_.yaml += text + "\n";
     t_.line_locs.push_back(loc.file.empty() ? file_ : loc);
+  }
+
+  // A parallel light is directional (along point_at − position); a spotlight (not parallel) a
+  // spot light with POV-Ray's radius, falloff and tightness.
+  std::string light(const pov::Light& l) const {
+    const std::string color = ", color: " + rgb(l.color) + "}";
+    if (l.parallel) return "  - {type: directional, direction: " + yaml_vector(mirrored(minus(l.point_at, l.position))) + color;
+    if (!l.spotlight) return "  - {type: point, position: " + yaml_vector(mirrored(l.position)) + color;
+    return "  - {type: spot, position: " + yaml_vector(mirrored(l.position)) + ", point_at: " +
+           yaml_vector(mirrored(l.point_at)) + ", angle: " + yaml_number(l.radius) + ", falloff: " +
+           yaml_number(l.falloff) + ", tightness: " + yaml_number(l.tightness) + color;
   }
 
   void camera() {
