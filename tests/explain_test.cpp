@@ -61,6 +61,7 @@ TEST(Explain, RadianceAndRaysAreTheRenderersSample) {
       EXPECT_TRUE(contains(t, "light 0 (spot at (-5, 6, 2) towards (")) << t;
       EXPECT_TRUE(contains(t, "angle 12°, falloff 20°, tightness 10")) << t;
       EXPECT_TRUE(contains(t, "outside its cone, adds 0")) << t;
+      EXPECT_TRUE(contains(t, "(fade_distance 8, fade_power 2): ")) << t;
     }
     if (std::string(file) == "lecture-whitted.yaml") {
       EXPECT_GT(multi, 4);

@@ -173,11 +173,15 @@ TEST(PacketFrontEnd, LanesOfMixedMaterialsShadeAsAlone) {
 }
 
 // Spotlights whose cone edges cross the spheres: lanes inside, on the step and outside (no
-// shadow ray there) side by side — each sample as it would be alone, the ray counts too.
+// shadow ray there) side by side, and a fading point light — each sample as it would be alone,
+// the ray counts too.
 TEST(PacketFrontEnd, SpotLitLanesOfMixedMaterialsShadeAsAlone) {
   Scene scene = mixed_materials_scene();
   scene.add(spot_light(Vec3(0, 1.5, 1.5), Vec3(0.1, 0.3, 0.4) - Vec3(0, 1.5, 1.5), 4, 9, 2, Vec3(1, 0.9, 0.8), 3));
-  scene.add(point_light(Vec3(-1, 2, 2), Vec3(0.2, 0.2, 0.2)));
+  Light faded = point_light(Vec3(-1, 2, 2), Vec3(0.2, 0.2, 0.2));
+  faded.fade_distance = 1.5;  // and a fade with distance
+  faded.fade_power = 2;
+  scene.add(faded);
   scene.add(spot_light(Vec3(1, 1, 2), Vec3(-1, -0.5, -1), 10, 5));  // a hard edge
   Tally tally;
   expect_scene_packets_match(scene, "mixed materials, spotlights", tally);

@@ -224,14 +224,16 @@ TEST(PovImport, TexturesAndUnionsFollowPovRaysRules) {
       "light_source { <1, 2, 3> color rgb <1, 0.5, 0> }\n"
       "light_source { <0, 10, 0> color rgb 2 parallel point_at <1, 0, 0> }\n"
       "light_source { <0, 5, 0> color rgb 1 spotlight point_at <1, 0, 0> radius 10 falloff 15 tightness 4 }\n"
-      "light_source { <0, 5, 0> color rgb 1 spotlight }\n");
+      "light_source { <0, 5, 0> color rgb 1 spotlight }\n"
+      "light_source { <0, 5, 0> color rgb 1 fade_distance 2 fade_power 1.5 }\n");
   EXPECT_NE(y.find("  - {type: point, position: [1, 2, 3], color: [1, 0.5, 0]}\n"
                    "  - {type: directional, direction: [1, -10, 0], color: [2, 2, 2]}\n"
                    "  - {type: spot, position: [0, 5, 0], point_at: [1, 0, 0], angle: 10, falloff: 15, tightness: 4, "
                    "color: [1, 1, 1]}\n"
                    // POV-Ray's defaults: point_at <0, 0, 1>, radius 30, falloff 45, tightness 0
                    "  - {type: spot, position: [0, 5, 0], point_at: [0, 0, 1], angle: 30, falloff: 45, tightness: 0, "
-                   "color: [1, 1, 1]}\n"),
+                   "color: [1, 1, 1]}\n"
+                   "  - {type: point, position: [0, 5, 0], color: [1, 1, 1], fade_distance: 2, fade_power: 1.5}\n"),
             std::string::npos)
       << y;
   EXPECT_NE(y.find("{type: sphere, center: [0, 0, 0], radius: 1, material: {color: [0, 0, 0], ambient: 0.1, diffuse: 0.6, "
@@ -327,6 +329,7 @@ TEST(PovImport, ErrorsNameThePovFilesLineAndColumn) {
            Case{"light_source { <0, 0, 0> color rgb -1 }", "test.pov:1:1: light color must not have negative components"},
            Case{"light_source { 0, 1 spotlight radius 95 }", "test.pov:1:31: spotlight radius must lie in [0, 90] degrees"},
            Case{"light_source { 0, 1 spotlight tightness -1 }", "test.pov:1:31: spotlight tightness must not be negative"},
+           Case{"light_source { 0, 1 fade_power -1 }", "test.pov:1:21: fade_power must not be negative"},
            Case{"light_source { <0, 0, 1>, 1 spotlight }", "test.pov:1:1: spotlight direction (point_at − position) must"},
        }) {
     SCOPED_TRACE(c.text);
@@ -377,6 +380,21 @@ TEST(PovImport, WarningsNameWhatIsLeftOut) {
   ASSERT_EQ(legacy.size(), 1u);
   EXPECT_EQ(legacy[0].rfind("test.pov: no #version 3.7 and no assumed_gamma", 0), 0u) << legacy[0];
   EXPECT_TRUE(pov_scene("#version 3.7;\nsphere { 0, 1 }").warnings.empty());
+}
+
+// A fade is the light's own (POV-Ray's formula, tests/spotlight_test.cpp), but a parallel light
+// is directional in strahl and does not fade: a warning says so.
+TEST(PovImport, AParallelLightsFadeIsLeftOutWithAWarning) {
+  const Scene s = pov_scene("#version 3.7;\nsphere { 0, 1 }\n"
+                            "light_source { <0, 10, 0> color rgb 1 parallel point_at 0 fade_distance 2 fade_power 2 }");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].rfind("test.pov:3:1: fade_distance and fade_power are left out: a parallel light", 0), 0u)
+      << s.warnings[0];
+  EXPECT_EQ(s.lights().at(0).fade_power, 0);
+  EXPECT_TRUE(pov_scene("#version 3.7;\nsphere { 0, 1 }\nlight_source { <0, 10, 0> color rgb 1 fade_distance 2 fade_power 2 }")
+                  .warnings.empty());
+  // POV-Ray draws a light with fade_distance 0 as one without a fade (checked with POV-Ray 3.7).
+  EXPECT_EQ(pov_scene("sphere { 0, 1 }\nlight_source { <0, 10, 0> color rgb 1 fade_power 2 }").lights().at(0).fade_power, 0);
 }
 
 }  // namespace

@@ -270,6 +270,21 @@ TEST(SceneFile, SpotLights) {
   EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], falloff: -1}\n", "-1}", "spotlight falloff"));
   EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], tightness: -2}\n", "-2", "spotlight tightness"));
   EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], radius: 2}\n", "radius: 2", "unknown key 'radius'"));
+  // Point and spot lights fade with distance where fade_power > 0 (POV-Ray's fade).
+  const Scene f = parse_scene(kSphere + "lights:\n"
+                                        "  - {type: point, position: [0, 4, 0], fade_distance: 2, fade_power: 1.5}\n"
+                                        "  - {type: spot, position: [0, 4, 0], direction: [0, -1, 0], fade_power: 2, "
+                                        "fade_distance: 0.5}\n",
+                              "test.yaml", ".");
+  EXPECT_EQ(f.lights()[0].fade_distance, 2);
+  EXPECT_EQ(f.lights()[0].fade_power, 1.5);
+  EXPECT_EQ(f.lights()[1].fade_distance, 0.5);
+  EXPECT_EQ(f.lights()[1].fade_power, 2);
+  EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], fade_power: -2}\n", "-2}", "light fade_power must not be negative"));
+  EXPECT_TRUE(error_at(spot + "direction: [0, -1, 0], fade_power: 2}\n", "2}",
+                       "a light's fade_power needs a positive fade_distance"));
+  EXPECT_TRUE(error_at(kSphere + "lights:\n  - {type: directional, direction: [0, -1, 0], fade_power: 2}\n", "fade_power",
+                       "unknown key 'fade_power' in directional light"));
 }
 
 TEST(SceneFile, RepeatedKeysAndMaterialNames) {

@@ -104,6 +104,10 @@ TEST(SceneWriter, EveryKindOfObjectLightAndCamera) {
   s.add(point_light(Vec3(1, 2, 3), Vec3(0.5, 0.25, 1), 3));
   s.add(directional_light(Vec3(1, -1, 0.3), Vec3(1), 0.7));
   s.add(spot_light(Vec3(0, 3, 1), Vec3(0.1, -1, 0.2), 12.5, 1.0 / 3, 7, Vec3(0.2, 0.4, 0.8), 5));
+  Light faded = point_light(Vec3(-1, 2, 0), Vec3(0.3), 2);
+  faded.fade_distance = 0.7;
+  faded.fade_power = 2.5;
+  s.add(faded);
   s.add(rect_light(Vec3(0, 2, 0), Vec3(0.5, 0, 0), Vec3(0, 0, 0.25), Vec3(4), 3));
   s.add(disk_light(Vec3(0, 2, 1), Vec3(0.3, -1, 0.2), 0.2, Vec3(2, 3, 4), 2));
   s.add(sphere_light(Vec3(-1, 2, 1), 0.1, Vec3(10)));

@@ -107,5 +107,46 @@ TEST(Spotlight, PixelIsLambertAndBlinnPhongTimesTheShare) {
   EXPECT_EQ(dark, 5);  // 41.25 … 51.25
 }
 
+// POV-Ray's fade, of point and spot lights: 2/(1 + (d/fade_distance)^fade_power), times the
+// spot's share. The light sits 5 from P, as above.
+TEST(Spotlight, FadeWithDistanceIsPovRays) {
+  const Vec3 color(0.8, 0.4, 0.2);
+  const Real a = test::deg(30);
+  const Vec3 p(0, 0, -2), to_light(std::sin(a), 0, std::cos(a)), at = p + to_light * 5;
+  const Vec3 lambert = color * (0.7 * std::cos(a));
+  const auto pixel = [&](const Light& l) {
+    Scene s;
+    test::one_ray_camera(s, {0, 0, 0}, {0, 0, -1});
+    s.add(Sphere({0, 0, -3}, 1, test::phong(color, 0.1, 0.7, Vec3(0), 20)));
+    s.add(l);
+    return test::pixel(s);
+  };
+  const auto faded = [](Light l, Real distance, Real power) {
+    l.fade_distance = distance;
+    l.fade_power = power;
+    return l;
+  };
+  const Light point = point_light(at);
+  EXPECT_VEC_NEAR(pixel(point), color * 0.1 + lambert, 1e-14);
+  EXPECT_VEC_NEAR(pixel(faded(point, 2.5, 2)), color * 0.1 + lambert * 0.4, 1e-14);       // 2/(1 + 2²)
+  EXPECT_VEC_NEAR(pixel(faded(point, 5, 1.5)), color * 0.1 + lambert, 1e-14);             // at fade_distance: 1
+  EXPECT_VEC_NEAR(pixel(faded(point, 10, 1)), color * 0.1 + lambert * (4.0 / 3), 1e-14);  // 2/(1 + 1/2)
+  EXPECT_VEC_NEAR(pixel(faded(point, 2.5, 0)), color * 0.1 + lambert, 1e-14);             // power 0: no fade
+  // A spot's share times the fade: aimed at P (share cos² 0 = 1), then turned 30° (on its step).
+  EXPECT_VEC_NEAR(pixel(faded(spot_light(at, -to_light, 20, 40, 2), 2.5, 2)), color * 0.1 + lambert * 0.4, 1e-14);
+  const Real t = test::deg(30);
+  const Vec3 d = -to_light, turned(d.x * std::cos(t) + d.z * std::sin(t), 0, -d.x * std::sin(t) + d.z * std::cos(t));
+  const Real share = share_at(compiled(spot_light(Vec3(0), Vec3(0, 0, -1), 20, 40, 2)), 30);
+  EXPECT_GT(share, 0.1);
+  EXPECT_LT(share, 0.9);
+  EXPECT_VEC_NEAR(pixel(faded(spot_light(at, turned, 20, 40, 2), 2.5, 2)), color * 0.1 + lambert * (share * 0.4), 1e-12);
+  // Only point and spot lights fade, and only with a fade_distance.
+  for (const Light& l : {faded(directional_light(Vec3(0, -1, 0)), 1, 2), faded(point, 0, 2)}) {
+    Scene s;
+    s.add(l);
+    EXPECT_THROW(compile(s), Error);
+  }
+}
+
 }  // namespace
 }  // namespace strahl::spotlight_test

@@ -35,6 +35,16 @@ Light finish_light(Light l, const Vec3& color, const std::optional<double>& inte
   return l;
 }
 
+// A point or spot light's fade (POV-Ray's; fade_power 0: none).
+Light with_fade(Light l, double fade_distance, double fade_power) {
+  validate::non_negative(fade_distance, {}, "light fade_distance");
+  validate::non_negative(fade_power, {}, "light fade_power");
+  if (fade_power > 0 && !(fade_distance > 0)) throw Error("a light's fade_power needs a positive fade_distance");
+  l.fade_distance = fade_distance;
+  l.fade_power = fade_power;
+  return l;
+}
+
 const char* light_kind_name(LightKind k) {
   switch (k) {
     case LightKind::Point: return "point";
@@ -64,20 +74,25 @@ void bind_lights(py::module_& m) {
       .def_readonly("angle", &Light::angle)
       .def_readonly("falloff", &Light::falloff)
       .def_readonly("tightness", &Light::tightness)
+      .def_readonly("fade_distance", &Light::fade_distance)
+      .def_readonly("fade_power", &Light::fade_power)
       .def("__repr__", [](const Light& l) {
         return std::string("strahl.Light(") + light_kind_name(l.kind) + ", position=" + repr(l.position) +
                ", radiance=" + repr(l.radiance) + ")";
       });
-  m.def("PointLight", [](const Vec3& position, const py::object& color, double intensity) {
+  m.def("PointLight", [](const Vec3& position, const py::object& color, double intensity, double fade_distance,
+                         double fade_power) {
         validate::finite(position, {}, "light position");
         const Vec3 c = color_arg(color, "light color");
         validate::non_negative(c, {}, "light color");
         validate::non_negative(intensity, {}, "intensity");
-        return point_light(position, c, intensity);
-      }, py::arg("position"), py::arg("color") = white, py::arg("intensity") = 1.0,
-      "A point light of intensity colour × intensity; as in the lecture, it does not fall off with distance.");
+        return with_fade(point_light(position, c, intensity), fade_distance, fade_power);
+      }, py::arg("position"), py::arg("color") = white, py::arg("intensity") = 1.0, py::kw_only(),
+      py::arg("fade_distance") = 0.0, py::arg("fade_power") = 0.0,
+      "A point light of intensity colour × intensity; as in the lecture, it does not fall off with distance "
+      "unless fade_power > 0 (POV-Ray's fade: 2/(1 + (d/fade_distance)^fade_power)).");
   m.def("SpotLight", [](const Vec3& position, const Vec3& point_at, const py::object& color, double intensity,
-                        double angle, double falloff, double tightness) {
+                        double angle, double falloff, double tightness, double fade_distance, double fade_power) {
         validate::finite(position, {}, "light position");
         validate::finite(point_at, {}, "spotlight point_at");
         validate::non_zero(point_at - position, {}, "spotlight direction (point_at − position)");
@@ -87,12 +102,14 @@ void bind_lights(py::module_& m) {
         validate::in_range(angle, 0, 90, {}, "spotlight angle");
         validate::in_range(falloff, 0, 90, {}, "spotlight falloff");
         validate::non_negative(tightness, {}, "spotlight tightness");
-        return spot_light(position, point_at - position, angle, falloff, tightness, c, intensity);
+        return with_fade(spot_light(position, point_at - position, angle, falloff, tightness, c, intensity), fade_distance,
+                         fade_power);
       }, py::arg("position"), py::arg("point_at"), py::arg("color") = white, py::arg("intensity") = 1.0, py::kw_only(),
-      py::arg("angle") = 30.0, py::arg("falloff") = 45.0, py::arg("tightness") = 0.0,
+      py::arg("angle") = 30.0, py::arg("falloff") = 45.0, py::arg("tightness") = 0.0, py::arg("fade_distance") = 0.0,
+      py::arg("fade_power") = 0.0,
       "A spotlight (POV-Ray's): a point light at `position` shining towards `point_at`, at full strength within "
       "`angle` degrees of that axis, none beyond `falloff` degrees, a smooth step between; all times "
-      "cos(θ)^tightness.");
+      "cos(θ)^tightness; a fade with distance as PointLight's.");
   m.def("DirectionalLight", [](const Vec3& direction, const py::object& color, double intensity) {
         validate::non_zero(direction, {}, "light direction");
         const Vec3 c = color_arg(color, "light color");

@@ -27,6 +27,7 @@ nan, inf = math.nan, math.inf
     (lambda: strahl.SpotLight((0, 1, 0), (0, 1, 0)), r"spotlight direction \(point_at − position\) must not be"),
     (lambda: strahl.SpotLight((0, 1, 0), (0, 0, 0), angle=91), r"spotlight angle must lie in \[0, 90\]"),
     (lambda: strahl.SpotLight((0, 1, 0), (0, 0, 0), tightness=-1), "spotlight tightness must not be negative"),
+    (lambda: strahl.PointLight((0, 1, 0), fade_power=2), "fade_power needs a positive fade_distance"),
     (lambda: strahl.DiskLight((0, 1, 0), (0, -1, 0), -0.5), "light radius must be positive"),
     (lambda: strahl.SphereLight((0, 1, 0), 0.1, samples=0), r"light samples must lie in \[1, 64\]"),
     (lambda: strahl.Camera(fov=180), r"fov must lie in \(0, 180\)"),

@@ -61,7 +61,8 @@ def python_scene():
                           rotate=(0, 15, 0), scale=(1, 1.5, 1)))
     scene.add_light((1, 1.5, 1))
     scene.add(strahl.DirectionalLight((0.2, -1, -0.3), intensity=0.3))
-    scene.add(strahl.SpotLight((0.3, 1.2, 0.4), (0, 0.2, 0), (1, 0.8, 0.6), 0.8, angle=15, falloff=22.5, tightness=3))
+    scene.add(strahl.SpotLight((0.3, 1.2, 0.4), (0, 0.2, 0), (1, 0.8, 0.6), 0.8, angle=15, falloff=22.5, tightness=3,
+                              fade_distance=1.5, fade_power=2))
     scene.add(strahl.RectLight((-0.5, 1.8, -0.5), (0.4, 0, 0), (0, 0, 0.4), power=2, samples=2))
     scene.add(strahl.DiskLight((0.5, 1.8, 0.5), (0.1, -1, 0), 0.2, color=(1, 0.9, 0.8), samples=2))
     scene.add(strahl.SphereLight((0, 2, 1), 0.1, intensity=2, samples=1))

@@ -110,8 +110,8 @@ class Explainer {
                 "°, tightness " + num(light.tightness);
       text += ", I = " + vec(light.radiance) + "): ";
       const LightSample ls = sample_light(light, sp.p);
-      const Real spot = spot_factor(light, ls.to_light);
-      const Vec3 intensity = light.radiance * spot;
+      const Real spot = spot_factor(light, ls.to_light), reach = light_share(light, ls.to_light, ls.distance);
+      const Vec3 intensity = light.radiance * reach;
       const Real n_dot_l = dot(n, ls.to_light);
       text += "L = " + vec(ls.to_light) + ", N·L = " + num(n_dot_l);
       if (light.kind == LightKind::Spot) {
@@ -120,8 +120,15 @@ class Explainer {
           line(d, text + ": outside its cone, adds 0");
           continue;
         }
-        text += " (I = " + vec(intensity) + ")";
       }
+      if (light.fade_power > 0)
+        text += ", the fade over " + num(ls.distance) + " (fade_distance " + num(light.fade_distance) +
+                ", fade_power " + num(light.fade_power) + "): " + num(fade_factor(light, ls.distance));
+      if (!(reach > 0)) {  // a fade that underflows: as local_illumination(), no shadow ray
+        line(d, text + ": no light reaches it, adds 0");
+        continue;
+      }
+      if (light.shaped()) text += " (I = " + vec(intensity) + ")";
       if (n_dot_l <= 0) {
         line(d, text + ": behind the surface, adds 0");
         continue;

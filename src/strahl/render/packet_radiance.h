@@ -328,11 +328,12 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     light_lanes<N>(surface, out, r, lx, ly, lz, n_dot_l, n_dot_h, shadow);
     std::uint32_t cast = 0;  // shade_from() casts no ray where dot(n, to_light) <= 0
     for (int i = 0; i < N; ++i) cast |= std::uint32_t(!(n_dot_l[i] <= 0)) << i;
-    // A spotlight's share towards each lane's point (local_illumination's): none, no shadow ray.
+    // The share that reaches each lane's point (local_illumination's: a spot's cone, a fade):
+    // none, no shadow ray.
     Real share[N];
-    if (light.kind == LightKind::Spot) {
+    if (light.shaped()) {
       for (int i = 0; i < N; ++i) {
-        share[i] = spot_factor(light, Vec3(lx[i], ly[i], lz[i]));
+        share[i] = light_share(light, Vec3(lx[i], ly[i], lz[i]), distance[i]);
         if (!(share[i] > 0)) cast &= ~(1u << i);
       }
     }
@@ -356,7 +357,7 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
     if ((local | spawn) != 0) {
       Real ir[N], ig[N], ib[N];
       for (int i = 0; i < N; ++i) ir[i] = light.radiance.x, ig[i] = light.radiance.y, ib[i] = light.radiance.z;
-      if (light.kind == LightKind::Spot)
+      if (light.shaped())
         for (int i = 0; i < N; ++i) ir[i] *= share[i], ig[i] *= share[i], ib[i] *= share[i];
       add_light_lanes<N>(ir, ig, ib, local | spawn, cast, n_dot_l, n_dot_h, tx, ty, tz, shading, rr, rg, rb);
     }

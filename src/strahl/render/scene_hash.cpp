@@ -43,7 +43,7 @@ void Hasher::add_all(const std::vector<T, A>& items) {
 // it is (update the function and the size together).
 static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && sizeof(kernel::Triangle) == 88 &&
                   sizeof(kernel::VertexNormals) == 72 && sizeof(kernel::MovingSphere) == 72 &&
-                  sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 144 && sizeof(Light) == 208 &&
+                  sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 144 && sizeof(Light) == 224 &&
                   sizeof(Camera) == 176 && sizeof(TraceSettings) == 80 && sizeof(SamplingSettings) == 48,
               "a kernel struct changed: hash its new fields in scene_hash.cpp and update the size here");
 static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof(kernel::Cone) == 80 &&
@@ -86,6 +86,8 @@ void hash(Hasher& h, const Light& l) {
   h.add(l.tightness);
   h.add(l.cos_angle);
   h.add(l.cos_falloff);
+  h.add(l.fade_distance);
+  h.add(l.fade_power);
   h.add(l.edge_u);
   h.add(l.edge_v);
   h.add(l.normal);

@@ -204,9 +204,10 @@ STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const Surf
   for (std::uint32_t i = 0; i < s.light_count; ++i) {
     const Light& light = s.lights[i];
     if (!light.is_area()) {
-      // A spotlight's share towards this point (1 for other lights); none: no shadow ray either.
+      // The share that reaches this point (a spot's cone, a fade; 1 for other lights); none:
+      // no shadow ray either.
       const LightSample ls = known != nullptr ? known[i].sample : sample_light(light, sp.p);
-      const Real share = spot_factor(light, ls.to_light);
+      const Real share = light_share(light, ls.to_light, ls.distance);
       if (!(share > 0)) continue;
       result += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, light.radiance * share, counters,
                            known != nullptr ? &known[i] : nullptr);

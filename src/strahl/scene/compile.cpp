@@ -463,6 +463,12 @@ RenderScene compile(const Scene& scene) {
     Light light = scene.lights()[i];
     const FileLoc& loc = scene.light_locs()[i];
     validate::non_negative(light.radiance, loc, "light colour × intensity");
+    validate::non_negative(light.fade_distance, loc, "light fade_distance");
+    validate::non_negative(light.fade_power, loc, "light fade_power");
+    if (light.fade_power > 0 && light.kind != LightKind::Point && light.kind != LightKind::Spot)
+      throw Error(loc, "only point and spot lights fade with distance");
+    if (light.fade_power > 0 && !(light.fade_distance > 0))
+      throw Error(loc, "a light's fade_power needs a positive fade_distance (the distance where the fade is 1)");
     if (light.kind == LightKind::Point) {
       validate::coordinates(light.position, loc, "light position");
     } else if (light.kind == LightKind::Directional) {

@@ -273,7 +273,10 @@ void object(Writer& w, const SceneObject& o, const std::vector<ObjectGroup>& gro
 // Lights as their radiance: colour = radiance, intensity 1 (the loader multiplies the two).
 void light(Writer& w, const Light& l) {
   using W = Writer;
-  const std::string color = ", color: " + W::vec(l.radiance, "light color");
+  const std::string fade = l.fade_power > 0 ? ", fade_distance: " + W::num(l.fade_distance, "light fade_distance") +
+                                                  ", fade_power: " + W::num(l.fade_power, "light fade_power")
+                                            : std::string();
+  const std::string color = ", color: " + W::vec(l.radiance, "light color") + fade;
   switch (l.kind) {
     case LightKind::Point: w.line(2, "- {type: point, position: " + W::vec(l.position, "light position") + color + "}"); return;
     case LightKind::Directional:

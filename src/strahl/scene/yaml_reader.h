@@ -77,6 +77,7 @@ class YamlReader {
   Material object_material(const YAML::Node& object) const;
   void light(const YAML::Node& n, Scene& scene) const;
   void spot_light(const YAML::Node& n, const Vec3& c, Real intensity, Scene& scene) const;
+  void fade(const YAML::Node& n, Light& l) const;
   void area_light(const YAML::Node& n, const std::string& type, const Vec3& c, Scene& scene) const;
 
   // ---- placement and motion (yaml_placement.cpp) ----------------------------------------------

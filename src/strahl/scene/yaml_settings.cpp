@@ -160,8 +160,10 @@ void YamlReader::light(const YAML::Node& n, Scene& scene) const {
   const Vec3 c = n["color"] ? color(n["color"], "light color") : Vec3(1);
   const Real intensity = n["intensity"] ? non_negative(n["intensity"], "intensity") : Real(1);
   if (type == "point") {
-    keys(n, {"type", "position", "color", "intensity"}, "point light");
-    scene.add(point_light(vec3(required(n, "position", "point light"), "light position"), c, intensity), loc(n));
+    keys(n, {"type", "position", "color", "intensity", "fade_distance", "fade_power"}, "point light");
+    Light l = point_light(vec3(required(n, "position", "point light"), "light position"), c, intensity);
+    fade(n, l);
+    scene.add(l, loc(n));
   } else if (type == "directional") {
     keys(n, {"type", "direction", "color", "intensity"}, "directional light");
     const YAML::Node d = required(n, "direction", "directional light");
@@ -179,7 +181,8 @@ void YamlReader::light(const YAML::Node& n, Scene& scene) const {
 
 // A spotlight: its axis from `point_at` or `direction` (one of the two), its angles in degrees.
 void YamlReader::spot_light(const YAML::Node& n, const Vec3& c, Real intensity, Scene& scene) const {
-  keys(n, {"type", "position", "point_at", "direction", "angle", "falloff", "tightness", "color", "intensity"},
+  keys(n, {"type", "position", "point_at", "direction", "angle", "falloff", "tightness", "color", "intensity",
+           "fade_distance", "fade_power"},
        "spot light");
   const Vec3 position = vec3(required(n, "position", "spot light"), "light position");
   if (n["point_at"] && n["direction"]) fail(n["direction"], "a spot light takes point_at or direction, not both");
@@ -196,7 +199,17 @@ void YamlReader::spot_light(const YAML::Node& n, const Vec3& c, Real intensity, 
   };
   const Real angle = degrees("angle", 30), falloff = degrees("falloff", 45);
   const Real tightness = n["tightness"] ? non_negative(n["tightness"], "spotlight tightness") : Real(0);
-  scene.add(strahl::spot_light(position, axis, angle, falloff, tightness, c, intensity), loc(n));
+  Light l = strahl::spot_light(position, axis, angle, falloff, tightness, c, intensity);
+  fade(n, l);
+  scene.add(l, loc(n));
+}
+
+// A point or spot light's fade with distance (POV-Ray's): fade_power > 0 turns it on.
+void YamlReader::fade(const YAML::Node& n, Light& l) const {
+  if (const auto v = n["fade_distance"]) l.fade_distance = non_negative(v, "light fade_distance");
+  if (const auto v = n["fade_power"]) l.fade_power = non_negative(v, "light fade_power");
+  if (l.fade_power > 0 && !(l.fade_distance > 0))
+    fail(n["fade_power"], "a light's fade_power needs a positive fade_distance (the distance where the fade is 1)");
 }
 
 // Area lights: radiance L = color × intensity, or from `power` Φ (one-sided: Φ = π·L·area).

@@ -23,6 +23,9 @@ struct Light {
   // smooth step between; everything times cos^tightness of the angle. compile() sets the cosines.
   Real angle = 30, falloff = 45, tightness = 0;
   Real cos_angle = 1, cos_falloff = 1;
+  // Point and spot lights: POV-Ray's fade with distance d, for fade_power > 0 (then
+  // fade_distance > 0): 2/(1 + (d/fade_distance)^fade_power).
+  Real fade_distance = 0, fade_power = 0;
   // Area lights only.
   Vec3 edge_u, edge_v;  // Rect: the two edges from the corner; it emits towards edge_u × edge_v
   Vec3 normal;          // Rect, Disk: unit normal of the emitting side
@@ -30,6 +33,8 @@ struct Light {
   int samples = 1;      // n: n×n stratified samples per shading point
 
   STRAHL_HOST_DEVICE constexpr bool is_area() const { return kind >= LightKind::Rect; }
+  // Whether less than all of the light reaches some points: a spot's cone, a fade.
+  STRAHL_HOST_DEVICE constexpr bool shaped() const { return kind == LightKind::Spot || fade_power > 0; }
 };
 
 // Direction from `p` towards the light (unit) and the distance to it (infinite for directional).
@@ -54,6 +59,21 @@ STRAHL_HOST_DEVICE inline Real spot_factor(const Light& light, const Vec3& to_li
     const Real x = (c - light.cos_falloff) / (light.cos_angle - light.cos_falloff);
     share *= (3 - 2 * x) * x * x;
   }
+  return share;
+}
+
+// POV-Ray's fade of a light over `distance` (Attenuate_Light): 1 without a fade_power; else
+// 2/(1 + (d/fade_distance)^fade_power) — 1 at fade_distance, up to 2 close to the light.
+STRAHL_HOST_DEVICE inline Real fade_factor(const Light& light, Real distance) {
+  if (!(light.fade_power > 0)) return 1;
+  return 2 / (1 + std::pow(distance / light.fade_distance, light.fade_power));
+}
+
+// The share of a point or spot light's intensity that reaches a point `distance` away in unit
+// direction `to_light` from it: the spot's share times the fade; 1 for a light not shaped().
+STRAHL_HOST_DEVICE inline Real light_share(const Light& light, const Vec3& to_light, Real distance) {
+  Real share = spot_factor(light, to_light);
+  if (light.fade_power > 0 && share > 0) share *= fade_factor(light, distance);
   return share;
 }
 

@@ -103,8 +103,9 @@ Light Parser::light(const Token& kw) {
     } else if (n == "point_at") {
       l.point_at = vector();
     } else if (n == "fade_distance" || n == "fade_power") {
-      real();
-      warn(loc(t), n + " is left out: strahl's point lights do not fall off with distance");
+      const double v = real();
+      if (!(v >= 0)) throw Error(loc(t), n + " must not be negative");
+      (n == "fade_distance" ? l.fade_distance : l.fade_power) = v;
     } else if (n == "shadowless") {
       warn(loc(t), "shadowless is left out: the light casts shadows");
     } else if (n == "adaptive" || n == "jitter" || n == "circular" || n == "orient") {
@@ -113,6 +114,8 @@ Light Parser::light(const Token& kw) {
       unsupported(t, "light_source");
     }
   }
+  if (l.parallel && l.fade_power > 0)
+    warn(l.loc, "fade_distance and fade_power are left out: a parallel light is a directional light, which does not fade");
   return l;
 }
 

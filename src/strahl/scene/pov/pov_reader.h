@@ -84,6 +84,7 @@ struct Light {
   bool spotlight = false;  // a spot light along point_at − position (radius, falloff in degrees)
   Vector point_at{0, 0, 1};
   double radius = 30, falloff = 45, tightness = 0;
+  double fade_distance = 0, fade_power = 0;  // POV-Ray's fade (point and spot lights)
   FileLoc loc;
 };
 
