@@ -64,9 +64,9 @@ class Writer {
   // spot light with POV-Ray's radius, falloff and tightness.
   std::string light(const pov::Light& l) const {
     // (POV-Ray draws a light with fade_distance 0 as one without a fade.)
-    const std::string fade = l.fade_power > 0 && l.fade_distance > 0 && !l.parallel ? ", fade_distance: " + yaml_number(l.fade_distance) +
-                                                                   ", fade_power: " + yaml_number(l.fade_power)
-                                                             : std::string();
+    const bool fades = l.fade_power > 0 && l.fade_distance > 0 && !l.parallel;
+    const std::string fade =
+        fades ? ", fade_distance: " + yaml_number(l.fade_distance) + ", fade_power: " + yaml_number(l.fade_power) : "";
     const std::string color = ", color: " + rgb(l.color) + fade + "}";
     if (l.parallel) return "  - {type: directional, direction: " + yaml_vector(mirrored(minus(l.point_at, l.position))) + color;
     if (!l.spotlight) return "  - {type: point, position: " + yaml_vector(mirrored(l.position)) + color;
