@@ -45,23 +45,11 @@ Light with_fade(Light l, double fade_distance, double fade_power) {
   return l;
 }
 
-const char* light_kind_name(LightKind k) {
-  switch (k) {
-    case LightKind::Point: return "point";
-    case LightKind::Directional: return "directional";
-    case LightKind::Spot: return "spot";
-    case LightKind::Rect: return "rect";
-    case LightKind::Disk: return "disk";
-    case LightKind::Sphere: return "sphere";
-  }
-  return "?";
-}
-
 }  // namespace
 
 void bind_lights(py::module_& m) {
   const auto white = py::make_tuple(1, 1, 1);
-  py::class_<Light>(m, "Light", "A light source; made by PointLight, DirectionalLight, RectLight, DiskLight, SphereLight.")
+  py::class_<Light>(m, "Light", "A light source; made by PointLight, SpotLight, DirectionalLight, RectLight, DiskLight, SphereLight.")
       .def_property_readonly("kind", [](const Light& l) { return light_kind_name(l.kind); })
       .def_readonly("position", &Light::position)
       .def_readonly("direction", &Light::direction)

@@ -35,18 +35,6 @@ const char* solid_name(kernel::SolidKind kind) {
   return "solid";
 }
 
-const char* light_name(LightKind kind) {
-  switch (kind) {
-    case LightKind::Point: return "point";
-    case LightKind::Directional: return "directional";
-    case LightKind::Spot: return "spot";
-    case LightKind::Rect: return "rect";
-    case LightKind::Disk: return "disk";
-    case LightKind::Sphere: return "sphere";
-  }
-  return "light";
-}
-
 // trace()'s observer (render/whitted.h): writes each ray of the tree as trace() walks it, depth
 // first, each child indented under its hit.
 class Explainer {
@@ -97,7 +85,7 @@ class Explainer {
     RayCounters scratch;
     for (std::uint32_t i = 0; i < s_.light_count; ++i) {
       const Light& light = s_.lights[i];
-      std::string text = "    light " + std::to_string(i) + " (" + light_name(light.kind);
+      std::string text = "    light " + std::to_string(i) + " (" + light_kind_name(light.kind);
       if (light.is_area()) {
         sampled = true;
         line(d, text + ", " + std::to_string(light.samples) + "×" + std::to_string(light.samples) +

@@ -37,6 +37,19 @@ struct Light {
   STRAHL_HOST_DEVICE constexpr bool shaped() const { return kind == LightKind::Spot || fade_power > 0; }
 };
 
+// The kind's name, as scene files write it.
+constexpr const char* light_kind_name(LightKind kind) {
+  switch (kind) {
+    case LightKind::Point: return "point";
+    case LightKind::Directional: return "directional";
+    case LightKind::Spot: return "spot";
+    case LightKind::Rect: return "rect";
+    case LightKind::Disk: return "disk";
+    case LightKind::Sphere: return "sphere";
+  }
+  return "light";
+}
+
 // Direction from `p` towards the light (unit) and the distance to it (infinite for directional).
 struct LightSample {
   Vec3 to_light;
