@@ -25,7 +25,7 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 TEST(Explain, RadianceAndRaysAreTheRenderersSample) {
   for (const char* file : {"lecture.yaml", "lecture-whitted.yaml", "refraction.yaml", "glossy.yaml", "soft-shadows.yaml",
                            "depth-of-field.yaml", "motion-blur.yaml", "csg.yaml", "instances-windmills.yaml",
-                           "motion-tumble.yaml", "whitted-1979.yaml", "spotlights.yaml"}) {
+                           "motion-tumble.yaml", "whitted-1979.yaml", "spotlights.yaml", "textures.yaml"}) {
     Scene scene = load_scene(fs::path(STRAHL_SOURCE_DIR) / "scenes" / file);
     scene.settings.width = 24;
     scene.settings.height = 14;
@@ -62,6 +62,10 @@ TEST(Explain, RadianceAndRaysAreTheRenderersSample) {
       EXPECT_TRUE(contains(t, "angle 12°, falloff 20°, tightness 10")) << t;
       EXPECT_TRUE(contains(t, "outside its cone, adds 0")) << t;
       EXPECT_TRUE(contains(t, "(fade_distance 8, fade_power 2): ")) << t;
+    }
+    if (std::string(file) == "textures.yaml") {  // on the textured sphere
+      const std::string t = explain_pixel(rs, 6, 6).text;
+      EXPECT_TRUE(contains(t, "(from image texture 1)")) << t;
     }
     if (std::string(file) == "lecture-whitted.yaml") {
       EXPECT_GT(multi, 4);

@@ -261,19 +261,19 @@ TEST(Shading, CheckerParityIsExactAndDefinedForAnySize) {
     for (int j = -3; j <= 3; ++j) {
       const Vec3 p(i * 0.1 + 0.01, j * 0.3 + 0.01, -0.6);
       const long sum = long(std::floor(p.x / 0.25)) + long(std::floor(p.y / 0.25)) + long(std::floor(p.z / 0.25));
-      EXPECT_EQ(surface_color(m, p).x, (sum % 2 != 0) ? 0.0 : 1.0) << p.x << ", " << p.y;
+      EXPECT_EQ(surface_color(m, p, {}).x, (sum % 2 != 0) ? 0.0 : 1.0) << p.x << ", " << p.y;
     }
   for (const double size : {1e-300, 4.9e-324, 1e-30, 1e300}) {
     m.checker_size = size;
     for (const Vec3& p : {Vec3(0.3, 0.7, -0.1), Vec3(-1e200, 3e250, 0), Vec3(1e-300, -1e-300, 0)}) {
-      const Vec3 c = surface_color(m, p);
+      const Vec3 c = surface_color(m, p, {});
       EXPECT_TRUE(c.x == 0 || c.x == 1) << "size " << size << " at " << p.x << ", " << p.y;
     }
   }
   m.checker_size = 1e-300;  // every cell index is a huge even number: the base colour
-  EXPECT_EQ(surface_color(m, Vec3(0.3, 0.7, -0.1)).x, 1.0);
+  EXPECT_EQ(surface_color(m, Vec3(0.3, 0.7, -0.1), {}).x, 1.0);
   m.checker_size = 1;  // −1 + 0 + 0: odd
-  EXPECT_EQ(surface_color(m, Vec3(-0.5, 0.5, 0.5)).x, 0.0);
+  EXPECT_EQ(surface_color(m, Vec3(-0.5, 0.5, 0.5), {}).x, 0.0);
   // odd_cell against its definition, |fmod(floor(a), 2)| = 1, over every magnitude and sign, the
   // neighbours of 2^53 and the values that are no number.
   const auto odd_by_fmod = [](double a) { return std::fabs(std::fmod(std::floor(a), 2.0)) == 1.0; };

@@ -47,7 +47,8 @@ void bind_material(py::module_& m) {
                        "(docs/scene-format.md, materials). Every field is a keyword argument and an attribute.")
       .def(py::init([](const py::object& color, double ambient, double diffuse, const py::object& specular,
                        double shininess, double reflectivity, double transparency, const py::object& ior, bool fresnel,
-                       bool filter, double roughness, double checker_size, const py::object& checker_color) {
+                       bool filter, double roughness, double checker_size, const py::object& checker_color,
+                       std::optional<std::uint32_t> texture) {
              Material mat;
              mat.color = color_arg(color, "color");
              mat.ambient = ambient;
@@ -62,7 +63,11 @@ void bind_material(py::module_& m) {
              mat.roughness = roughness;
              mat.checker_size = checker_size;
              mat.checker_color = color_arg(checker_color, "checker_color");
-             validate::material(mat, {});
+             if (texture) {
+               if (*texture == kNoTexture) throw Error("texture must be an index Scene.add_texture returned");
+               mat.texture = *texture;
+             }
+             validate::material(mat, validate::kTexturesUnknown, {});
              validate::in_range(mat.roughness, 0, 1, {}, "roughness");
              return mat;
            }),
@@ -72,7 +77,8 @@ void bind_material(py::module_& m) {
            py::arg("shininess") = d.shininess, py::arg("reflectivity") = d.reflectivity,
            py::arg("transparency") = d.transparency, py::arg("ior") = d.ior, py::arg("fresnel") = d.fresnel,
            py::arg("filter") = d.filter, py::arg("roughness") = d.roughness, py::arg("checker_size") = d.checker_size,
-           py::arg("checker_color") = py::make_tuple(d.checker_color.x, d.checker_color.y, d.checker_color.z))
+           py::arg("checker_color") = py::make_tuple(d.checker_color.x, d.checker_color.y, d.checker_color.z),
+           py::arg("texture") = py::none())
       .def_readwrite("color", &Material::color)
       .def_readwrite("ambient", &Material::ambient)
       .def_readwrite("diffuse", &Material::diffuse)
@@ -88,6 +94,12 @@ void bind_material(py::module_& m) {
       .def_readwrite("roughness", &Material::roughness)
       .def_readwrite("checker_size", &Material::checker_size)
       .def_readwrite("checker_color", &Material::checker_color)
+      .def_property(
+          "texture", [](const Material& mat) -> py::object {
+            return mat.texture == kNoTexture ? py::none() : py::cast(mat.texture);
+          },
+          [](Material& mat, std::optional<std::uint32_t> t) { mat.texture = t ? *t : kNoTexture; },
+          "The image texture giving the colour (an index Scene.add_texture returned), or None")
       .def("__repr__", [](const Material& mat) {
         std::ostringstream out;
         out << "strahl.Material(color=" << repr(mat.color) << ", ambient=" << mat.ambient << ", diffuse=" << mat.diffuse
@@ -167,6 +179,28 @@ void bind_scene_class(py::module_& m) {
              s.add(point_light(position, c, intensity), caller_loc());
            }, py::arg("position"), py::arg("color") = py::make_tuple(1, 1, 1), py::arg("intensity") = 1.0,
            "Adds a point light (white, intensity 1 unless given).")
+      .def("add_texture", [](Scene& s, const std::filesystem::path& file, const std::string& mapping,
+                             const std::string& interpolate, bool once, bool linear, const py::object& scale,
+                             const Vec3& rotate, const Vec3& translate) {
+             ImageTexture t;
+             t.loc = caller_loc();
+             t.file = file;
+             if (mapping == "planar") t.mapping = ImageMapping::Planar;
+             else if (mapping == "spherical") t.mapping = ImageMapping::Spherical;
+             else if (mapping == "cylindrical") t.mapping = ImageMapping::Cylindrical;
+             else throw Error("unknown image mapping '" + mapping + "' (planar, spherical or cylindrical)");
+             if (interpolate != "bilinear" && interpolate != "nearest")
+               throw Error("unknown image interpolate '" + interpolate + "' (nearest or bilinear)");
+             t.bilinear = interpolate == "bilinear";
+             t.once = once;
+             t.placement = make_transform(scale, rotate, translate, "texture");
+             t.image = read_texture_image(file, linear);
+             return s.add_texture(std::move(t));
+           }, py::arg("file"), py::kw_only(), py::arg("mapping") = "planar", py::arg("interpolate") = "bilinear",
+           py::arg("once") = false, py::arg("linear") = false, py::arg("scale") = 1.0,
+           py::arg("rotate") = Vec3(0), py::arg("translate") = Vec3(0),
+           "Reads an image (.png, .jpg, .ppm: sRGB unless linear=True; .pfm, .exr) as a texture and returns the "
+           "index a Material's texture takes (docs/scene-format.md, image textures).")
       .def("addLightSource", [](Scene& s, const Vec3& position) {
              validate::finite(position, {}, "light position");
              s.add(point_light(position), caller_loc());

@@ -109,7 +109,7 @@ Material object_material(const py::object& color, const std::optional<Material>&
   if (!color.is_none() && material) throw py::type_error("give either color or material, not both");
   Material m = material ? *material : Material{};
   if (!color.is_none()) m.color = color_arg(color, "color");
-  validate::material(m, {});
+  validate::material(m, validate::kTexturesUnknown, {});
   return m;
 }
 

@@ -1,5 +1,7 @@
 # Scene files from Python: strahl.load with the CLI's errors (file, line, column), and scenes built
 # in Python saved as YAML that read back to the same compiled scene.
+import os
+
 import numpy as np
 import pytest
 
@@ -66,6 +68,10 @@ def python_scene():
     scene.add(strahl.RectLight((-0.5, 1.8, -0.5), (0.4, 0, 0), (0, 0, 0.4), power=2, samples=2))
     scene.add(strahl.DiskLight((0.5, 1.8, 0.5), (0.1, -1, 0), 0.2, color=(1, 0.9, 0.8), samples=2))
     scene.add(strahl.SphereLight((0, 2, 1), 0.1, intensity=2, samples=1))
+    grid = os.path.join(os.environ.get("STRAHL_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", "..")),
+                        "scenes", "textures", "grid.png")
+    globe = scene.add_texture(grid, mapping="spherical", interpolate="nearest", translate=(0.7, 0.25, 0.4))
+    scene.add(strahl.Sphere((0.7, 0.25, 0.4), 0.15, material=strahl.Material(texture=globe)))
     return scene
 
 

@@ -26,7 +26,7 @@ namespace strahl::cuda_detail {
 // is uploaded and mapped below — then update these sizes.
 // Instance groups are RenderScenes of their own: their arrays are uploaded and mapped the same way
 // (copy_scene_arrays, map_accel), and their views (InstanceGroupView) with device pointers.
-static_assert(sizeof(SceneView) - sizeof(AccelView) == 600 && sizeof(PrimitiveSet) == 144 &&
+static_assert(sizeof(SceneView) - sizeof(AccelView) == 616 && sizeof(PrimitiveSet) == 144 &&
 #if defined(STRAHL_HAVE_EMBREE)
                   sizeof(AccelView) == 408,
 #else
@@ -184,7 +184,8 @@ struct Device::Impl {
            ok(copy_array(rs.accel.octree.centers)) && ok(copy_array(rs.accel.octree.leaves)) &&
            ok(copy_array(rs.accel.octree.blocks)) && ok(copy_array(rs.moving_spheres)) &&
            ok(copy_array(rs.moving_triangles)) && ok(copy_array(rs.moving_solids)) && ok(copy_array(rs.moving_instances)) && ok(copy_array(rs.moving_bvh.trees.nodes)) &&
-           ok(copy_array(rs.moving_bvh.trees.prims)) && ok(copy_array(rs.materials)) && ok(copy_array(rs.lights)) &&
+           ok(copy_array(rs.moving_bvh.trees.prims)) && ok(copy_array(rs.materials)) && ok(copy_array(rs.textures)) &&
+           ok(copy_array(rs.texels)) && ok(copy_array(rs.lights)) &&
            ok(copy_array(rs.solids)) && ok(copy_array(rs.boxes)) && ok(copy_array(rs.cones)) &&
            ok(copy_array(rs.disks)) && ok(copy_array(rs.tori)) && ok(copy_array(rs.quadrics)) &&
            ok(copy_array(rs.implicits)) && ok(copy_array(rs.implicit_tallies)) &&
@@ -236,7 +237,8 @@ struct Device::Impl {
     out = host;
     return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) &&
            map_accel(out.accel) && map(out.moving_spheres) && map(out.moving_triangles) && map(out.moving_solids) && map(out.moving_instances) &&
-           map(out.moving_bvh.trees.nodes) && map(out.moving_bvh.trees.leaves) && map(out.materials) && map(out.lights) &&
+           map(out.moving_bvh.trees.nodes) && map(out.moving_bvh.trees.leaves) && map(out.materials) && map(out.textures.images) &&
+           map(out.textures.texels) && map(out.lights) &&
            map(out.solids) && map(out.instances) && map(out.instance_bvh.nodes) && map(out.instance_bvh.leaves) &&
            map(out.groups);
   }

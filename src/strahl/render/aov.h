@@ -31,7 +31,7 @@ STRAHL_HOST_DEVICE inline AovSample aov_sample(const SceneView& s, int x, int ro
   const SurfacePoint sp = surface_at(s, ray, hit);
   a.depth = (sp.p - ray.origin).length();
   a.normal = sp.normal;
-  a.albedo = surface_color(s.materials[sp.material], sp.texcoord);
+  a.albedo = surface_color(s.materials[sp.material], sp.texcoord, s.textures);
   a.id = Real(sp.material);  // compile() gives every scene object its own material slot, in order
   return a;
 }

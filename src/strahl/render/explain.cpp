@@ -71,8 +71,9 @@ class Explainer {
     line(d, "    p = " + vec(sp.p) + ", N = " + vec(n) +
                 (front ? " (the ray arrives at the outside)" : " (the ray arrives from inside: N turned towards it)"));
     const Material& m = s_.materials[sp.material];
-    const Vec3 c = surface_color(m, sp.texcoord);
-    line(d, "    C = " + vec(c) + ", k_a = " + num(m.ambient) + ", k_d = " + num(m.diffuse) + ", k_s = " + vec(m.specular) +
+    const Vec3 c = surface_color(m, sp.texcoord, s_.textures);
+    line(d, "    C = " + vec(c) + (m.texture != kNoTexture ? " (from image texture " + std::to_string(m.texture) + ")" : "") +
+                ", k_a = " + num(m.ambient) + ", k_d = " + num(m.diffuse) + ", k_s = " + vec(m.specular) +
                 ", shininess " + num(m.shininess) + ", k_r = " + num(m.reflectivity) + ", T = " + num(m.transparency) +
                 (m.transparency > 0 ? ", ior " + num(m.ior) : std::string()) +
                 (m.roughness > 0 ? ", roughness " + num(m.roughness) : std::string()));

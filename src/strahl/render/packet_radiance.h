@@ -36,9 +36,9 @@ struct LocalTerms {
   Real shiny, shininess;
 };
 STRAHL_HOST_DEVICE inline LocalTerms local_terms(const Material& material, const Vec3& texcoord,
-                                                 const Vec3& ambient_light) {
+                                                 const kernel::Textures& textures, const Vec3& ambient_light) {
   LocalTerms t;
-  t.c = surface_color(material, texcoord);
+  t.c = surface_color(material, texcoord, textures);
   const Real opacity = 1 - material.transparency;
   t.ambient = t.c * ambient_light * (material.ambient * opacity);
   t.kd = material.diffuse * (1 - material.transparency);
@@ -236,9 +236,9 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   Real* const cr = shading.cr; Real* const cg = shading.cg; Real* const cb = shading.cb; Real* const kd = shading.kd;
   Real* const sr = shading.sr; Real* const sg = shading.sg; Real* const sb = shading.sb;
   Real* const shiny = shading.shiny; Real* const shininess = shading.shininess;
-  // All lit lanes on one material without a checker (as a pixel's samples mostly are): its terms
+  // All lit lanes on one material without a texture (as a pixel's samples mostly are): its terms
   // computed once and set in every lit lane side by side. Else lane by lane, the terms of the last
-  // material without a checker kept for the next lane of the same material.
+  // material without a texture kept for the next lane of the same material.
   const int first_lit = lit != 0 ? wide_bvh_detail::lowest_bit(lit) : 0;
   std::uint32_t other_material = 0;  // lanes on another material than the first lit lane's
   for (int i = 0; i < N; ++i) other_material |= std::uint32_t(surface.material[i] != surface.material[first_lit]) << i;
@@ -247,12 +247,13 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
   if (one_material != 0) {
     const Material& material = s.materials[surface.material[first_lit]];
     one_spawner = trees && packet_spawner(material);
-    if (((material.reflectivity > 0 || material.transparency > 0) && !one_spawner) || material.checker_size > 0)
+    if (((material.reflectivity > 0 || material.transparency > 0) && !one_spawner) || textured(material))
       one_material = 0;
   }
   if (one_material != 0) {
-    const Vec3 texcoord(surface.ux[first_lit], surface.uy[first_lit], surface.uz[first_lit]);  // (no checker: unused)
-    const LocalTerms t = local_terms(s.materials[surface.material[first_lit]], texcoord, s.settings.ambient_light);
+    const Vec3 texcoord(surface.ux[first_lit], surface.uy[first_lit], surface.uz[first_lit]);  // (not textured: unused)
+    const LocalTerms t =
+        local_terms(s.materials[surface.material[first_lit]], texcoord, s.textures, s.settings.ambient_light);
     (one_spawner ? spawn : local) = lit;
     // (In every lane: add_light_lanes adds nothing outside `lit`; the colour is 0 there.)
     for (int i = 0; i < N; ++i) {
@@ -279,8 +280,9 @@ STRAHL_HOST_DEVICE inline void packet_step(const SceneView& s, std::uint32_t act
           if (!(trees && packet_spawner(material))) continue;
           spawner = true;
         }
-        fresh = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.settings.ambient_light);
-        if (material.checker_size <= 0) plain = material_index, terms = fresh, plain_spawner = spawner;
+        fresh = local_terms(material, Vec3(surface.ux[i], surface.uy[i], surface.uz[i]), s.textures,
+                            s.settings.ambient_light);
+        if (!textured(material)) plain = material_index, terms = fresh, plain_spawner = spawner;
         t = &fresh;
       }
       (spawner ? spawn : local) |= 1u << i;

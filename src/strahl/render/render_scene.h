@@ -102,6 +102,10 @@ struct RenderScene {
   std::vector<Bounds> instance_bounds;
   IndexTree instance_bvh;
   std::vector<Material> materials;
+  // Image textures (shading/image_texture.h; Material::texture indexes them) and their pixels,
+  // RGB float triples one image after the other.
+  std::vector<kernel::ImageTexture> textures;
+  std::vector<float> texels;
   std::vector<Light> lights;
   Camera camera;
   TraceSettings settings;
@@ -151,6 +155,7 @@ struct RenderScene {
     v.shutter_open = camera.shutter_open;
     v.inv_shutter = camera.shutter_close > camera.shutter_open ? 1 / (camera.shutter_close - camera.shutter_open) : 0;
     v.materials = materials.data();
+    v.textures = {textures.data(), texels.data()};
     v.opaque = true;
     for (const Material& m : materials) v.opaque = v.opaque && !(m.transparency > 0);
     v.lights = lights.data();

@@ -44,6 +44,7 @@ void Hasher::add_all(const std::vector<T, A>& items) {
 static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && sizeof(kernel::Triangle) == 88 &&
                   sizeof(kernel::VertexNormals) == 72 && sizeof(kernel::MovingSphere) == 72 &&
                   sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 144 && sizeof(Light) == 224 &&
+                  sizeof(kernel::ImageTexture) == 120 &&
                   sizeof(Camera) == 176 && sizeof(TraceSettings) == 80 && sizeof(SamplingSettings) == 48,
               "a kernel struct changed: hash its new fields in scene_hash.cpp and update the size here");
 static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof(kernel::Cone) == 80 &&
@@ -57,7 +58,7 @@ static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof
 // built from the primitives hashed here, such as accel.sphere_quads; nor group_nesting, which the
 // instances unfold into the records hashed here.)
 #if defined(STRAHL_HAVE_EMBREE)
-static_assert(sizeof(RenderScene) == 1840, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+static_assert(sizeof(RenderScene) == 1888, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
 #endif
 
 void hash(Hasher& h, const Material& m) {
@@ -74,6 +75,18 @@ void hash(Hasher& h, const Material& m) {
   h.add(m.roughness);
   h.add(m.checker_size);
   h.add(m.checker_color);
+  h.add(m.texture);
+}
+
+void hash(Hasher& h, const kernel::ImageTexture& t) {
+  for (const Vec3& r : t.to_texture.row) h.add(r);
+  h.add(t.to_texture.translate);
+  h.add(t.first_texel);
+  h.add(t.width);
+  h.add(t.height);
+  h.add(t.mapping);
+  h.add(t.bilinear);
+  h.add(t.once);
 }
 
 void hash(Hasher& h, const Light& l) {
@@ -332,6 +345,9 @@ std::uint64_t scene_hash(const RenderScene& s) {
   for (const RenderScene& g : s.groups) h.add(scene_hash(g));
   h.add_all(s.instances);
   h.add_all(s.materials);
+  h.add_all(s.textures);
+  h.add(std::uint64_t(s.texels.size()));
+  h.bytes(s.texels.data(), s.texels.size() * sizeof(float));
   h.add_all(s.lights);
   hash(h, s.camera);
   hash(h, s.settings);

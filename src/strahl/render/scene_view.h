@@ -71,6 +71,7 @@ struct SceneView {
   const InstanceGroupView* groups = nullptr;
   Real shutter_open = 0, inv_shutter = 0;  // u = (time − open) · inv_shutter; 0 for no interval
   const Material* materials = nullptr;
+  kernel::Textures textures;  // the image textures materials refer to
   bool opaque = false;  // no material is transparent: a shadow ray needs only an any-hit test
   const Light* lights = nullptr;
   std::uint32_t light_count = 0;

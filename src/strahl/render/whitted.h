@@ -199,7 +199,7 @@ STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const Surf
                                                   const Vec3& view, RayCounters& counters, SampleStream& rng,
                                                   const KnownLight* known = nullptr) {
   const Material& m = s.materials[sp.material];
-  const Vec3 c = surface_color(m, sp.texcoord);
+  const Vec3 c = surface_color(m, sp.texcoord, s.textures);
   Vec3 result = ambient_term(s, m, c);
   for (std::uint32_t i = 0; i < s.light_count; ++i) {
     const Light& light = s.lights[i];

@@ -10,6 +10,7 @@
 #include "strahl/scene/scene.h"
 #include "strahl/scene/place_solid.h"
 #include "strahl/scene/scene_warnings.h"
+#include "strahl/scene/textures.h"
 #include "strahl/scene/validate.h"
 #include "strahl/util/cancel.h"
 
@@ -435,11 +436,12 @@ RenderScene compile(const Scene& scene) {
   out.supersample = s.supersample;
   out.sampling = compile_sampling(s);
 
-  compile_groups(scene, out);  // before the instances that place them
+  compile_textures(scene, out);  // before the materials that name them
+  compile_groups(scene, out);    // before the instances that place them
   std::uint32_t object_id = 0;  // (the camera, with its shutter, is built first: moving shapes need it)
   for (const auto& object : scene.objects()) {
     if ((object_id & 0x3ff) == 0) check_cancelled("build");
-    validate::material(object->material, object->loc);
+    validate::material(object->material, out.textures.size(), object->loc);
     const auto material_index = static_cast<std::uint32_t>(out.materials.size());
     out.materials.push_back(object->material);
     object->compile_into(out, material_index, object_id++);

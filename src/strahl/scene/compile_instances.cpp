@@ -244,7 +244,7 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
 // shapes may be there.
 void compile_group_object(RenderScene& out, RenderScene& g, const SceneObject& object, const std::string& name,
                           std::uint32_t object_id) {
-  validate::material(object.material, object.loc);
+  validate::material(object.material, out.textures.size(), object.loc);
   const auto material_index = static_cast<std::uint32_t>(out.materials.size());
   out.materials.push_back(object.material);
   // (A group keeps only its static shapes: whatever else an object compiles to is refused.)

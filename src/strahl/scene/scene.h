@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "strahl/accel/accel.h"
+#include "strahl/image/image.h"
 #include "strahl/math/transform.h"
 #include "strahl/render/ray_budget.h"
 #include "strahl/sampling/pixel_sampler.h"
@@ -263,6 +264,24 @@ struct RenderSettings {
   FileLoc loc;
 };
 
+// An image texture (shading/image_texture.h): a picture wrapped onto the surfaces whose material
+// names it (Material::texture = the index Scene::add_texture returned), as POV-Ray's image_map.
+struct ImageTexture {
+  std::filesystem::path file;  // where the picture was read from (for messages; may be empty)
+  std::shared_ptr<const Image> image;  // its pixels, linear RGB (read_texture_image)
+  ImageMapping mapping = ImageMapping::Planar;
+  bool bilinear = false;  // blend the four nearest pixels (else the pixel a point falls into)
+  bool once = false;      // not repeated: outside the image the material's colour shows
+  // Texture space → the texture coordinates' space (world; a group's own in instances; a plane's
+  // (u, v, 0)): the planar image's unit square is placed by it.
+  Transform placement;
+  FileLoc loc;
+};
+
+// Reads a texture's picture (.png, .jpg, .ppm, .pfm, .exr): linear RGB; 8- and 16-bit formats are
+// decoded from sRGB (as POV-Ray and image editors take them) unless `linear`. Throws strahl::Error.
+std::shared_ptr<const Image> read_texture_image(const std::filesystem::path& file, bool linear = false);
+
 // A named group of objects, placed by instances (scene/instances.h; docs/scene-format.md,
 // "Instances").
 struct ObjectGroup {
@@ -306,6 +325,15 @@ class Scene {
   }
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<FileLoc>& light_locs() const { return light_locs_; }
+  // Adds an image texture (its image must hold pixels); returns the index a Material's `texture`
+  // takes.
+  std::uint32_t add_texture(ImageTexture texture) {
+    if (texture.image == nullptr || texture.image->width() <= 0 || texture.image->height() <= 0)
+      throw Error(texture.loc, "an image texture needs an image with pixels");
+    textures_.push_back(std::move(texture));
+    return static_cast<std::uint32_t>(textures_.size() - 1);
+  }
+  const std::vector<ImageTexture>& textures() const { return textures_; }
   std::vector<FileLoc>& light_locs() { return light_locs_; }  // (one per light; its text may change)
 
   CameraDescription camera;
@@ -320,6 +348,7 @@ class Scene {
   std::vector<std::unique_ptr<SceneObject>> objects_;
   std::vector<Light> lights_;
   std::vector<FileLoc> light_locs_;
+  std::vector<ImageTexture> textures_;
 };
 
 // Validates everything (throws strahl::Error with the location of the offending definition)

@@ -5,8 +5,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <vector>
 
+#include "strahl/image/image_io.h"
 #include "strahl/image/output_file.h"
 #include "strahl/scene/csg.h"
 #include "strahl/scene/instances.h"
@@ -66,7 +68,42 @@ class Writer {
   }
 };
 
-std::string material_map(const Material& m) {
+// Each picture is written once, numbered in the order the scene's textures first use it
+// (textures sharing a picture share its file, and so its pixels when read back).
+std::string texture_file(const std::string& stem, std::uint32_t picture) {
+  return stem + ".texture" + std::to_string(picture) + ".pfm";
+}
+std::vector<std::uint32_t> picture_numbers(const Scene& scene, std::vector<const Image*>* pictures = nullptr) {
+  std::map<const Image*, std::uint32_t> number;
+  std::vector<std::uint32_t> out;
+  for (const ImageTexture& t : scene.textures()) {
+    const auto [it, fresh] = number.try_emplace(t.image.get(), std::uint32_t(number.size()));
+    if (fresh && pictures != nullptr) pictures->push_back(t.image.get());
+    out.push_back(it->second);
+  }
+  return out;
+}
+
+std::string placement_keys(const Transform& t, const std::string& what);
+
+// An image texture in place; its picture is the PFM file save_scene writes beside the scene.
+std::string image_map(const ImageTexture& t, const std::string& file) {
+  static constexpr const char* kMappings[] = {"planar", "spherical", "cylindrical"};
+  return "{file: " + Writer::quoted(file) + ", mapping: " + kMappings[int(t.mapping)] +
+         ", interpolate: " + (t.bilinear ? "bilinear" : "nearest") + ", once: " + Writer::boolean(t.once) + ", " +
+         placement_keys(t.placement, "image") + "}";
+}
+
+// What a material's texture is written as: the scene's textures and the file of each one's picture.
+struct TextureFiles {
+  const std::vector<ImageTexture>& textures;
+  std::vector<std::string> file;  // per texture
+  TextureFiles(const Scene& scene, const std::string& stem) : textures(scene.textures()) {
+    for (const std::uint32_t picture : picture_numbers(scene)) file.push_back(texture_file(stem, picture));
+  }
+};
+
+std::string material_map(const Material& m, const TextureFiles& tx) {
   using W = Writer;
   std::string s = "{color: " + W::vec(m.color, "material color") + ", ambient: " + W::num(m.ambient, "ambient") +
                   ", diffuse: " + W::num(m.diffuse, "diffuse") + ", specular: " + W::vec(m.specular, "specular") +
@@ -79,16 +116,22 @@ std::string material_map(const Material& m) {
   if (m.checker_size > 0)
     s += ", checker: {size: " + W::num(m.checker_size, "checker size") +
          ", color: " + W::vec(m.checker_color, "checker color") + "}";
+  if (m.texture != kNoTexture) {
+    if (m.texture >= tx.textures.size()) throw Error(FileLoc{}, "cannot write a material whose texture the scene does not have");
+    s += ", image: " + image_map(tx.textures[m.texture], tx.file[m.texture]);
+  }
   return s + "}";
 }
 
 std::string matrix_rows(const Transform& t, const std::string& what);
 
-std::string transform_map(const Transform& t, const std::string& what) {
-  if (t.general()) return "{matrix: " + matrix_rows(t, what + " matrix") + "}";
-  return "{scale: " + Writer::vec(t.scale, what + " scale") + ", rotate: " + Writer::vec(t.rotate_degrees, what + " rotate") +
-         ", translate: " + Writer::vec(t.translate, what + " translate") + "}";
+std::string placement_keys(const Transform& t, const std::string& what) {
+  if (t.general()) return "matrix: " + matrix_rows(t, what + " matrix");
+  return "scale: " + Writer::vec(t.scale, what + " scale") + ", rotate: " + Writer::vec(t.rotate_degrees, what + " rotate") +
+         ", translate: " + Writer::vec(t.translate, what + " translate");
 }
+
+std::string transform_map(const Transform& t, const std::string& what) { return "{" + placement_keys(t, what) + "}"; }
 
 void motion(Writer& w, const Motion& m) {
   std::string keys;
@@ -235,8 +278,8 @@ void csg(Writer& w, const Csg& c) {
 }
 
 // One object; `groups`: the scene's, which instances name.
-void object(Writer& w, const SceneObject& o, const std::vector<ObjectGroup>& groups, const std::string& mesh_stem,
-            int& meshes) {
+void object(Writer& w, const SceneObject& o, const std::vector<ObjectGroup>& groups, const TextureFiles& tx,
+            const std::string& mesh_stem, int& meshes) {
   using W = Writer;
   if (const auto* in = dynamic_cast<const Instance*>(&o)) {  // (no material)
     if (in->group >= groups.size()) throw Error(in->loc, "cannot write an instance of a group the scene does not have");
@@ -266,7 +309,7 @@ void object(Writer& w, const SceneObject& o, const std::vector<ObjectGroup>& gro
   } else if (!solid(w, o)) {
     throw Error(o.loc, "cannot write this kind of object to a scene file");
   }
-  w.line(4, "material: " + material_map(o.material));
+  w.line(4, "material: " + material_map(o.material, tx));
   motion(w, o.motion);
 }
 
@@ -356,6 +399,7 @@ std::string scene_to_yaml(const Scene& scene, const std::string& mesh_stem) {
     w.line(0, "lights:");
     for (const Light& l : scene.lights()) light(w, l);
   }
+  const TextureFiles tx(scene, mesh_stem);
   int meshes = 0;  // numbered in the order written: the groups' first (save_scene writes their files so)
   if (!scene.groups.empty()) {
     w.line(0, "groups:");
@@ -363,13 +407,13 @@ std::string scene_to_yaml(const Scene& scene, const std::string& mesh_stem) {
       w.line(2, Writer::quoted(g.name) + ":");
       for (const auto& o : g.objects) {
         Writer sub;
-        object(sub, *o, scene.groups, mesh_stem, meshes);
+        object(sub, *o, scene.groups, tx, mesh_stem, meshes);
         w.lines(2, sub);
       }
     }
   }
   w.line(0, "objects:");
-  for (const auto& o : scene.objects()) object(w, *o, scene.groups, mesh_stem, meshes);
+  for (const auto& o : scene.objects()) object(w, *o, scene.groups, tx, mesh_stem, meshes);
   return w.text;
 }
 
@@ -415,6 +459,10 @@ void save_scene(const Scene& scene, const std::filesystem::path& path) {
   for (const ObjectGroup& g : scene.groups) add_meshes(g.objects);  // in the order scene_to_yaml numbers them
   add_meshes(scene.objects());
   for (std::size_t i = 0; i < objs.size(); ++i) write(path.parent_path() / mesh_file(stem, int(i)), objs[i]);
+  std::vector<const Image*> pictures;
+  picture_numbers(scene, &pictures);
+  for (std::uint32_t i = 0; i < pictures.size(); ++i)  // (linear float: the pixels exactly)
+    write_image(*pictures[i], path.parent_path() / texture_file(stem, i));
   write(path, text);
 }
 

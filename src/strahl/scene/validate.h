@@ -3,6 +3,7 @@
 // at the offending value's line and column). Each throws strahl::Error.
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 
 #include "strahl/shading/material.h"
@@ -103,7 +104,10 @@ inline void int_range(long v, long lo, long hi, const FileLoc& loc, const std::s
                          std::to_string(v) + ")");
 }
 
-inline void material(const Material& m, const FileLoc& loc) {
+// `textures`: how many image textures the scene has (Material::texture must name one of them);
+// kTexturesUnknown where a material is made before its scene (compile() checks it then).
+inline constexpr std::size_t kTexturesUnknown = ~std::size_t(0);
+inline void material(const Material& m, std::size_t textures, const FileLoc& loc) {
   non_negative(m.color, loc, "material colour");
   non_negative(m.ambient, loc, "ambient");
   non_negative(m.diffuse, loc, "diffuse");
@@ -115,6 +119,10 @@ inline void material(const Material& m, const FileLoc& loc) {
   non_negative(m.checker_size, loc, "checker size");
   if (m.checker_size > 0) length(m.checker_size, loc, "checker size");
   non_negative(m.checker_color, loc, "checker colour");
+  if (m.texture != kNoTexture && m.texture >= textures)
+    throw Error(loc, "material texture " + std::to_string(m.texture) + " does not exist (the scene has " +
+                         std::to_string(textures) + ")");
+  if (m.texture != kNoTexture && m.checker_size > 0) throw Error(loc, "a material has a checker or an image, not both");
 }
 
 }  // namespace strahl::validate

@@ -88,6 +88,8 @@ Scene YamlReader::read(const YAML::Node& root, const std::vector<ObjectText>& ob
     }
   }
   if (scene.objects().empty()) fail(root, "the scene has no objects");
+  for (ImageTexture& t : textures_) scene.add_texture(std::move(t));  // (in order: materials hold their indices)
+  textures_.clear();
   return scene;
 }
 

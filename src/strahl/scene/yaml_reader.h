@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -74,6 +75,7 @@ class YamlReader {
   void sampling(const YAML::Node& n, SamplingSettings& s) const;
   void camera(const YAML::Node& n, CameraDescription& c) const;
   Material material(const YAML::Node& n) const;
+  std::uint32_t image_texture(const YAML::Node& n) const;
   Material object_material(const YAML::Node& object) const;
   void light(const YAML::Node& n, Scene& scene) const;
   void spot_light(const YAML::Node& n, const Vec3& c, Real intensity, Scene& scene) const;
@@ -106,6 +108,10 @@ class YamlReader {
   std::filesystem::path base_dir_;
   MeshSource meshes_;  // empty: mesh files are read from base_dir_
   std::map<std::string, Material> materials_;
+  // The image textures the materials read so far name (Material::texture indexes this list, which
+  // read() hands to the scene), and each picture read, by file, so that materials share it.
+  mutable std::vector<ImageTexture> textures_;
+  mutable std::map<std::pair<std::filesystem::path, bool>, std::shared_ptr<const Image>> images_;
   int line_offset_ = 0;                               // of the object being read from its own text
   std::map<std::string, std::uint32_t> group_index_;  // into Scene::groups
   const std::string* reading_group_ = nullptr;        // the group whose objects are being read

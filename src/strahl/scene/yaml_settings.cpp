@@ -119,7 +119,7 @@ void YamlReader::camera(const YAML::Node& n, CameraDescription& c) const {
 Material YamlReader::material(const YAML::Node& n) const {
   map(n, "material");
   keys(n, {"color", "ambient", "diffuse", "specular", "shininess", "reflectivity", "transparency", "ior", "fresnel",
-           "filter", "checker", "roughness"},
+           "filter", "checker", "roughness", "image"},
        "material");
   Material m;
   if (const auto v = n["color"]) m.color = color(v, "color");
@@ -139,7 +139,52 @@ Material YamlReader::material(const YAML::Node& n) const {
     m.checker_size = positive(required(c, "size", "checker"), "checker size");
     if (const auto v = c["color"]) m.checker_color = color(v, "checker color");
   }
+  if (const auto v = n["image"]) {
+    if (n["checker"]) fail(v, "a material has a checker or an image, not both");
+    m.texture = image_texture(v);
+  }
   return m;
+}
+
+// `image: {file, mapping, interpolate, once, linear, placement keys}` (docs/scene-format.md,
+// "Image textures"): the texture is added to the reader's list; returns its index.
+std::uint32_t YamlReader::image_texture(const YAML::Node& n) const {
+  map(n, "image");
+  keys(n, {"file", "mapping", "interpolate", "once", "linear", "scale", "rotate", "translate", "matrix", "transform"},
+       "image");
+  ImageTexture t;
+  t.loc = loc(n);
+  const YAML::Node f = required(n, "file", "image");
+  const bool linear = n["linear"] ? boolean(n["linear"], "image linear") : false;
+  t.file = base_dir_ / scalar(f, "image file");
+  auto [it, fresh] = images_.try_emplace({t.file, linear}, nullptr);
+  if (fresh) {
+    try {
+      it->second = read_texture_image(t.file, linear);
+    } catch (const Error& e) {
+      images_.erase(it);
+      fail(f, std::string("image: ") + e.what());
+    }
+  }
+  t.image = it->second;
+  if (const auto v = n["mapping"]) {
+    const std::string mapping = scalar(v, "image mapping");
+    if (mapping == "planar") t.mapping = ImageMapping::Planar;
+    else if (mapping == "spherical") t.mapping = ImageMapping::Spherical;
+    else if (mapping == "cylindrical") t.mapping = ImageMapping::Cylindrical;
+    else fail(v, "unknown image mapping '" + mapping + "' (planar, spherical or cylindrical)");
+  }
+  t.bilinear = true;
+  if (const auto v = n["interpolate"]) {
+    const std::string how = scalar(v, "image interpolate");
+    if (how == "nearest") t.bilinear = false;
+    else if (how != "bilinear") fail(v, "unknown image interpolate '" + how + "' (nearest or bilinear)");
+  }
+  if (const auto v = n["once"]) t.once = boolean(v, "image once");
+  t.placement = placement(n, "image ");
+  if (textures_.size() >= kNoTexture) fail(n, "too many image textures");
+  textures_.push_back(std::move(t));
+  return static_cast<std::uint32_t>(textures_.size() - 1);
 }
 
 // `material: name` refers to the materials section; a map defines one in place.

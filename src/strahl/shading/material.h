@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "strahl/math/vec3.h"
+#include "strahl/shading/image_texture.h"
 
 namespace strahl {
 
@@ -20,6 +21,9 @@ struct Material {
   Real ior = 1;               // index of refraction of the object's interior
   bool fresnel = false;       // Schlick: reflection grows towards grazing angles, refraction shrinks
   bool filter = false;        // transmitted light (refraction and shadows) is tinted by `color`
+  // An image texture (shading/image_texture.h) giving C instead of `color`: its index among the
+  // scene's textures (Scene::add_texture), kNoTexture for none.
+  std::uint32_t texture = kNoTexture;
   // Glossy reflection and translucency (shading/glossy.h): 0 = perfect mirror and clear
   // refraction, up to 1 = the widest lobe.
   Real roughness = 0;
@@ -39,8 +43,12 @@ STRAHL_HOST_DEVICE inline bool odd_cell(Real a) {
   return cell - 2 * std::floor(cell * Real(0.5)) == Real(1);
 }
 
+// Does the colour C vary over the surface (a checker or an image)?
+STRAHL_HOST_DEVICE inline bool textured(const Material& m) { return m.checker_size > 0 || m.texture != kNoTexture; }
+
 // Colour C at a point with plane coordinates (u, v) or, for solids, position p.
-STRAHL_HOST_DEVICE inline Vec3 surface_color(const Material& m, const Vec3& texcoord) {
+STRAHL_HOST_DEVICE inline Vec3 surface_color(const Material& m, const Vec3& texcoord, const kernel::Textures& textures) {
+  if (m.texture != kNoTexture) return kernel::image_color(textures.images[m.texture], textures.texels, texcoord, m.color);
   if (m.checker_size <= 0) return m.color;
   const Real s = Real(1) / m.checker_size;
   const bool odd = (odd_cell(texcoord.x * s) != odd_cell(texcoord.y * s)) != odd_cell(texcoord.z * s);

@@ -1,0 +1,73 @@
+#include "strahl/scene/textures.h"
+
+#include <cmath>
+#include <map>
+
+#include "strahl/image/image_io.h"
+#include "strahl/render/render_scene.h"
+#include "strahl/scene/scene.h"
+
+namespace strahl {
+
+namespace {
+
+// The sRGB transfer function's inverse (IEC 61966-2-1), in double.
+float srgb_to_linear(float encoded) {
+  const double c = encoded;
+  return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+}
+
+bool stores_linear(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return ext == ".pfm" || ext == ".exr";
+}
+
+}  // namespace
+
+std::shared_ptr<const Image> read_texture_image(const std::filesystem::path& file, bool linear) {
+  auto image = std::make_shared<Image>(read_image(file));
+  if (!linear && !stores_linear(file)) {
+    // 8- and 16-bit values come as v/255 and v/65535: a table per distinct value would do, but the
+    // function is cheap next to reading the file.
+    std::map<float, float> decoded;
+    for (int row = 0; row < image->height(); ++row)
+      for (int x = 0; x < image->width(); ++x) {
+        Rgb& p = image->at(x, row);
+        for (float* c : {&p.r, &p.g, &p.b}) {
+          auto [it, fresh] = decoded.try_emplace(*c, 0.0f);
+          if (fresh) it->second = srgb_to_linear(*c);
+          *c = it->second;
+        }
+      }
+  }
+  return image;
+}
+
+void compile_textures(const Scene& scene, RenderScene& out) {
+  std::map<const Image*, std::uint64_t> first_texel;  // each picture's pixels once
+  for (const ImageTexture& t : scene.textures()) {
+    if (t.image == nullptr || t.image->width() <= 0 || t.image->height() <= 0)
+      throw Error(t.loc, "an image texture needs an image with pixels");
+    const Image& image = *t.image;
+    auto [it, fresh] = first_texel.try_emplace(&image, out.texels.size());
+    if (fresh) {
+      out.texels.reserve(out.texels.size() + 3 * image.pixels().size());
+      for (const Rgb& p : image.pixels()) out.texels.insert(out.texels.end(), {p.r, p.g, p.b});
+    }
+    kernel::ImageTexture k;
+    // to_texture: q = L⁻¹·(p − translate) for the placement p = L·q + translate.
+    const Mat3 inverse = t.placement.linear().inverse();
+    for (int r = 0; r < 3; ++r) k.to_texture.row[r] = inverse.row[r];
+    k.to_texture.translate = t.placement.translate;
+    k.first_texel = it->second;
+    k.width = static_cast<std::uint32_t>(image.width());
+    k.height = static_cast<std::uint32_t>(image.height());
+    k.mapping = t.mapping;
+    k.bilinear = t.bilinear;
+    k.once = t.once;
+    out.textures.push_back(k);
+  }
+}
+
+}  // namespace strahl
