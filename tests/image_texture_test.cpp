@@ -195,6 +195,25 @@ TEST(ImageTexture, RenderedPixelsAreThePicturesOnAPlaneAndATriangle) {
   }
 }
 
+// On a plane an image is read at the point, as on any other shape (the checker uses the plane's
+// own (u, v)): on a floor y = 0 the planar image, carried along z, shows its bottom row (y = 0)
+// wherever x puts it.
+TEST(ImageTexture, OnAFloorTheImageIsReadAtThePoint) {
+  for (const Real x0 : {0.1, 0.3, 0.6, 0.9, 2.35})
+    for (const Real z0 : {-3.0, 0.2, 5.0}) {
+      Scene s;
+      test::one_ray_camera(s, {x0, 1, z0}, {x0, 0, z0}, {0, 0, -1});
+      s.settings.ambient_light = Vec3(1);
+      ImageTexture t;
+      t.image = picture();
+      t.bilinear = false;
+      Material m = test::phong(Vec3(0.5), 1, 0, Vec3(0), 1);
+      m.texture = s.add_texture(t);
+      s.add(Plane({0, 1, 0}, 0, m));
+      EXPECT_EQ(test::pixel(s), picture_pixel(int(std::floor(x0 * kW)) % kW, kH - 1)) << x0 << ", " << z0;
+    }
+}
+
 TEST(ImageTexture, SceneFileKeysAndErrors) {
   test::TempDir dir;
   Image img(2, 1);

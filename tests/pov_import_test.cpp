@@ -382,6 +382,34 @@ TEST(PovImport, WarningsNameWhatIsLeftOut) {
   EXPECT_TRUE(pov_scene("#version 3.7;\nsphere { 0, 1 }").warnings.empty());
 }
 
+// image_map: the picture, its mapping and lookup as the scene file's `image` keys; the pigment's
+// transforms and the object's after the pigment (not those before it) place it, as in POV-Ray,
+// and the left-handed camera's mirror too. bench/pov/imagemap.pov renders as POV-Ray renders it
+// (bench/povray-import.sh).
+TEST(PovImport, ImageMapsArePlacedAsPovRayPlacesThem) {
+  const std::string y = yaml_of(
+      "sphere { 0, 1 translate x pigment { image_map { png \"a b.png\" map_type 1 interpolate 2 } scale 2 rotate y*90 }\n"
+      "  rotate z*10 translate y }\n"
+      "box { 0, 1 pigment { image_map { \"c.png\" once } } }\n"
+      "cylinder { 0, y, 1 pigment { image_map { ppm \"d.ppm\" map_type 2 interpolate 0 } } }");
+  EXPECT_NE(y.find("image: {file: \"a b.png\", mapping: spherical, interpolate: bilinear, once: false, transform: "
+                   "[{scale: 2}, {rotate: [0, 90, 0]}, {rotate: [0, 0, 10]}, {translate: [0, 1, 0]}]}"),
+            std::string::npos)
+      << y;
+  EXPECT_NE(y.find("image: {file: \"c.png\", mapping: planar, interpolate: nearest, once: true}"), std::string::npos) << y;
+  EXPECT_NE(y.find("image: {file: \"d.ppm\", mapping: cylindrical, interpolate: nearest, once: false}"), std::string::npos)
+      << y;
+  // POV-Ray's own left-handed camera: the mirror moves the picture too.
+  const std::string mirrored = translate_pov("sphere { 0, 1 pigment { image_map { png \"a.png\" } } }", "test.pov", {}).yaml;
+  EXPECT_NE(mirrored.find("once: false, transform: [{scale: [-1, 1, 1]}]}"), std::string::npos) << mirrored;
+  for (const auto& [text, message] :
+       {std::pair{"sphere { 0, 1 pigment { image_map { gif \"a.gif\" } } }", "test.pov:1:37: strahl reads image_map files"},
+        std::pair{"sphere { 0, 1 pigment { image_map { \"a.png\" map_type 5 } } }", "test.pov:1:45: strahl maps images with map_type 0, 1 or 2"},
+        std::pair{"sphere { 0, 1 pigment { image_map { \"a.png\" interpolate 3 } } }", "test.pov:1:45: strahl interpolates images"},
+        std::pair{"sphere { 0, 1 pigment { image_map { \"missing.png\" } } }", "test.pov:1:1: image: "}})
+    EXPECT_EQ(pov_error(text).rfind(message, 0), 0u) << pov_error(text);
+}
+
 // A fade is the light's own (POV-Ray's formula, tests/spotlight_test.cpp), but a parallel light
 // is directional in strahl and does not fade: a warning says so.
 TEST(PovImport, AParallelLightsFadeIsLeftOutWithAWarning) {

@@ -37,10 +37,11 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE Real max_abs_of(Real x, Real y, Real z) {
 }
 
 // What surface_at() reads of the shape hit: a sphere's centre c and 1/radius, or a plane's normal
-// and frame (sphere = 1 or 0 selects between them); the magnitude passed to ray_offset; the
+// and frame (sphere = 1 or 0 selects between them; point = 1 where the texture coordinate is the
+// point itself: spheres and planes with an image); the magnitude passed to ray_offset; the
 // material. All zero for no hit.
 struct ShapeParams {
-  Real sphere = 0, cx = 0, cy = 0, cz = 0, inv_r = 0, nx = 0, ny = 0, nz = 0, tx = 0, ty = 0, tz = 0, bx = 0, by = 0,
+  Real sphere = 0, point = 0, cx = 0, cy = 0, cz = 0, inv_r = 0, nx = 0, ny = 0, nz = 0, tx = 0, ty = 0, tz = 0, bx = 0, by = 0,
        bz = 0, magnitude = 0;
   std::uint32_t material = 0;
 };
@@ -48,7 +49,7 @@ STRAHL_HOST_DEVICE inline ShapeParams shape_params(const SceneView& s, const Hit
   ShapeParams q;
   if (hit.kind == ShapeKind::Sphere) {
     const kernel::Sphere& k = s.spheres[hit.index];
-    q.sphere = 1;
+    q.sphere = q.point = 1;
     q.cx = k.center.x, q.cy = k.center.y, q.cz = k.center.z;
     q.inv_r = Real(1) / k.radius;  // (normal_at: (p − c) / R, vec3.h's division)
     q.magnitude = max_abs_component(k.center) + k.radius;
@@ -60,6 +61,7 @@ STRAHL_HOST_DEVICE inline ShapeParams shape_params(const SceneView& s, const Hit
     q.bx = k.bitangent.x, q.by = k.bitangent.y, q.bz = k.bitangent.z;
     q.magnitude = std::fabs(k.distance);
     q.material = k.material;
+    q.point = s.materials[k.material].texture != kNoTexture ? 1 : 0;
   }
   return q;
 }
@@ -71,7 +73,7 @@ STRAHL_HOST_DEVICE inline void surface_lanes(const SceneView& s, std::uint32_t a
                                              const HitLanes<N>& hits, SurfaceLanes<N>& __restrict out,
                                              std::uint32_t& lit) {
   // The shapes' parameters per lane (ShapeParams, side by side) and the hits' t (0 where none).
-  Real t[N], sphere[N], cx[N], cy[N], cz[N], inv_r[N], nx[N], ny[N], nz[N], tx[N], ty[N], tz[N], bx[N], by[N],
+  Real t[N], sphere[N], point[N], cx[N], cy[N], cz[N], inv_r[N], nx[N], ny[N], nz[N], tx[N], ty[N], tz[N], bx[N], by[N],
       bz[N], magnitude[N];
   lit = hits.found() & active;
   const int first = active != 0 ? wide_bvh_detail::lowest_bit(active) : 0;
@@ -80,7 +82,7 @@ STRAHL_HOST_DEVICE inline void surface_lanes(const SceneView& s, std::uint32_t a
   for (int i = 0; i < N; ++i)
     differ |= std::uint32_t((hits.sphere[i] != hits.sphere[first]) | (hits.plane[i] != hits.plane[first])) << i;
   const auto put = [&](int i, const ShapeParams& q) {
-    sphere[i] = q.sphere, cx[i] = q.cx, cy[i] = q.cy, cz[i] = q.cz, inv_r[i] = q.inv_r;
+    sphere[i] = q.sphere, point[i] = q.point, cx[i] = q.cx, cy[i] = q.cy, cz[i] = q.cz, inv_r[i] = q.inv_r;
     nx[i] = q.nx, ny[i] = q.ny, nz[i] = q.nz, tx[i] = q.tx, ty[i] = q.ty, tz[i] = q.tz;
     bx[i] = q.bx, by[i] = q.by, bz[i] = q.bz, magnitude[i] = q.magnitude, out.material[i] = q.material;
   };
@@ -99,9 +101,10 @@ STRAHL_HOST_DEVICE inline void surface_lanes(const SceneView& s, std::uint32_t a
     out.gx[i] = on_sphere ? (px - cx[i]) * inv_r[i] : nx[i];
     out.gy[i] = on_sphere ? (py - cy[i]) * inv_r[i] : ny[i];
     out.gz[i] = on_sphere ? (pz - cz[i]) * inv_r[i] : nz[i];
-    out.ux[i] = on_sphere ? px : px * tx[i] + py * ty[i] + pz * tz[i];
-    out.uy[i] = on_sphere ? py : px * bx[i] + py * by[i] + pz * bz[i];
-    out.uz[i] = on_sphere ? pz : Real(0);
+    const bool at_point = point[i] != 0;
+    out.ux[i] = at_point ? px : px * tx[i] + py * ty[i] + pz * tz[i];
+    out.uy[i] = at_point ? py : px * bx[i] + py * by[i] + pz * bz[i];
+    out.uz[i] = at_point ? pz : Real(0);
     const Real p_max = max_abs_of(px, py, pz);
     out.offset[i] = kRayEpsilon * larger_of(p_max, magnitude[i]) +
                     kRayPathEpsilon * (max_abs_of(r.ox[i], r.oy[i], r.oz[i]) + t[i]);

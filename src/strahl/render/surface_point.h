@@ -14,7 +14,7 @@ struct SurfacePoint {
   Vec3 p;                // the hit point
   Vec3 geometric_normal; // outward (sphere), the plane's N, or by the triangle's winding
   Vec3 normal;           // shading normal: interpolated vertex normals, else the geometric one
-  Vec3 texcoord;         // plane (u, v, 0) or the point itself, for procedural textures
+  Vec3 texcoord;         // the point itself (an instance's: in its group's space), a checkered plane's (u, v, 0)
   std::uint32_t material = 0;
   Real time = 0;         // the ray's time (motion blur): secondary rays keep it
   Real offset = 0;       // how far secondary rays start off the surface (a bound on p's error)
@@ -66,7 +66,11 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void surface_at(const SceneView& s, const
     case ShapeKind::Plane: {
       const kernel::Plane& plane = s.planes[hit.index];
       sp.geometric_normal = sp.normal = plane.normal;
-      sp.texcoord = Vec3(dot(sp.p, plane.tangent), dot(sp.p, plane.bitangent), 0);
+      // The checker's squares in the plane's own (u, v); an image is read at the point, as on
+      // every other shape (and as POV-Ray reads it).
+      sp.texcoord = s.materials[plane.material].texture != kNoTexture
+                        ? sp.p
+                        : Vec3(dot(sp.p, plane.tangent), dot(sp.p, plane.bitangent), 0);
       sp.material = plane.material;
       sp.offset = ray_offset(ray, hit.t, sp.p, std::fabs(plane.distance));
       break;

@@ -272,8 +272,8 @@ struct ImageTexture {
   ImageMapping mapping = ImageMapping::Planar;
   bool bilinear = false;  // blend the four nearest pixels (else the pixel a point falls into)
   bool once = false;      // not repeated: outside the image the material's colour shows
-  // Texture space → the texture coordinates' space (world; a group's own in instances; a plane's
-  // (u, v, 0)): the planar image's unit square is placed by it.
+  // Texture space → world space (a group's own space for shapes in instanced groups): the planar
+  // image's unit square, the spherical one's centre are placed by it.
   Transform placement;
   FileLoc loc;
 };

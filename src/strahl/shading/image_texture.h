@@ -3,8 +3,8 @@
 // mappings (its map_type 0, 1, 2) and lookups (interpolate 0 and 2), so that a scene imported
 // from POV-Ray shows what POV-Ray shows.
 //
-// The point p where the texture is read is the surface point's texture coordinate (a plane's
-// (u, v, 0), an instance's object-space point, else the point itself), brought to the texture's
+// The texture is read at the surface point p (world space; for a shape in an instanced group, in
+// the group's own space, so that the texture moves with the instance), brought to the texture's
 // own space by `to_texture` (the inverse of the texture's placement): q = to_texture(p). There:
 //
 //   planar       the image covers the square [0, 1]² of the x-y plane, its top row at y = 1,

@@ -211,15 +211,23 @@ void Parser::pigment_item(Pigment& p) {
     p.color = color();
     accept_symbol(",");
     p.color2 = color();
+  } else if (n == "image_map") {
+    next();
+    image_map(p);
   } else if (n == "scale") {
     next();
     const Num s = expression();
-    if (s.dim != 1 && !(s.c[0] == s.c[1] && s.c[1] == s.c[2])) note(loc(t), "a pigment's uneven scale is left out");
+    p.steps.push_back("{scale: " + (s.dim == 1 ? yaml_number(s.c[0]) : yaml_vector(to_vector(s))) + "}");
+    if (p.image.empty() && s.dim != 1 && !(s.c[0] == s.c[1] && s.c[1] == s.c[2]))
+      note(loc(t), "a pigment's uneven scale is left out");
     p.scale *= s.c[0];
   } else if (n == "translate" || n == "rotate") {
     next();
-    vector();
-    note(loc(t), "a pigment's translate and rotate are left out");
+    p.steps.push_back("{" + n + ": " + yaml_vector(vector()) + "}");
+    if (p.image.empty()) note(loc(t), "a pigment's translate and rotate are left out (but an image_map's are not)");
+  } else if (n == "matrix" && !p.image.empty()) {
+    next();
+    p.steps.push_back(matrix_step());
   } else if (n == "quick_color" || n == "quick_colour") {
     next();
     color();
@@ -232,6 +240,53 @@ void Parser::pigment_item(Pigment& p) {
   } else {
     p.color = color();
   }
+}
+
+// image_map { [png|jpeg|ppm|exr] "file" map_type n interpolate n once … }: strahl's image texture
+// (shading/image_texture.h has POV-Ray's mappings 0, 1, 2 and its lookups 0 and 2).
+void Parser::image_map(Pigment& p) {
+  expect_symbol("{", "after image_map");
+  const Token& kind = peek();
+  if (kind.kind == TokenKind::Identifier && !symbols_.count(kind.text)) {
+    next();
+    if (kind.text != "png" && kind.text != "jpeg" && kind.text != "ppm" && kind.text != "exr")
+      throw Error(loc(kind), "strahl reads image_map files of type png, jpeg, ppm and exr, not " + kind.text);
+  }
+  const std::string file = string_value();
+  std::string mapping = "planar", interpolate = "nearest";
+  bool once = false;
+  while (!accept_symbol("}")) {
+    const Token t = next();
+    if (is_word(t, "map_type")) {
+      const double m = real();
+      if (m == 0) mapping = "planar";
+      else if (m == 1) mapping = "spherical";
+      else if (m == 2) mapping = "cylindrical";
+      else throw Error(loc(t), "strahl maps images with map_type 0, 1 or 2 (planar, spherical, cylindrical), not " + yaml_number(m));
+    } else if (is_word(t, "interpolate")) {
+      const double i = real();
+      if (i == 2 || i == 4) interpolate = "bilinear";
+      else if (i == 0) interpolate = "nearest";
+      else throw Error(loc(t), "strahl interpolates images with interpolate 0 or 2 (none, bilinear), not " + yaml_number(i));
+      if (i == 4) note(loc(t), "interpolate 4 (normalized distance) is drawn as bilinear (2)");
+    } else if (is_word(t, "once")) {
+      once = true;
+      note(loc(t), "outside an image_map with once strahl shows the pigment's colour (POV-Ray: clear)");
+    } else if (is_word(t, "filter") || is_word(t, "transmit")) {  // `all amount` or `index, amount`
+      if (is_word(peek(), "all")) next();
+      else real(), expect_symbol(",", ("after the palette index of " + t.text).c_str());
+      real();
+      note(loc(t), "an image_map's filter and transmit are left out");
+    } else if (is_word(t, "gamma")) {
+      real();
+      note(loc(t), "an image_map's gamma is left out: 8- and 16-bit files are decoded from sRGB");
+    } else if (is_word(t, "use_color") || is_word(t, "use_colour") || is_word(t, "use_index")) {
+    } else {
+      unsupported(t, "image_map");
+    }
+  }
+  p.image = "file: " + yaml_string(file) + ", mapping: " + mapping + ", interpolate: " + interpolate +
+            ", once: " + (once ? "true" : "false");
 }
 
 Color Parser::finish_color() {

@@ -159,9 +159,11 @@ void Parser::modifiers(Object& o, const std::string& what) {
       skip_block();
     } else if (n == "pigment" || n == "finish" || n == "interior" || n == "texture" || n == "normal") {
       if (!o.texture.given()) o.texture = out_.default_texture, o.texture.has_pigment = o.texture.has_finish = false;
+      if (n == "pigment" || n == "texture") o.texture_steps = o.steps.size();  // later transforms move it
       texture_item(t, o.texture);
     } else if (const auto it = symbols_.find(n); it != symbols_.end() && it->second.kind == Value::Kind::Texture) {
       o.texture = it->second.texture;
+      o.texture_steps = o.steps.size();
     } else {
       unsupported(t, what);
     }

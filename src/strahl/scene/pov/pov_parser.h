@@ -196,6 +196,7 @@ class Parser {
   bool texture_item(const Token& t, Texture& tex);
   void texture_block(const std::string& kind, Texture& tex);
   void pigment_item(Pigment& p);
+  void image_map(Pigment& p);
   Color finish_color();
   double grey(const Color& c, const FileLoc& loc, const std::string& what);
   void finish_item(Finish& f);

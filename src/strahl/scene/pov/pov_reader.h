@@ -35,11 +35,28 @@ inline std::string yaml_vector(const Vector& v) {
   return "[" + yaml_number(v[0]) + ", " + yaml_number(v[1]) + ", " + yaml_number(v[2]) + "]";
 }
 
+// A string as a YAML double-quoted scalar.
+inline std::string yaml_string(const std::string& text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string s = "\"";
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == '"' || c == '\\') s += '\\', s += ch;
+    else if (c < 0x20 || c == 0x7f) s += "\\x", s += kHex[c >> 4], s += kHex[c & 15];
+    else s += ch;
+  }
+  return s + "\"";
+}
+
 struct Pigment {
   Color color{};  // POV-Ray's default pigment is black
   bool checker = false;
   Color color2{};
   double scale = 1;  // the checker's square size
+  // An image_map: its keys of a scene file's `image` map ("file: …, mapping: …"; empty: none) and
+  // the pigment's transforms in order (steps of a transform list), which place it.
+  std::string image;
+  std::vector<std::string> steps;
 };
 
 // POV-Ray's default finish.
@@ -73,6 +90,7 @@ struct Object {
   std::vector<std::string> steps;  // "{translate: [1, 0, 0]}", applied in this order
   std::vector<Object> children;    // union, intersection, difference, merge
   Texture texture;
+  std::size_t texture_steps = 0;   // how many of `steps` came before the pigment (those do not move it)
   bool inverse = false;
   int mesh = -1;                   // index in Parsed::meshes
 };

@@ -113,7 +113,8 @@ class Writer {
     line(s + "}", {});
   }
 
-  std::string material(const pov::Texture& t, const FileLoc& loc) {
+  // `moving`: the object's transforms that move its texture (those after the pigment, and the mirror).
+  std::string material(const pov::Texture& t, const FileLoc& loc, const std::vector<std::string>& moving) {
     for (const std::string& n : t.notes)
       if (std::find(t_.warnings.begin(), t_.warnings.end(), n) == t_.warnings.end()) t_.warnings.push_back(n);
     const pov::Pigment& p = t.pigment;
@@ -133,7 +134,21 @@ class Writer {
     if (t.interior.ior != 1) s += ", ior: " + yaml_number(t.interior.ior);
     if (f.fresnel || t.interior.fresnel) s += ", fresnel: true";
     if (p.checker) s += ", checker: {size: " + yaml_number(p.scale) + ", color: " + rgb(p.color2) + "}";
+    if (!p.image.empty()) {
+      // The pigment's own transforms act first, then the object's that came after it.
+      std::vector<std::string> steps = p.steps;
+      steps.insert(steps.end(), moving.begin(), moving.end());
+      s += ", image: {" + p.image;
+      if (!steps.empty()) s += ", transform: [" + join(steps) + "]";
+      s += "}";
+    }
     return s + "}";
+  }
+
+  static std::string join(const std::vector<std::string>& steps) {
+    std::string s;
+    for (std::size_t i = 0; i < steps.size(); ++i) s += (i ? ", " : "") + steps[i];
+    return s;
   }
 
   void warn(const FileLoc& loc, const std::string& message) { t_.warnings.push_back(loc.str() + ": " + message); }
@@ -144,10 +159,20 @@ class Writer {
     const pov::Texture* texture = o.texture.given() ? &o.texture : first_operand_texture(o);
     if (!texture) texture = fallback;
     check_operand_textures(o, true);
-    std::string s = shape(o, mirror_ ? "{scale: [-1, 1, 1]}" : "");
+    const std::string mirror = mirror_ ? "{scale: [-1, 1, 1]}" : "";
+    // What moves an image_map: the object's transforms after its pigment (all of them for the
+    // #default texture, which the object has from the start; the outermost node's for an operand's).
+    std::vector<std::string> moving(o.steps.begin() + std::ptrdiff_t(texture == &o.texture ? o.texture_steps : 0),
+                                    o.steps.end());
+    if (!mirror.empty()) moving.push_back(mirror);
+    if (!texture->pigment.image.empty()) {
+      if (texture != &o.texture && texture != fallback)
+        warn(o.loc, "a CSG operand's image_map is placed by the outermost node's transforms only");
+    }
+    std::string s = shape(o, mirror);
     if (o.inverse) s = "{type: inverse, objects: [" + s + "]";
     else s.pop_back();  // its '}'
-    return s + ", material: " + material(*texture, o.loc) + "}";
+    return s + ", material: " + material(*texture, o.loc, moving) + "}";
   }
 
   Vector mirrored(const Vector& v) const { return mirror_ ? Vector{0 - v[0], v[1], v[2]} : v; }  // (0 − 0 = +0)
@@ -177,11 +202,7 @@ class Writer {
     }
     std::vector<std::string> steps = o.steps;
     if (!last_step.empty()) steps.push_back(last_step);
-    if (!steps.empty()) {
-      s += ", transform: [";
-      for (std::size_t i = 0; i < steps.size(); ++i) s += (i ? ", " : "") + steps[i];
-      s += "]";
-    }
+    if (!steps.empty()) s += ", transform: [" + join(steps) + "]";
     return s + "}";
   }
 
