@@ -270,7 +270,7 @@ struct ImageTexture {
   std::filesystem::path file;  // where the picture was read from (for messages; may be empty)
   std::shared_ptr<const Image> image;  // its pixels, linear RGB (read_texture_image)
   ImageMapping mapping = ImageMapping::Planar;
-  bool bilinear = false;  // blend the four nearest pixels (else the pixel a point falls into)
+  bool bilinear = true;   // blend the four nearest pixels (else the pixel a point falls into)
   bool once = false;      // not repeated: outside the image the material's colour shows
   // Texture space → world space (a group's own space for shapes in instanced groups): the planar
   // image's unit square, the spherical one's centre are placed by it.

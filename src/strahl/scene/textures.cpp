@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <vector>
 
 #include "strahl/image/image_io.h"
 #include "strahl/render/render_scene.h"
@@ -12,10 +13,7 @@ namespace strahl {
 namespace {
 
 // The sRGB transfer function's inverse (IEC 61966-2-1), in double.
-float srgb_to_linear(float encoded) {
-  const double c = encoded;
-  return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
-}
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 bool stores_linear(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
@@ -28,17 +26,15 @@ bool stores_linear(const std::filesystem::path& file) {
 std::shared_ptr<const Image> read_texture_image(const std::filesystem::path& file, bool linear) {
   auto image = std::make_shared<Image>(read_image(file));
   if (!linear && !stores_linear(file)) {
-    // 8- and 16-bit values come as v/255 and v/65535: a table per distinct value would do, but the
-    // function is cheap next to reading the file.
-    std::map<float, float> decoded;
+    // read_image gives an 8-bit code c as c/255 and a 16-bit one as c/65535 (in float); both are
+    // k/65535 for a whole k (c/255 = 257c/65535), which rounding v·65535 finds exactly. So one
+    // table of the 65536 decoded values serves both depths, exact to the encoded fraction.
+    std::vector<float> decoded(65536);
+    for (std::size_t k = 0; k < decoded.size(); ++k) decoded[k] = float(srgb_to_linear(double(k) / 65535.0));
     for (int row = 0; row < image->height(); ++row)
       for (int x = 0; x < image->width(); ++x) {
         Rgb& p = image->at(x, row);
-        for (float* c : {&p.r, &p.g, &p.b}) {
-          auto [it, fresh] = decoded.try_emplace(*c, 0.0f);
-          if (fresh) it->second = srgb_to_linear(*c);
-          *c = it->second;
-        }
+        for (float* c : {&p.r, &p.g, &p.b}) *c = decoded[std::size_t(std::lround(double(*c) * 65535.0))];
       }
   }
   return image;

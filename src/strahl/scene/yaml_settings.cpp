@@ -174,7 +174,6 @@ std::uint32_t YamlReader::image_texture(const YAML::Node& n) const {
     else if (mapping == "cylindrical") t.mapping = ImageMapping::Cylindrical;
     else fail(v, "unknown image mapping '" + mapping + "' (planar, spherical or cylindrical)");
   }
-  t.bilinear = true;
   if (const auto v = n["interpolate"]) {
     const std::string how = scalar(v, "image interpolate");
     if (how == "nearest") t.bilinear = false;

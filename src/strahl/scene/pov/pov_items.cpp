@@ -3,6 +3,7 @@
 
 #include "strahl/scene/pov/pov_parser.h"
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -246,11 +247,13 @@ void Parser::pigment_item(Pigment& p) {
 // (shading/image_texture.h has POV-Ray's mappings 0, 1, 2 and its lookups 0 and 2).
 void Parser::image_map(Pigment& p) {
   expect_symbol("{", "after image_map");
-  const Token& kind = peek();
-  if (kind.kind == TokenKind::Identifier && !symbols_.count(kind.text)) {
-    next();
-    if (kind.text != "png" && kind.text != "jpeg" && kind.text != "ppm" && kind.text != "exr")
+  const Token kind = peek();
+  if (kind.kind == TokenKind::Identifier) {  // the file's type, if given (else a string expression follows)
+    static const std::set<std::string> kTypes = {"png", "jpeg", "ppm", "exr"},
+                                        kOthers = {"gif", "tga", "iff", "pgm", "sys", "hdr", "tiff", "bmp"};
+    if (kOthers.count(kind.text))
       throw Error(loc(kind), "strahl reads image_map files of type png, jpeg, ppm and exr, not " + kind.text);
+    if (kTypes.count(kind.text)) next();
   }
   const std::string file = string_value();
   std::string mapping = "planar", interpolate = "nearest";
@@ -281,6 +284,7 @@ void Parser::image_map(Pigment& p) {
       real();
       note(loc(t), "an image_map's gamma is left out: 8- and 16-bit files are decoded from sRGB");
     } else if (is_word(t, "use_color") || is_word(t, "use_colour") || is_word(t, "use_index")) {
+      // (a colour picture's colours are what strahl reads)
     } else {
       unsupported(t, "image_map");
     }
