@@ -169,20 +169,26 @@ TEST(ImageTexture, EightBitFilesAreDecodedFromSrgbUnlessLinear) {
   EXPECT_THROW(read_texture_image(dir / "missing.png"), Error);
 }
 
-// A plane (its (u, v) frame: x and y for a wall z = 0) and a triangle (the point itself) filling a
-// camera's view of the unit square, lit by the ambient term alone: each pixel is the texture's
-// pixel under its centre, exactly.
+// A material lit by the ambient term alone (k_a = 1, the scene's ambient light 1): its colour is
+// the picture's (nearest pixel), exactly.
+Material ambient_only_picture(Scene& s) {
+  s.settings.ambient_light = Vec3(1);
+  ImageTexture t;
+  t.image = picture();
+  t.bilinear = false;
+  Material m = test::phong(Vec3(0.5), 1, 0, Vec3(0), 1);
+  m.texture = s.add_texture(t);
+  return m;
+}
+
+// A plane and a triangle on the wall z = 0 filling a camera's view of the unit square: each pixel
+// is the texture's pixel under its centre, exactly.
 TEST(ImageTexture, RenderedPixelsAreThePicturesOnAPlaneAndATriangle) {
   for (const bool plane : {true, false}) {
     Scene s;
     constexpr int kN = 8;  // 2×4 image pixels per texture pixel
     test::set_camera(s, {0.5, 0.5, 1}, {0.5, 0.5, 0}, {0, 1, 0}, -0.5, 0.5, -0.5, 0.5, 1, kN, kN);
-    s.settings.ambient_light = Vec3(1);
-    ImageTexture t;
-    t.image = picture();
-    t.bilinear = false;
-    Material m = test::phong(Vec3(0.5), 1, 0, Vec3(0), 1);
-    m.texture = s.add_texture(t);
+    const Material m = ambient_only_picture(s);
     if (plane) s.add(Plane({0, 0, 1}, 0, m));
     else s.add(Triangle({-1, -1, 0}, {3, -1, 0}, {-1, 3, 0}, m));
     const RenderScene rs = compile(s);
@@ -203,13 +209,7 @@ TEST(ImageTexture, OnAFloorTheImageIsReadAtThePoint) {
     for (const Real z0 : {-3.0, 0.2, 5.0}) {
       Scene s;
       test::one_ray_camera(s, {x0, 1, z0}, {x0, 0, z0}, {0, 0, -1});
-      s.settings.ambient_light = Vec3(1);
-      ImageTexture t;
-      t.image = picture();
-      t.bilinear = false;
-      Material m = test::phong(Vec3(0.5), 1, 0, Vec3(0), 1);
-      m.texture = s.add_texture(t);
-      s.add(Plane({0, 1, 0}, 0, m));
+      s.add(Plane({0, 1, 0}, 0, ambient_only_picture(s)));
       EXPECT_EQ(test::pixel(s), picture_pixel(int(std::floor(x0 * kW)) % kW, kH - 1)) << x0 << ", " << z0;
     }
 }
