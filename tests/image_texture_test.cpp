@@ -214,6 +214,36 @@ TEST(ImageTexture, OnAFloorTheImageIsReadAtThePoint) {
     }
 }
 
+// In an instanced group the picture is read in the group's own space: it moves and turns with
+// each instance. A sphere at the group's origin, spherically mapped, placed twice (moved; turned
+// 90° about y and moved): a ray along the direction of a pixel's centre in the group's space, as
+// each instance carries it into the world, meets that pixel.
+TEST(ImageTexture, InstancesCarryTheirTexture) {
+  test::TempDir dir;
+  write_image(*picture(), dir / "picture.pfm");
+  Scene s = parse_scene(
+      "render: {ambient_light: 1}\n"
+      "groups:\n  globe:\n    - {type: sphere, center: [0, 0, 0], radius: 1, material: {ambient: 1, diffuse: 0, "
+      "specular: 0, image: {file: picture.pfm, mapping: spherical, interpolate: nearest}}}\n"
+      "objects:\n  - {type: instance, of: globe, translate: [5, 0, 0]}\n"
+      "  - {type: instance, of: globe, rotate: [0, 90, 0], translate: [-5, 0, 0]}\n",
+      "t.yaml", dir.path());
+  const auto direction = [](Real turn, Real latitude_degrees) {  // in the group's space
+    const Real theta = turn * 2 * kPi, phi = test::deg(latitude_degrees);
+    return Vec3(std::cos(phi) * std::cos(theta), std::sin(phi), std::cos(phi) * std::sin(theta));
+  };
+  struct Case {
+    Vec3 center, d;  // the instance's centre, the direction in the world
+    int x, row;      // the pixel expected
+  };
+  const Vec3 turned = direction(0.625, -20);  // column 2, the lower row; turned by 90° about y: (z, y, −x)
+  for (const Case& c : {Case{{5, 0, 0}, direction(0.375, 20), 1, 0},
+                        Case{{-5, 0, 0}, Vec3(turned.z, turned.y, -turned.x), 2, 1}}) {
+    test::one_ray_camera(s, c.center + c.d * 3, c.center);
+    EXPECT_EQ(test::pixel(s), picture_pixel(c.x, c.row)) << c.center.x;
+  }
+}
+
 TEST(ImageTexture, SceneFileKeysAndErrors) {
   test::TempDir dir;
   Image img(2, 1);
