@@ -185,13 +185,10 @@ void bind_scene_class(py::module_& m) {
              ImageTexture t;
              t.loc = caller_loc();
              t.file = file;
-             if (mapping == "planar") t.mapping = ImageMapping::Planar;
-             else if (mapping == "spherical") t.mapping = ImageMapping::Spherical;
-             else if (mapping == "cylindrical") t.mapping = ImageMapping::Cylindrical;
-             else throw Error("unknown image mapping '" + mapping + "' (planar, spherical or cylindrical)");
-             if (interpolate != "bilinear" && interpolate != "nearest")
-               throw Error("unknown image interpolate '" + interpolate + "' (nearest or bilinear)");
-             t.bilinear = interpolate == "bilinear";
+             if (!image_mapping_from(mapping, t.mapping))
+               throw Error("unknown image mapping '" + mapping + "' (" + kImageMappingNames + ")");
+             if (!image_interpolate_from(interpolate, t.bilinear))
+               throw Error("unknown image interpolate '" + interpolate + "' (" + kImageInterpolateNames + ")");
              t.once = once;
              t.placement = make_transform(scale, rotate, translate, "texture");
              t.image = read_texture_image(file, linear);

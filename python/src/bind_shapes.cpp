@@ -5,6 +5,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -27,17 +29,22 @@ T& placed(T& object, const std::optional<Motion>& motion) {
 }
 
 // numpy (or anything numpy takes) → N × 3 doubles.
-py::array_t<double, py::array::c_style> rows3(const py::handle& values, const char* what) {
+// `values` as an (n, columns) array of doubles.
+py::array_t<double, py::array::c_style> rows(const py::handle& values, const char* what, py::ssize_t columns) {
   const py::array a = py::module_::import("numpy").attr("asarray")(values);
   const char kind = a.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u')
     throw py::type_error(std::string(what) + " must be numbers (got dtype " + py::str(a.dtype()).cast<std::string>() + ")");
   auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (d.ndim() != 2 || d.shape(1) != 3) throw py::value_error(std::string(what) + " must have the shape (n, 3)");
+  if (d.ndim() != 2 || d.shape(1) != columns)
+    throw py::value_error(std::string(what) + " must have the shape (n, " + std::to_string(columns) + ")");
   return d;
 }
 
-MeshData mesh_from_arrays(const py::handle& vertices, const py::handle& indices, const py::handle& normals) {
+py::array_t<double, py::array::c_style> rows3(const py::handle& values, const char* what) { return rows(values, what, 3); }
+
+MeshData mesh_from_arrays(const py::handle& vertices, const py::handle& indices, const py::handle& normals,
+                          const py::handle& texcoords) {
   MeshData data;
   const auto v = rows3(vertices, "mesh vertices");
   const auto vv = v.unchecked<2>();
@@ -55,7 +62,7 @@ MeshData mesh_from_arrays(const py::handle& vertices, const py::handle& indices,
   if (idx.ndim() != 2 || idx.shape(1) != 3) throw py::value_error("mesh indices must have the shape (m, 3)");
   const auto ii = idx.unchecked<2>();
   const auto n = static_cast<long long>(data.positions.size());
-  const bool with_normals = !normals.is_none();
+  const bool with_normals = !normals.is_none(), with_texcoords = !texcoords.is_none();
   data.faces.reserve(std::size_t(idx.shape(0)));
   for (py::ssize_t f = 0; f < idx.shape(0); ++f) {
     MeshData::Face face;
@@ -66,6 +73,7 @@ MeshData mesh_from_arrays(const py::handle& vertices, const py::handle& indices,
                     std::to_string(n) + " vertices)");
       face.v[std::size_t(k)] = std::uint32_t(i);
       if (with_normals) face.n[std::size_t(k)] = std::int32_t(i);
+      if (with_texcoords) face.t[std::size_t(k)] = std::int32_t(i);
     }
     data.faces.push_back(face);
   }
@@ -79,8 +87,28 @@ MeshData mesh_from_arrays(const py::handle& vertices, const py::handle& indices,
       data.normals.push_back(p);
     }
   }
+  if (with_texcoords) {
+    const auto uv = rows(texcoords, "mesh texcoords", 2);
+    if (uv.shape(0) != v.shape(0)) throw py::value_error("mesh texcoords must have one row per vertex");
+    const auto tt = uv.unchecked<2>();
+    for (py::ssize_t i = 0; i < uv.shape(0); ++i) {
+      if (!std::isfinite(tt(i, 0)) || !std::isfinite(tt(i, 1)))
+        throw Error("mesh texture coordinate " + std::to_string(i) + " is not finite");
+      data.texcoords.push_back({tt(i, 0), tt(i, 1)});
+    }
+  }
   if (data.faces.empty()) throw Error("mesh has no faces");
   return data;
+}
+
+// Per face the three indices of `field` (MeshData::Face::v, n or t).
+template <class Index>
+py::array_t<std::int64_t> face_indices(const MeshData& data, std::array<Index, 3> MeshData::Face::*field) {
+  py::array_t<std::int64_t> out({py::ssize_t(data.faces.size()), py::ssize_t(3)});
+  auto o = out.mutable_unchecked<2>();
+  for (std::size_t f = 0; f < data.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) o(py::ssize_t(f), k) = (data.faces[f].*field)[std::size_t(k)];
+  return out;
 }
 
 py::array_t<double> vec3_rows(const LargeArray<Vec3>& values) {
@@ -183,17 +211,19 @@ void bind_shapes(py::module_& m) {
 
   py::class_<Mesh, SceneObject>(m, "Mesh",
                                 "A triangle mesh: vertices (n × 3), indices (m × 3, into the vertices) and optional "
-                                "per-vertex normals (n × 3), placed by scale, rotate (degrees about x, y, z) and "
+                                "per-vertex normals (n × 3) and texture coordinates (texcoords, n × 2: u, v for a "
+                                "uv-mapped image), placed by scale, rotate (degrees about x, y, z) and "
                                 "translate. Mesh.load(path) reads .obj or .ply.")
       .def(py::init([](const py::object& vertices, const py::object& indices, const py::object& normals,
-                       const py::object& color, const std::optional<Material>& material, const py::object& scale,
-                       const Vec3& rotate, const Vec3& translate, const std::optional<Motion>& motion) {
-             Mesh mesh(mesh_from_arrays(vertices, indices, normals), object_material(color, material),
+                       const py::object& color, const py::object& texcoords, const std::optional<Material>& material,
+                       const py::object& scale, const Vec3& rotate, const Vec3& translate,
+                       const std::optional<Motion>& motion) {
+             Mesh mesh(mesh_from_arrays(vertices, indices, normals, texcoords), object_material(color, material),
                        make_transform(scale, rotate, translate, "mesh"));
              return placed(mesh, motion);
            }),
            py::arg("vertices"), py::arg("indices"), py::arg("normals") = py::none(), py::arg("color") = py::none(),
-           py::kw_only(), py::arg("material") = py::none(), py::arg("scale") = 1.0,
+           py::kw_only(), py::arg("texcoords") = py::none(), py::arg("material") = py::none(), py::arg("scale") = 1.0,
            py::arg("rotate") = py::make_tuple(0, 0, 0), py::arg("translate") = py::make_tuple(0, 0, 0),
            py::arg("motion") = py::none())
       .def_static(
@@ -212,19 +242,23 @@ void bind_shapes(py::module_& m) {
       .def_property_readonly("vertices", [](const Mesh& mesh) { return vec3_rows(mesh.data.positions); })
       .def_property_readonly("normals", [](const Mesh& mesh) { return vec3_rows(mesh.data.normals); })
       .def_property_readonly("indices", [](const Mesh& mesh) {
-        py::array_t<std::int64_t> out({py::ssize_t(mesh.data.faces.size()), py::ssize_t(3)});
-        auto o = out.mutable_unchecked<2>();
-        for (std::size_t f = 0; f < mesh.data.faces.size(); ++f)
-          for (int k = 0; k < 3; ++k) o(py::ssize_t(f), k) = mesh.data.faces[f].v[std::size_t(k)];
-        return out;
+        return face_indices(mesh.data, &MeshData::Face::v);
       })
       .def_property_readonly("normal_indices", [](const Mesh& mesh) {
-        py::array_t<std::int64_t> out({py::ssize_t(mesh.data.faces.size()), py::ssize_t(3)});
-        auto o = out.mutable_unchecked<2>();
-        for (std::size_t f = 0; f < mesh.data.faces.size(); ++f)
-          for (int k = 0; k < 3; ++k) o(py::ssize_t(f), k) = mesh.data.faces[f].n[std::size_t(k)];
-        return out;
+        return face_indices(mesh.data, &MeshData::Face::n);
       }, "Per face the normals' indices (−1 where the file gives none)")
+      .def_property_readonly("texcoords", [](const Mesh& mesh) {
+        py::array_t<double> out({py::ssize_t(mesh.data.texcoords.size()), py::ssize_t(2)});
+        auto o = out.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < mesh.data.texcoords.size(); ++i) {
+          o(py::ssize_t(i), 0) = mesh.data.texcoords[i].u;
+          o(py::ssize_t(i), 1) = mesh.data.texcoords[i].v;
+        }
+        return out;
+      }, "The texture coordinates (u, v), one row each")
+      .def_property_readonly("texcoord_indices", [](const Mesh& mesh) {
+        return face_indices(mesh.data, &MeshData::Face::t);
+      }, "Per face the texture coordinates' indices (−1 where the file gives none)")
       .def_property_readonly("transform", [](const Mesh& mesh) { return mesh.transform; });
 }
 

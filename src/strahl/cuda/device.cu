@@ -26,13 +26,15 @@ namespace strahl::cuda_detail {
 // is uploaded and mapped below — then update these sizes.
 // Instance groups are RenderScenes of their own: their arrays are uploaded and mapped the same way
 // (copy_scene_arrays, map_accel), and their views (InstanceGroupView) with device pointers.
-static_assert(sizeof(SceneView) - sizeof(AccelView) == 616 && sizeof(PrimitiveSet) == 144 &&
+static_assert(sizeof(SceneView) - sizeof(AccelView) == 624 && sizeof(PrimitiveSet) == 144 &&
 #if defined(STRAHL_HAVE_EMBREE)
                   sizeof(AccelView) == 408,
 #else
                   sizeof(AccelView) == 400,
 #endif
               "SceneView changed: upload and map its new arrays in cuda/device.cu, then update these sizes");
+static_assert(sizeof(InstanceGroupView) - sizeof(AccelView) == 16,
+              "InstanceGroupView changed: map its new arrays in copy_instances, then update this size");
 
 namespace {
 
@@ -177,7 +179,7 @@ struct Device::Impl {
     cudaError_t e = cudaSuccess;
     const auto ok = [&](cudaError_t r) { return (e = r) == cudaSuccess; };
     (void)(ok(copy_array(rs.spheres)) && ok(copy_array(rs.planes)) && ok(copy_array(rs.triangles)) &&
-           ok(copy_array(rs.vertex_normals)) && ok(copy_array(rs.accel.sphere_quads)) &&
+           ok(copy_array(rs.vertex_normals)) && ok(copy_array(rs.vertex_texcoords)) && ok(copy_array(rs.accel.sphere_quads)) &&
            ok(copy_array(rs.accel.bvh.nodes)) && ok(copy_array(rs.accel.bvh.leaves)) &&
            ok(copy_array(rs.accel.kdtree.nodes)) && ok(copy_array(rs.accel.kdtree.leaves)) &&
            ok(copy_array(rs.accel.kdtree.blocks)) && ok(copy_array(rs.accel.octree.nodes)) &&
@@ -209,7 +211,7 @@ struct Device::Impl {
       return e;
     std::vector<InstanceGroupView> views(rs.groups.views(), rs.groups.views() + rs.groups.size());
     for (InstanceGroupView& v : views)
-      if (!map_accel(v.accel) || !map(v.vertex_normals)) return cudaErrorInvalidValue;
+      if (!map_accel(v.accel) || !map(v.vertex_normals) || !map(v.vertex_texcoords)) return cudaErrorInvalidValue;
     auto b = std::make_unique<Buffer>();
     if ((e = b->reserve(views.size() * sizeof(InstanceGroupView))) != cudaSuccess ||
         (e = cudaMemcpy(b->ptr, views.data(), views.size() * sizeof(InstanceGroupView), cudaMemcpyHostToDevice)) !=
@@ -235,7 +237,7 @@ struct Device::Impl {
   // `host` (a job's view of the uploaded scene: its camera may differ) with device pointers.
   bool device_view(const SceneView& host, SceneView& out) const {
     out = host;
-    return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) &&
+    return map(out.spheres) && map(out.planes) && map(out.triangles) && map(out.vertex_normals) && map(out.vertex_texcoords) &&
            map_accel(out.accel) && map(out.moving_spheres) && map(out.moving_triangles) && map(out.moving_solids) && map(out.moving_instances) &&
            map(out.moving_bvh.trees.nodes) && map(out.moving_bvh.trees.leaves) && map(out.materials) && map(out.textures.images) &&
            map(out.textures.texels) && map(out.lights) &&

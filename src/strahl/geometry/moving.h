@@ -44,6 +44,7 @@ struct MovingTriangle {
   std::uint32_t material = 0;
   std::int32_t normals = -1;  // vertex normals: [normals] at open, [normals + 1] at close; −1 flat
   std::uint32_t object = 0;
+  std::int32_t texcoords = -1;  // vertex texture coordinates (the same at open and close), −1 none
 };
 
 struct TriangleAtTime {

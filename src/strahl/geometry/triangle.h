@@ -24,6 +24,7 @@ struct Triangle {
   std::uint32_t material = 0;
   std::int32_t normals = -1;  // index into the vertex-normal array, −1 for flat shading
   std::uint32_t object = 0;   // which scene object (mesh) it belongs to
+  std::int32_t texcoords = -1;  // index into the vertex texture-coordinate array, −1 for none
 
   STRAHL_HOST_DEVICE Vec3 edge1() const { return v1 - v0; }
   STRAHL_HOST_DEVICE Vec3 edge2() const { return v2 - v0; }
@@ -33,6 +34,18 @@ struct Triangle {
 struct VertexNormals {
   Vec3 n0, n1, n2;
 };
+
+// Per-vertex texture coordinates (u, v) of a triangle (a mesh's OBJ `vt`, PLY u/v), interpolated
+// with the barycentric coordinates as the normals are.
+struct VertexTexcoords {
+  Real u0, v0, u1, v1, u2, v2;
+};
+
+// The texture coordinate (u, v, 0) at barycentric weights b1, b2 (of vertices 1 and 2).
+STRAHL_HOST_DEVICE inline Vec3 texcoord_at(const VertexTexcoords& t, Real b1, Real b2) {
+  const Real b0 = 1 - b1 - b2;
+  return Vec3(t.u0 * b0 + t.u1 * b1 + t.u2 * b2, t.v0 * b0 + t.v1 * b1 + t.v2 * b2, 0);
+}
 
 struct TriangleHit {
   Real t = kInfinity;

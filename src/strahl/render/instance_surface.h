@@ -1,13 +1,14 @@
 #pragma once
 // The surface point of an instance hit (render/surface_point.h's ShapeKind::Instance): the
 // primitive's normal found in the group's object space and brought to the world by the inverse
-// transpose (geometry/placement.h); the texture coordinate is the object-space point, so a
-// procedural texture moves with the instance (a moving one's too).
+// transpose (geometry/placement.h); the texture coordinate is the object-space point (or a mesh's
+// own (u, v)), so a texture moves with the instance (a moving one's too).
 
 #include <cmath>
 
 #include "strahl/geometry/hit.h"
 #include "strahl/render/scene_view.h"
+#include "strahl/render/triangle_texcoord.h"
 
 namespace strahl {
 
@@ -46,6 +47,7 @@ STRAHL_HOST_DEVICE inline InstanceSurface instance_surface(const SceneView& s, c
       if (length_squared(n) > 0) shading = normalize(n);
     }
     out.material = tri.material;
+    out.texcoord = triangle_texcoord(s, g.vertex_texcoords, tri.texcoords, tri.material, hit, po);
     magnitude = std::fmax(std::fmax(max_abs_component(tri.v0), max_abs_component(tri.v1)), max_abs_component(tri.v2));
   }
   if (x.translation_only) {

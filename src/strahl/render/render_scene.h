@@ -49,6 +49,7 @@ struct RenderScene {
   std::vector<kernel::Plane> planes;
   LargeArray<kernel::Triangle> triangles;          // large meshes: 2 MiB pages (util/large_array.h)
   LargeArray<kernel::VertexNormals> vertex_normals;
+  LargeArray<kernel::VertexTexcoords> vertex_texcoords;  // only for meshes that carry an image
   // Solids (geometry/solid.h): handles, bounded ones first (see SceneView), and the arrays of
   // each kind they index. The tallies are what implicit surfaces' root finding met while
   // rendering (written by every thread with atomics, hence mutable).
@@ -135,6 +136,7 @@ struct RenderScene {
     v.triangles = triangles.data();
     v.triangle_count = static_cast<std::uint32_t>(triangles.size());
     v.vertex_normals = vertex_normals.data();
+    v.vertex_texcoords = vertex_texcoords.data();
     v.accel = accel.view(primitives());
     v.solids = solids.data();
     v.solid_count = static_cast<std::uint32_t>(solids.size());
@@ -191,7 +193,7 @@ inline void InstanceGroups::push_back(RenderScene&& group) {
 
 inline void InstanceGroups::rebuild_views() {
   views_.clear();
-  for (const RenderScene& g : scenes_) views_.push_back({g.accel.view(g.primitives()), g.vertex_normals.data()});
+  for (const RenderScene& g : scenes_) views_.push_back({g.accel.view(g.primitives()), g.vertex_normals.data(), g.vertex_texcoords.data()});
 }
 
 }  // namespace strahl

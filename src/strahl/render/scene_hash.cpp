@@ -42,7 +42,8 @@ void Hasher::add_all(const std::vector<T, A>& items) {
 // A new field in one of these structs must be hashed too: the sizes below fail to compile until
 // it is (update the function and the size together).
 static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && sizeof(kernel::Triangle) == 88 &&
-                  sizeof(kernel::VertexNormals) == 72 && sizeof(kernel::MovingSphere) == 72 &&
+                  sizeof(kernel::VertexNormals) == 72 && sizeof(kernel::VertexTexcoords) == 48 &&
+                  sizeof(kernel::MovingSphere) == 72 &&
                   sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 144 && sizeof(Light) == 224 &&
                   sizeof(kernel::ImageTexture) == 120 &&
                   sizeof(Camera) == 176 && sizeof(TraceSettings) == 80 && sizeof(SamplingSettings) == 48,
@@ -58,7 +59,7 @@ static_assert(sizeof(kernel::Solid) == 12 && sizeof(kernel::Box) == 48 && sizeof
 // built from the primitives hashed here, such as accel.sphere_quads; nor group_nesting, which the
 // instances unfold into the records hashed here.)
 #if defined(STRAHL_HAVE_EMBREE)
-static_assert(sizeof(RenderScene) == 1888, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
+static_assert(sizeof(RenderScene) == 1912, "RenderScene changed: hash what it gained in scene_hash() and update the size here");
 #endif
 
 void hash(Hasher& h, const Material& m) {
@@ -152,18 +153,23 @@ void hash(Hasher& h, const kernel::Plane& x) {
 }
 
 void hash(Hasher& h, const kernel::Triangle& x) {
-    h.add(x.v0);
+  h.add(x.v0);
   h.add(x.v1);
   h.add(x.v2);
   h.add(x.material);
   h.add(x.normals);
   h.add(x.object);
+  h.add(x.texcoords);
 }
 
 void hash(Hasher& h, const kernel::VertexNormals& x) {
-    h.add(x.n0);
+  h.add(x.n0);
   h.add(x.n1);
   h.add(x.n2);
+}
+
+void hash(Hasher& h, const kernel::VertexTexcoords& x) {
+  for (const Real c : {x.u0, x.v0, x.u1, x.v1, x.u2, x.v2}) h.add(c);
 }
 
 void hash(Hasher& h, const kernel::MovingSphere& x) {
@@ -182,6 +188,7 @@ void hash(Hasher& h, const kernel::MovingTriangle& x) {
   h.add(x.material);
   h.add(x.normals);
   h.add(x.object);
+  h.add(x.texcoords);
 }
 
 void hash(Hasher& h, const kernel::Solid& x) {
@@ -323,6 +330,7 @@ std::uint64_t scene_hash(const RenderScene& s) {
   h.add_all(s.planes);
   h.add_all(s.triangles);
   h.add_all(s.vertex_normals);
+  h.add_all(s.vertex_texcoords);
   h.add_all(s.moving_spheres);
   h.add_all(s.moving_triangles);
   h.add_all(s.solids);

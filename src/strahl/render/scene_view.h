@@ -42,6 +42,7 @@ struct SceneView {
   const kernel::Triangle* triangles = nullptr;
   std::uint32_t triangle_count = 0;
   const kernel::VertexNormals* vertex_normals = nullptr;
+  const kernel::VertexTexcoords* vertex_texcoords = nullptr;
   AccelView accel;  // over spheres, triangles and bounded solids; planes are tested one by one
   // Every solid (geometry/solid.h): the first bounded_solid_count are in the structure (as its
   // primitives from accel.prims.first_solid() on), the rest (unclipped quadrics) are unbounded

@@ -14,7 +14,8 @@ struct SurfacePoint {
   Vec3 p;                // the hit point
   Vec3 geometric_normal; // outward (sphere), the plane's N, or by the triangle's winding
   Vec3 normal;           // shading normal: interpolated vertex normals, else the geometric one
-  Vec3 texcoord;         // the point itself (an instance's: in its group's space), a checkered plane's (u, v, 0)
+  Vec3 texcoord;         // the point itself (an instance's: in its group's space), a checkered plane's (u, v, 0),
+                         // a mesh's (u, v, 0) under a uv-mapped image
   std::uint32_t material = 0;
   Real time = 0;         // the ray's time (motion blur): secondary rays keep it
   Real offset = 0;       // how far secondary rays start off the surface (a bound on p's error)
@@ -86,7 +87,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void surface_at(const SceneView& s, const
         // Keep the shading normal on the geometric normal's side (OBJ normals may disagree).
         if (dot(sp.normal, sp.geometric_normal) < 0) sp.normal = -sp.normal;
       }
-      sp.texcoord = sp.p;
+      sp.texcoord = triangle_texcoord(s, s.vertex_texcoords, tri.texcoords, tri.material, hit, sp.p);
       sp.material = tri.material;
       sp.offset = ray_offset(ray, hit.t, sp.p, vertex_magnitude(tri.v0, tri.v1, tri.v2));
       break;
@@ -115,7 +116,7 @@ STRAHL_HOST_DEVICE STRAHL_FORCE_INLINE void surface_at(const SceneView& s, const
         if (length_squared(n) > 0) sp.normal = normalize(n);
         if (dot(sp.normal, sp.geometric_normal) < 0) sp.normal = -sp.normal;
       }
-      sp.texcoord = sp.p;
+      sp.texcoord = triangle_texcoord(s, s.vertex_texcoords, mt.texcoords, mt.material, hit, sp.p);
       sp.material = mt.material;
       break;
     }

@@ -211,7 +211,8 @@ void mesh_coordinates(const Vec3& p, const FileLoc& loc) {
 
 // Appends the triangle unless it is degenerate; returns whether it did.
 bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t material,
-                   std::int32_t normals, std::uint32_t object_id, const Vec3* keyed = nullptr) {
+                   std::int32_t normals, std::uint32_t object_id, const Vec3* keyed = nullptr,
+                   std::int32_t texcoords = -1) {
   if (!(length_squared(cross(b - a, c - a)) > 0)) return false;
   if (keyed != nullptr) {  // moving: a, b, c at shutter open, then at close
     kernel::MovingTriangle t;
@@ -222,10 +223,11 @@ bool push_triangle(RenderScene& out, const Vec3& a, const Vec3& b, const Vec3& c
     t.material = material;
     t.normals = normals;
     t.object = object_id;
+    t.texcoords = texcoords;
     out.moving_triangles.push_back(t);
     return true;
   }
-  out.triangles.push_back({a, b, c, material, normals, object_id});
+  out.triangles.push_back({a, b, c, material, normals, object_id, texcoords});
   return true;
 }
 }  // namespace
@@ -265,9 +267,10 @@ void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std:
 
 namespace {
 // The mesh `data` placed by `transform` and moved by `motion` (one that does not turn it), its
-// faces as triangles or moving triangles.
+// faces as triangles or moving triangles; with `texcoords`, each face whose corners all have
+// texture coordinates keeps them (for a uv-mapped image).
 void compile_mesh(const MeshData& data, const Transform& transform, const Motion& motion, const FileLoc& loc,
-                  RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) {
+                  RenderScene& out, std::uint32_t material_index, std::uint32_t object_id, bool texcoords) {
   validate::finite(transform.scale, loc, "mesh scale");
   validate::finite(transform.rotate_degrees, loc, "mesh rotate");
   validate::finite(transform.translate, loc, "mesh translate");
@@ -307,11 +310,14 @@ void compile_mesh(const MeshData& data, const Transform& transform, const Motion
   if (motion.moving()) out.moving_triangles.reserve(out.moving_triangles.size() + data.faces.size());
   else out.triangles.reserve(out.triangles.size() + data.faces.size());
   if (!data.normals.empty()) out.vertex_normals.reserve(out.vertex_normals.size() + keys * data.faces.size());
+  texcoords = texcoords && !data.texcoords.empty();
+  if (texcoords) out.vertex_texcoords.reserve(out.vertex_texcoords.size() + data.faces.size());
   std::size_t kept = 0;
   for (MeshData::Face f : data.faces) {
     if (mirrored) {
       std::swap(f.v[1], f.v[2]);
       std::swap(f.n[1], f.n[2]);
+      std::swap(f.t[1], f.t[2]);
     }
     for (std::uint32_t v : f.v)
       if (v >= positions.size()) throw Error(loc, "mesh face refers to a vertex that does not exist");
@@ -336,16 +342,29 @@ void compile_mesh(const MeshData& data, const Transform& transform, const Motion
         out.vertex_normals.push_back({xf(f.n[0]), xf(f.n[1]), xf(f.n[2])});
       }
     }
+    std::int32_t uvs = -1;
+    if (texcoords && f.t[0] >= 0 && f.t[1] >= 0 && f.t[2] >= 0) {
+      for (std::int32_t t : f.t)
+        if (std::size_t(t) >= data.texcoords.size())
+          throw Error(loc, "mesh face refers to a texture coordinate that does not exist");
+      const Texcoord &t0 = data.texcoords[std::size_t(f.t[0])], &t1 = data.texcoords[std::size_t(f.t[1])],
+                     &t2 = data.texcoords[std::size_t(f.t[2])];
+      uvs = static_cast<std::int32_t>(out.vertex_texcoords.size());
+      out.vertex_texcoords.push_back({t0.u, t0.v, t1.u, t1.v, t2.u, t2.v});
+    }
     Vec3 keyed[6];
     if (motion.moving())
       for (int key = 0; key < 2; ++key)
         for (int i = 0; i < 3; ++i) keyed[3 * key + i] = keyed_positions[key][f.v[i]];
     if (push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material_index, normals,
-                      object_id, motion.moving() ? keyed : nullptr)) {
+                      object_id, motion.moving() ? keyed : nullptr, uvs)) {
       ++kept;
-    } else if (normals >= 0) {
-      out.vertex_normals.pop_back();
-      if (motion.moving()) out.vertex_normals.pop_back();
+    } else {
+      if (normals >= 0) {
+        out.vertex_normals.pop_back();
+        if (motion.moving()) out.vertex_normals.pop_back();
+      }
+      if (uvs >= 0) out.vertex_texcoords.pop_back();
     }
   }
   if (data.faces.empty()) throw Error(loc, "mesh has no faces");
@@ -357,15 +376,18 @@ void compile_mesh(const MeshData& data, const Transform& transform, const Motion
 
 void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uint32_t object_id) const {
   validate_motion(motion, loc);
+  // (Whether the image is uv-mapped is not known here, in an instanced group's scene: the
+  // texture coordinates are kept for any image, and the renderer asks the mapping.)
+  const bool uv_texture = material.texture != kNoTexture;
   if (!(motion.moving() && motion_turns(motion, out.camera, loc, "mesh"))) {
-    compile_mesh(data, transform, motion, loc, out, material_index, object_id);
+    compile_mesh(data, transform, motion, loc, out, material_index, object_id, uv_texture);
     return;
   }
   // Keyframes that turn it (in its own coordinates, before its transform P) move its points on
   // arcs: it becomes an instance of a group holding it unmoved, carried by P·A(u).
   const Affine post = mesh_motion_post(transform, loc);
   RenderScene group;
-  compile_mesh(data, Transform{}, Motion{}, loc, group, material_index, object_id);
+  compile_mesh(data, Transform{}, Motion{}, loc, group, material_index, object_id, uv_texture);
   move_by_instance(out, std::move(group), moving_map(motion, out.camera, loc, "mesh", &post), loc);
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// A triangle mesh as loaded from a file: shared positions and normals, faces indexing them.
+// A triangle mesh as loaded from a file: shared positions, normals and texture coordinates, faces
+// indexing them.
 
 #include <array>
 #include <cstdint>
@@ -10,14 +11,23 @@
 
 namespace strahl {
 
+// A texture coordinate (OBJ `vt`, PLY u/v): where a uv-mapped image's planar square
+// (shading/image_texture.h) lies on the surface — u across, v up.
+struct Texcoord {
+  Real u = 0, v = 0;
+  friend bool operator==(const Texcoord&, const Texcoord&) = default;
+};
+
 struct MeshData {
   struct Face {
     std::array<std::uint32_t, 3> v{};        // position indices
     std::array<std::int32_t, 3> n{-1, -1, -1};  // normal indices, −1 where the file gives none
+    std::array<std::int32_t, 3> t{-1, -1, -1};  // texture-coordinate indices, −1 where none
   };
   // LargeArrays (util/large_array.h): a large mesh's arrays in 2 MiB pages.
   LargeArray<Vec3> positions;
   LargeArray<Vec3> normals;
+  LargeArray<Texcoord> texcoords;
   LargeArray<Face> faces;
 };
 

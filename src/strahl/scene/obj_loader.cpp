@@ -110,7 +110,8 @@ class ObjReader {
       mesh_.positions.push_back(p);
       ++counts_[0];
     } else if (key == "vt") {
-      numbers(tokens, line, 1, 3, "texture coordinate", "u");
+      const Vec3 uvw = numbers(tokens, line, 1, 3, "texture coordinate", "u");  // (v 0 where left out; w unused)
+      mesh_.texcoords.push_back({uvw.x, uvw.y});
       ++counts_[1];
     } else if (key == "vn") {
       mesh_.normals.push_back(numbers(tokens, line, 3, 3, "normal", "x, y and z"));
@@ -135,6 +136,7 @@ class ObjReader {
         for (std::size_t k = 0; k < 3; ++k) {
           f.v[k] = std::uint32_t(corners_[k].v);
           f.n[k] = corners_[k].n;
+          f.t[k] = corners_[k].t;
         }
         mesh_.faces.push_back(f);
       } else {
@@ -174,6 +176,7 @@ class ObjReader {
   struct Corner {
     long long v = 0;      // position index from 0
     std::int32_t n = -1;  // normal index from 0, −1 for none
+    std::int32_t t = -1;  // texture-coordinate index from 0, −1 for none
   };
   struct Polygon {
     std::size_t first, count;  // in polygon_corners_
@@ -192,6 +195,7 @@ class ObjReader {
       if (!part.empty()) {
         const long long i = index(part, k, line, column);
         if (k == 0) out.v = i;
+        if (k == 1) out.t = std::int32_t(i);
         if (k == 2) out.n = std::int32_t(i);
         mask |= 1 << k;
       } else if (k == 0) {
@@ -253,6 +257,7 @@ class ObjReader {
         for (std::size_t k = 0; k < 3; ++k) {
           f.v[k] = std::uint32_t(c[t[k]].v);
           f.n[k] = c[t[k]].n;
+          f.t[k] = c[t[k]].t;
         }
         faces.push_back(f);
       }

@@ -152,23 +152,34 @@ void Parser::assign_vertex_roles(Header& h, Element& e, int index) const {
   if (h.vertex >= 0) fail(e.line, "the header has a second 'vertex' element");
   h.vertex = index;
   if (e.count > INT_MAX) fail(e.line, "too many vertices (" + std::to_string(e.count) + "; at most 2147483647)");
-  static constexpr std::string_view kNames[] = {"x", "y", "z", "nx", "ny", "nz"};
-  Property* found[6] = {};
+  // Each role's names (texture coordinates go by four pairs of names in the files around).
+  static constexpr std::string_view kNames[kVertexRoles][4] = {
+      {"x"}, {"y"}, {"z"}, {"nx"}, {"ny"}, {"nz"}, {"u", "s", "texture_u", "texture_s"},
+      {"v", "t", "texture_v", "texture_t"}};
+  Property* found[kVertexRoles] = {};
   for (Property& p : e.properties)
-    for (int i = 0; i < 6; ++i)
-      if (p.name == kNames[i]) {
-        if (found[i]) fail(p.line, "property '" + p.name + "' appears twice in element 'vertex'");
-        if (p.list) fail(p.line, "property '" + p.name + "' of element 'vertex' must be a single value, not a list");
-        found[i] = &p;
-      }
+    for (int i = 0; i < kVertexRoles; ++i)
+      for (const std::string_view name : kNames[i])
+        if (!name.empty() && p.name == name) {
+          if (found[i] && found[i]->name == p.name) fail(p.line, "property '" + p.name + "' appears twice in element 'vertex'");
+          if (found[i])
+            fail(p.line, "properties '" + found[i]->name + "' and '" + p.name +
+                             "' of element 'vertex' both give the texture coordinate " + (i == 6 ? "u" : "v"));
+          if (p.list) fail(p.line, "property '" + p.name + "' of element 'vertex' must be a single value, not a list");
+          found[i] = &p;
+        }
   for (int i = 0; i < 3; ++i)
     if (!found[i])
-      fail(e.line, "element 'vertex' has no property '" + std::string(kNames[i]) + "' (x, y and z are required)");
+      fail(e.line, "element 'vertex' has no property '" + std::string(kNames[i][0]) + "' (x, y and z are required)");
   for (int i = 0; i < 3; ++i) found[i]->role = static_cast<Role>(i);
   // Normals are used only when all three components are there.
   h.normals = found[3] && found[4] && found[5];
   if (h.normals)
     for (int i = 3; i < 6; ++i) found[i]->role = static_cast<Role>(i);
+  // Texture coordinates likewise only as a pair.
+  h.texcoords = found[6] && found[7];
+  if (h.texcoords)
+    for (int i = 6; i < 8; ++i) found[i]->role = static_cast<Role>(i);
 }
 
 void Parser::assign_face_roles(Header& h, Element& e, int index) const {

@@ -62,7 +62,8 @@ inline void int_range(Type t, double& lo, double& hi) {
 }
 
 // What the reader does with a property.
-enum class Role : std::uint8_t { X, Y, Z, NX, NY, NZ, Indices, Skip };
+enum class Role : std::uint8_t { X, Y, Z, NX, NY, NZ, U, V, Indices, Skip };
+inline constexpr int kVertexRoles = 8;  // X … V: the slots of one vertex's values
 
 struct Property {
   std::string name;
@@ -90,6 +91,7 @@ struct Header {
   int vertex = -1;  // indices into elements
   int face = -1;
   bool normals = false;  // the vertex element has nx, ny and nz
+  bool texcoords = false;  // … and u, v (or s, t; texture_u, texture_v; texture_s, texture_t)
 };
 
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }

@@ -36,6 +36,7 @@ using ply::Type;
 using ply::int_range;
 using ply::is_space;
 using ply::number_str;
+using ply::kVertexRoles;
 using ply::size_of;
 using ply::type_name;
 
@@ -307,21 +308,26 @@ void skip_element(Source& src, const Element& e) {
   }
 }
 
-// Checks and stores vertex i: v holds x, y, z, nx, ny, nz.
+// Checks and stores vertex i: v holds x, y, z, nx, ny, nz, u, v (by Role).
 template <class Source>
-void store_vertex(Source& src, long long i, const double (&v)[6], bool normals, MeshData& mesh) {
+void store_vertex(Source& src, long long i, const double (&v)[kVertexRoles], const Header& h, MeshData& mesh) {
   if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
     src.fail("vertex " + std::to_string(i) + " has a coordinate that is not a finite number");
   mesh.positions.emplace_back(v[0], v[1], v[2]);  // entries come in order: i == size()
-  if (normals) {
+  if (h.normals) {
     if (!std::isfinite(v[3]) || !std::isfinite(v[4]) || !std::isfinite(v[5]))
       src.fail("vertex " + std::to_string(i) + " has a normal that is not finite");
     mesh.normals.emplace_back(v[3], v[4], v[5]);
   }
+  if (h.texcoords) {
+    if (!std::isfinite(v[6]) || !std::isfinite(v[7]))
+      src.fail("vertex " + std::to_string(i) + " has a texture coordinate that is not finite");
+    mesh.texcoords.push_back({v[6], v[7]});
+  }
 }
 
 template <class Source>
-void read_vertices(Source& src, const Element& e, bool normals, MeshData& mesh) {
+void read_vertices(Source& src, const Element& e, const Header& h, MeshData& mesh) {
   if constexpr (std::is_same_v<Source, BinarySource>) {
     // Scalars only (the usual case): fixed offsets in entries of a fixed size.
     if (const std::uint64_t stride = BinarySource::fixed_stride(e)) {
@@ -330,7 +336,7 @@ void read_vertices(Source& src, const Element& e, bool normals, MeshData& mesh) 
         Type type;
         int slot;
       };
-      Field fields[6];
+      Field fields[kVertexRoles];
       int used = 0;
       std::size_t offset = 0;
       for (const Property& p : e.properties) {
@@ -341,10 +347,10 @@ void read_vertices(Source& src, const Element& e, bool normals, MeshData& mesh) 
       const unsigned char* entry = src.take(static_cast<std::uint64_t>(e.count) * stride);
       for (long long i = 0; i < e.count; ++i, entry += stride) {
         if ((i & 0xfff) == 0) check_cancelled("ply");
-        double v[6] = {};
+        double v[kVertexRoles] = {};
         for (int f = 0; f < used; ++f) v[fields[f].slot] = src.value(entry + fields[f].offset, fields[f].type);
         src.at(i, entry);
-        store_vertex(src, i, v, normals, mesh);
+        store_vertex(src, i, v, h, mesh);
       }
       return;
     }
@@ -352,24 +358,27 @@ void read_vertices(Source& src, const Element& e, bool normals, MeshData& mesh) 
   for (long long i = 0; i < e.count; ++i) {
     if ((i & 0xfff) == 0) check_cancelled("ply");
     src.begin(e.name, i, e.count);
-    double v[6] = {};
+    double v[kVertexRoles] = {};
     for (const Property& p : e.properties) {
       if (p.list) src.skip_items(p.type, list_length(src, p));
       else if (p.role == Role::Skip) src.skip(p.type);
       else v[static_cast<int>(p.role)] = src.number(p.type);
     }
     src.end();
-    store_vertex(src, i, v, normals, mesh);
+    store_vertex(src, i, v, h, mesh);
   }
 }
 
-// A fan around the first corner: (0, 1, 2), (0, 2, 3), …
-void add_fan(const std::vector<std::uint32_t>& corners, bool normals, MeshData& mesh) {
+// A fan around the first corner: (0, 1, 2), (0, 2, 3), … (normals and texture coordinates are per
+// vertex).
+void add_fan(const std::vector<std::uint32_t>& corners, const Header& h, MeshData& mesh) {
   for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
     MeshData::Face f;
     f.v = {corners[0], corners[k], corners[k + 1]};
-    if (normals)
+    if (h.normals)
       for (std::size_t c = 0; c < 3; ++c) f.n[c] = static_cast<std::int32_t>(f.v[c]);
+    if (h.texcoords)
+      for (std::size_t c = 0; c < 3; ++c) f.t[c] = static_cast<std::int32_t>(f.v[c]);
     mesh.faces.push_back(f);
   }
 }
@@ -383,7 +392,7 @@ template <class Source>
 }
 
 template <class Source>
-void read_faces(Source& src, const Element& e, long long vertex_count, bool normals, MeshData& mesh) {
+void read_faces(Source& src, const Element& e, long long vertex_count, const Header& h, MeshData& mesh) {
   std::vector<std::uint32_t> corners;
   if constexpr (std::is_same_v<Source, BinarySource>) {
     // Only an index list of integers (the usual case): no conversions through double.
@@ -409,7 +418,7 @@ void read_faces(Source& src, const Element& e, long long vertex_count, bool norm
           if (static_cast<std::uint64_t>(index) >= vertices) bad_corner(src, i, std::to_string(index), vertex_count);
           corners[k] = static_cast<std::uint32_t>(index);
         }
-        add_fan(corners, normals, mesh);
+        add_fan(corners, h, mesh);
       }
       return;
     }
@@ -438,7 +447,7 @@ void read_faces(Source& src, const Element& e, long long vertex_count, bool norm
           bad_corner(src, i, number_str(index), vertex_count);
         corners.push_back(static_cast<std::uint32_t>(index));
       }
-      add_fan(corners, normals, mesh);
+      add_fan(corners, h, mesh);
     }
     src.end();
   }
@@ -449,8 +458,8 @@ void read_body(Source& src, const Header& h, MeshData& mesh) {
   const long long vertex_count = h.elements[std::size_t(h.vertex)].count;
   for (std::size_t i = 0; i < h.elements.size(); ++i) {
     const Element& e = h.elements[i];
-    if (int(i) == h.vertex) read_vertices(src, e, h.normals, mesh);
-    else if (int(i) == h.face) read_faces(src, e, vertex_count, h.normals, mesh);
+    if (int(i) == h.vertex) read_vertices(src, e, h, mesh);
+    else if (int(i) == h.face) read_faces(src, e, vertex_count, h, mesh);
     else skip_element(src, e);
   }
   src.finish();
@@ -472,9 +481,8 @@ MeshData parse_ply(std::string_view bytes, const std::string& name) {
   const auto vertex_count = static_cast<std::size_t>(h.elements[std::size_t(h.vertex)].count);
   const auto face_count = static_cast<std::size_t>(h.elements[std::size_t(h.face)].count);
   mesh.positions.reserve(vertex_count);
-  if (h.normals) {
-    mesh.normals.reserve(vertex_count);
-  }
+  if (h.normals) mesh.normals.reserve(vertex_count);
+  if (h.texcoords) mesh.texcoords.reserve(vertex_count);
   mesh.faces.reserve(face_count);
   if (h.format == Format::Ascii) {
     AsciiSource src(parser, bytes.substr(h.body_offset), h.body_line);

@@ -88,9 +88,8 @@ std::string placement_keys(const Transform& t, const std::string& what);
 
 // An image texture in place; its picture is the PFM file save_scene writes beside the scene.
 std::string image_map(const ImageTexture& t, const std::string& file) {
-  static constexpr const char* kMappings[] = {"planar", "spherical", "cylindrical"};
-  return "{file: " + Writer::quoted(file) + ", mapping: " + kMappings[int(t.mapping)] +
-         ", interpolate: " + (t.bilinear ? "bilinear" : "nearest") + ", once: " + Writer::boolean(t.once) + ", " +
+  return "{file: " + Writer::quoted(file) + ", mapping: " + image_mapping_name(t.mapping) +
+         ", interpolate: " + image_interpolate_name(t.bilinear) + ", once: " + Writer::boolean(t.once) + ", " +
          placement_keys(t.placement, "image") + "}";
 }
 
@@ -426,13 +425,18 @@ std::string mesh_to_obj(const MeshData& mesh) {
   };
   for (const Vec3& p : mesh.positions) w.line(0, "v " + coords(p, "mesh vertex"));
   for (const Vec3& n : mesh.normals) w.line(0, "vn " + coords(n, "mesh normal"));
+  for (const Texcoord& t : mesh.texcoords)
+    w.line(0, "vt " + W::num(t.u, "mesh texture coordinate") + " " + W::num(t.v, "mesh texture coordinate"));
   for (const MeshData::Face& f : mesh.faces) {
-    // compile() shades a face smoothly only when all three corners have normals.
+    // compile() shades a face smoothly only when all three corners have normals, and keeps its
+    // texture coordinates only when all three have them.
     const bool smooth = f.n[0] >= 0 && f.n[1] >= 0 && f.n[2] >= 0;
+    const bool mapped = f.t[0] >= 0 && f.t[1] >= 0 && f.t[2] >= 0;
     std::string line = "f";
     for (std::size_t k = 0; k < 3; ++k) {
       line += " " + std::to_string(std::uint64_t(f.v[k]) + 1);
-      if (smooth) line += "//" + std::to_string(std::int64_t(f.n[k]) + 1);
+      if (mapped) line += "/" + std::to_string(std::int64_t(f.t[k]) + 1);
+      if (smooth) line += (mapped ? "/" : "//") + std::to_string(std::int64_t(f.n[k]) + 1);
     }
     w.line(0, line);
   }

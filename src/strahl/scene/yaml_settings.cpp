@@ -169,15 +169,13 @@ std::uint32_t YamlReader::image_texture(const YAML::Node& n) const {
   t.image = it->second;
   if (const auto v = n["mapping"]) {
     const std::string mapping = scalar(v, "image mapping");
-    if (mapping == "planar") t.mapping = ImageMapping::Planar;
-    else if (mapping == "spherical") t.mapping = ImageMapping::Spherical;
-    else if (mapping == "cylindrical") t.mapping = ImageMapping::Cylindrical;
-    else fail(v, "unknown image mapping '" + mapping + "' (planar, spherical or cylindrical)");
+    if (!image_mapping_from(mapping, t.mapping))
+      fail(v, "unknown image mapping '" + mapping + "' (" + kImageMappingNames + ")");
   }
   if (const auto v = n["interpolate"]) {
     const std::string how = scalar(v, "image interpolate");
-    if (how == "nearest") t.bilinear = false;
-    else if (how != "bilinear") fail(v, "unknown image interpolate '" + how + "' (nearest or bilinear)");
+    if (!image_interpolate_from(how, t.bilinear))
+      fail(v, "unknown image interpolate '" + how + "' (" + kImageInterpolateNames + ")");
   }
   if (const auto v = n["once"]) t.once = boolean(v, "image once");
   t.placement = placement(n, "image ");

@@ -13,7 +13,9 @@
 //                across the image, latitude φ = asin(y/|q|) from the bottom row (−90°) to the
 //                top (+90°);
 //   cylindrical  wrapped around the y axis (θ as above), one image from y = 0 to y = 1,
-//                repeated along y.
+//                repeated along y;
+//   uv           as planar, at the mesh's own texture coordinates (u, v, 0) interpolated from
+//                its vertices (OBJ `vt`, PLY u/v) instead of at p; on a shape without them, at p.
 //
 // With `once`, the image is not repeated: outside it (and where the mapping is undefined: the
 // origin, the y axis for cylindrical) the material's own colour shows. The image's pixel x, row
@@ -23,6 +25,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string_view>
 
 #include "strahl/geometry/placement.h"
 #include "strahl/math/vec3.h"
@@ -31,7 +34,38 @@ namespace strahl {
 
 inline constexpr std::uint32_t kNoTexture = ~std::uint32_t(0);
 
-enum class ImageMapping : std::uint8_t { Planar, Spherical, Cylindrical };
+enum class ImageMapping : std::uint8_t { Planar, Spherical, Cylindrical, UV };
+
+// The mapping's name, as scene files, Python and messages spell it.
+constexpr const char* image_mapping_name(ImageMapping mapping) {
+  switch (mapping) {
+    case ImageMapping::Planar: return "planar";
+    case ImageMapping::Spherical: return "spherical";
+    case ImageMapping::Cylindrical: return "cylindrical";
+    case ImageMapping::UV: return "uv";
+  }
+  return "mapping";
+}
+
+// The mapping named `name`; false where no mapping has that name.
+constexpr bool image_mapping_from(std::string_view name, ImageMapping& mapping) {
+  for (const ImageMapping m : {ImageMapping::Planar, ImageMapping::Spherical, ImageMapping::Cylindrical, ImageMapping::UV})
+    if (name == image_mapping_name(m)) {
+      mapping = m;
+      return true;
+    }
+  return false;
+}
+inline constexpr const char* kImageMappingNames = "planar, spherical, cylindrical or uv";
+
+// The lookup's name (ImageTexture::bilinear), and the lookup named `name` (false: no such name).
+constexpr const char* image_interpolate_name(bool bilinear) { return bilinear ? "bilinear" : "nearest"; }
+constexpr bool image_interpolate_from(std::string_view name, bool& bilinear) {
+  if (name != "nearest" && name != "bilinear") return false;
+  bilinear = name == "bilinear";
+  return true;
+}
+inline constexpr const char* kImageInterpolateNames = "nearest or bilinear";
 
 namespace kernel {
 
@@ -75,7 +109,7 @@ STRAHL_HOST_DEVICE inline Real turn_fraction(Real x, Real z) {
 STRAHL_HOST_DEVICE inline bool image_position(const ImageTexture& t, const Vec3& q, Real& x, Real& y) {
   const Real w = t.width, h = t.height;
   Real u = 0, v = 0;  // across, up
-  if (t.mapping == ImageMapping::Planar) {
+  if (t.mapping == ImageMapping::Planar || t.mapping == ImageMapping::UV) {
     if (t.once && !(q.x >= 0 && q.x <= 1 && q.y >= 0 && q.y <= 1)) return false;
     u = std::fmod(q.x * w, w);  // (reduced first, as POV-Ray does: the nudge below then rounds alike)
     v = std::fmod(q.y * h, h);
