@@ -25,7 +25,8 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 TEST(Explain, RadianceAndRaysAreTheRenderersSample) {
   for (const char* file : {"lecture.yaml", "lecture-whitted.yaml", "refraction.yaml", "glossy.yaml", "soft-shadows.yaml",
                            "depth-of-field.yaml", "motion-blur.yaml", "csg.yaml", "instances-windmills.yaml",
-                           "motion-tumble.yaml", "whitted-1979.yaml", "spotlights.yaml", "textures.yaml"}) {
+                           "motion-tumble.yaml", "whitted-1979.yaml", "spotlights.yaml", "textures.yaml",
+                           "uv-mesh.yaml"}) {
     Scene scene = load_scene(fs::path(STRAHL_SOURCE_DIR) / "scenes" / file);
     scene.settings.width = 24;
     scene.settings.height = 14;

@@ -170,6 +170,30 @@ TEST(MeshUv, InstancesCarryThem) {
   expect_wall(rs, [](Real x, Real y) { return picture_at(1 - y, x); }, "instance");
 }
 
+// A uv-mapped image on an object without texture coordinates is read at the point: compile()
+// says so, once per such object (in a group too), and not for a mesh that has them.
+TEST(MeshUv, AnObjectWithoutThemIsWarnedOf) {
+  Scene s;
+  const Material m = wall_scene(s, ImageMapping::UV);
+  s.add(Mesh(turned_square(), m, Transform{}));
+  MeshData plain = turned_square();
+  for (MeshData::Face& f : plain.faces) f.t = {-1, -1, -1};
+  s.add(Mesh(plain, m, Transform{}));
+  s.add(Sphere({0, 0, -5}, 1, m));
+  Material planar = m;
+  ImageTexture t;
+  t.image = picture();
+  planar.texture = s.add_texture(t);
+  s.add(Sphere({0, 0, -9}, 1, planar));
+  const RenderScene rs = compile(s);
+  ASSERT_EQ(rs.warnings.size(), 2u);
+  EXPECT_NE(rs.warnings[0].find("the mesh has no texture coordinates (OBJ vt, PLY u and v): its uv-mapped image is read "
+                                "at the point, as planar"),
+            std::string::npos)
+      << rs.warnings[0];
+  EXPECT_NE(rs.warnings[1].find("only meshes have texture coordinates"), std::string::npos) << rs.warnings[1];
+}
+
 TEST(MeshUv, ObjReadsVtAndTheCornersThatNameThem) {
   const MeshData m = parse_obj(
       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"

@@ -104,7 +104,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"instances.yaml", SamplerKind::Grid, 16}, Case{"motion-blur.yaml", SamplerKind::Stratified, 16},
                       Case{"depth-of-field.yaml", SamplerKind::Sobol, 16}, Case{"soft-shadows.yaml", SamplerKind::Grid, 16},
                       Case{"glossy.yaml", SamplerKind::Stratified, 16}, Case{"refraction.yaml", SamplerKind::Grid, 16},
-                      Case{"spotlights.yaml", SamplerKind::Grid, 16}, Case{"textures.yaml", SamplerKind::Stratified, 16}),
+                      Case{"spotlights.yaml", SamplerKind::Grid, 16}, Case{"textures.yaml", SamplerKind::Stratified, 16},
+                      Case{"uv-mesh.yaml", SamplerKind::Grid, 4}),
     [](const ::testing::TestParamInfo<Case>& param) {
       std::string name = param.param.file;
       name = name.substr(0, name.find('.'));

@@ -169,6 +169,10 @@ run() {
   # records carried by two motions (a top that precesses, a car's spinning wheels as it turns).
   cp "$bundle/scenes/instances-nested.yaml" "$bundle/scenes/instances-windmills.yaml" "$bundle/scenes/motion-tumble.yaml" "$out/"
   cases+=("instances-nested|--sampler grid|exact" "instances-windmills|--spp 4|rmse" "motion-tumble|--spp 4|rmse")
+  # Image textures: planar, spherical and cylindrical (an arc cosine and sine each), and a mesh's
+  # own texture coordinates (uv).
+  cp "$bundle/scenes/textures.yaml" "$bundle/scenes/uv-mesh.yaml" "$out/" && cp -r "$bundle/scenes/textures" "$out/"
+  cases+=("textures|--sampler grid|rmse" "uv-mesh|--sampler grid|rmse")
   [[ " ${scenes[*]} " == *" bunny "* ]] && cases+=("bunny|--sampler grid --accel kdtree|exact" "bunny|--sampler grid --accel octree|exact")
   local c name opts mode i=0
   for c in "${cases[@]}"; do

@@ -4,6 +4,10 @@
   torus.obj        a torus about the y axis (major radius 1, minor 0.35), 20 x 10 segments,
                    400 triangles with vertex normals (smooth shading)
   icosahedron.obj  a regular icosahedron of circumradius 1, 20 triangles, no normals (flat shading)
+  torus-uv.obj     the torus with texture coordinates: u once around the ring, v once around the
+                   tube (vertices doubled along the seams, where u or v jumps from 1 back to 0)
+  cube-uv.obj      a cube from -1 to 1, each face's texture coordinates the whole unit square
+                   (upright on the sides, the picture's top towards -z on the top and bottom)
 
 Faces are wound counter-clockwise seen from outside, so their geometric normals point outwards."""
 import math
@@ -34,6 +38,62 @@ def write(path, header, verts, faces, normals=None):
                 out.write("f " + " ".join("%d//%d" % (i + 1, i + 1) for i in f) + "\n")
             else:
                 out.write("f " + " ".join(str(i + 1) for i in f) + "\n")
+
+
+def write_uv(path, header, verts, faces, texcoords, normals=None):
+    """Faces as (vertex, texture coordinate) index triples; normals, if any, one per vertex."""
+    with open(path, "w") as out:
+        out.write("".join("# " + line + "\n" for line in header))
+        for v in verts:
+            out.write("v %.6f %.6f %.6f\n" % tuple(v))
+        for t in texcoords:
+            out.write("vt %.6f %.6f\n" % tuple(t))
+        for n in normals or []:
+            out.write("vn %.6f %.6f %.6f\n" % tuple(n))
+        for f in faces:
+            if normals:
+                out.write("f " + " ".join("%d/%d/%d" % (v + 1, t + 1, v + 1) for v, t in f) + "\n")
+            else:
+                out.write("f " + " ".join("%d/%d" % (v + 1, t + 1) for v, t in f) + "\n")
+
+
+def torus_uv(big_r=1.0, small_r=0.35, nu=24, nv=12):
+    """The torus with a grid of (nu + 1) x (nv + 1) vertices: u = i / nu, v = j / nv."""
+    verts, normals, texcoords, faces = [], [], [], []
+    for i in range(nu + 1):
+        u = 2 * math.pi * i / nu
+        for j in range(nv + 1):
+            v = 2 * math.pi * j / nv
+            normals.append((math.cos(v) * math.cos(u), math.sin(v), math.cos(v) * math.sin(u)))
+            verts.append(((big_r + small_r * math.cos(v)) * math.cos(u), small_r * math.sin(v),
+                          (big_r + small_r * math.cos(v)) * math.sin(u)))
+            texcoords.append((i / nu, j / nv))
+    idx = lambda i, j: i * (nv + 1) + j
+    tris = []
+    for i in range(nu):
+        for j in range(nv):
+            a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
+            tris += [(a, b, c), (a, c, d)]
+    outward = lambda f: [sum(normals[i][k] for i in f) for k in range(3)]
+    faces = [tuple((i, i) for i in f) for f in fix_winding(verts, tris, outward)]
+    return verts, normals, texcoords, faces
+
+
+def cube_uv():
+    """Six faces of two triangles, each face's corners at texture coordinates (0,0) (1,0) (1,1) (0,1)."""
+    verts, faces = [], []
+    texcoords = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    # Each face: its centre's axis, and the directions of u and v across it (seen from outside).
+    sides = [((0, 0, 1), (1, 0, 0), (0, 1, 0)), ((1, 0, 0), (0, 0, -1), (0, 1, 0)),
+             ((0, 0, -1), (-1, 0, 0), (0, 1, 0)), ((-1, 0, 0), (0, 0, 1), (0, 1, 0)),
+             ((0, 1, 0), (1, 0, 0), (0, 0, -1)), ((0, -1, 0), (1, 0, 0), (0, 0, 1))]
+    for n, du, dv in sides:
+        first = len(verts)
+        for su, sv in texcoords:
+            verts.append(tuple(n[k] + (2 * su - 1) * du[k] + (2 * sv - 1) * dv[k] for k in range(3)))
+        quad = [(first + k, k) for k in range(4)]
+        faces += [(quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3])]
+    return verts, texcoords, faces
 
 
 def torus(big_r=1.0, small_r=0.35, nu=20, nv=10):
@@ -78,3 +138,12 @@ if __name__ == "__main__":
     v, f = icosahedron()
     write("scenes/meshes/icosahedron.obj", ["regular icosahedron, circumradius 1, 20 triangles, no normals",
                                             "(flat shaded; written by tools/make_meshes.py)"], v, f)
+    v, n, t, f = torus_uv()
+    write_uv("scenes/meshes/torus-uv.obj",
+             ["torus about the y axis: major radius 1, minor radius 0.35, 24 x 12 segments, %d triangles" % len(f),
+              "with vertex normals and texture coordinates: u once around the ring, v once around the tube",
+              "(written by tools/make_meshes.py)"], v, f, t, n)
+    v, t, f = cube_uv()
+    write_uv("scenes/meshes/cube-uv.obj",
+             ["cube from -1 to 1, 12 triangles, each face's texture coordinates the whole unit square",
+              "(written by tools/make_meshes.py)"], v, f, t)

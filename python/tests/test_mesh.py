@@ -106,3 +106,41 @@ def test_mesh_arguments_are_checked():
         strahl.Mesh.load("/nonexistent/x.obj")
     mesh = strahl.Mesh(v, np.array([[0, 1, 2]], dtype=np.uint8))  # any integer dtype
     assert mesh.indices.tolist() == [[0, 1, 2]] and mesh.vertices.dtype == np.float64
+
+
+def test_mesh_texcoords_equal_the_same_obj(tmp_path):
+    """Texture coordinates (one (u, v) row per vertex) are the OBJ's vt: the same compiled scene,
+    and a uv-mapped image reads them (the image differs from the planar one's)."""
+    vertices, faces, normals = torus()
+    texcoords = np.stack([np.arctan2(vertices[:, 2], vertices[:, 0]) / (2 * np.pi) + 0.5, vertices[:, 1]], -1)
+    texcoords = texcoords.astype(np.float32).astype(np.float64)
+    with open(tmp_path / "torus.obj", "w") as f:
+        for p in vertices:
+            f.write("v %r %r %r\n" % tuple(float(x) for x in p))
+        for t in texcoords:
+            f.write("vt %r %r\n" % tuple(float(x) for x in t))
+        for t in faces + 1:
+            f.write("f " + " ".join(f"{i}/{i}" for i in t) + "\n")
+    grid = np.zeros((2, 4, 3), dtype=np.float32)
+    grid[0, ::2] = grid[1, 1::2] = 1
+    strahl.write(grid, tmp_path / "grid.pfm")
+    from_file = strahl.Mesh.load(tmp_path / "torus.obj")
+    assert np.array_equal(from_file.texcoords, texcoords)
+    assert np.array_equal(from_file.texcoord_indices, faces)
+    images = {}
+    for mapping in ("uv", "planar"):
+        scenes = []
+        for from_numpy in (False, True):
+            scene = strahl.Scene()
+            material = strahl.Material(texture=scene.add_texture(tmp_path / "grid.pfm", mapping=mapping))
+            scene.add(strahl.Mesh(vertices, faces, texcoords=texcoords, material=material) if from_numpy
+                      else strahl.Mesh.load(tmp_path / "torus.obj", material=material))
+            scene.add_light((1, 1.5, 1))
+            scenes.append(scene)
+        assert strahl._scene_hash(scenes[0]) == strahl._scene_hash(scenes[1])
+        images[mapping] = np.asarray(strahl.render(scenes[0], width=64, height=48))
+    assert not np.array_equal(images["uv"], images["planar"])
+    with pytest.raises(ValueError, match=r"shape \(n, 2\)"):
+        strahl.Mesh(vertices, faces, texcoords=vertices)
+    with pytest.raises(ValueError, match="one row per vertex"):
+        strahl.Mesh(vertices, faces, texcoords=texcoords[:3])

@@ -72,6 +72,10 @@ def python_scene():
                         "scenes", "textures", "grid.png")
     globe = scene.add_texture(grid, mapping="spherical", interpolate="nearest", translate=(0.7, 0.25, 0.4))
     scene.add(strahl.Sphere((0.7, 0.25, 0.4), 0.15, material=strahl.Material(texture=globe)))
+    label = scene.add_texture(grid, mapping="uv", interpolate="nearest", scale=(0.5, 1, 1))
+    scene.add(strahl.Mesh([[-0.9, 0, -0.9], [-0.5, 0, -0.9], [-0.5, 0.4, -0.9], [-0.9, 0.4, -0.9]],
+                          [[0, 1, 2], [0, 2, 3]], texcoords=[[0, 0], [1, 0], [1, 1], [0, 1]],
+                          material=strahl.Material(texture=label)))
     return scene
 
 

@@ -464,6 +464,7 @@ RenderScene compile(const Scene& scene) {
   for (const auto& object : scene.objects()) {
     if ((object_id & 0x3ff) == 0) check_cancelled("build");
     validate::material(object->material, out.textures.size(), object->loc);
+    add_texture_warning(*object, out);
     const auto material_index = static_cast<std::uint32_t>(out.materials.size());
     out.materials.push_back(object->material);
     object->compile_into(out, material_index, object_id++);

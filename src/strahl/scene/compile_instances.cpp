@@ -9,6 +9,7 @@
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/copy_object.h"
 #include "strahl/scene/move_solid.h"
+#include "strahl/scene/scene_warnings.h"
 #include "strahl/scene/shape_bounds.h"
 #include "strahl/scene/validate.h"
 #include "strahl/util/cancel.h"
@@ -245,6 +246,7 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
 void compile_group_object(RenderScene& out, RenderScene& g, const SceneObject& object, const std::string& name,
                           std::uint32_t object_id) {
   validate::material(object.material, out.textures.size(), object.loc);
+  add_texture_warning(object, out);
   const auto material_index = static_cast<std::uint32_t>(out.materials.size());
   out.materials.push_back(object.material);
   // (A group keeps only its static shapes: whatever else an object compiles to is refused.)

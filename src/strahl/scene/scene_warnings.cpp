@@ -68,6 +68,18 @@ std::string where(const FileLoc& loc) { return loc.file.empty() ? std::string() 
 
 }  // namespace
 
+void add_texture_warning(const SceneObject& object, RenderScene& out) {
+  const std::uint32_t t = object.material.texture;
+  if (t >= out.textures.size() || out.textures[t].mapping != ImageMapping::UV) return;  // (also kNoTexture)
+  const auto* mesh = dynamic_cast<const Mesh*>(&object);
+  const auto mapped = [](const MeshData::Face& f) { return f.t[0] >= 0 && f.t[1] >= 0 && f.t[2] >= 0; };
+  if (mesh != nullptr && std::any_of(mesh->data.faces.begin(), mesh->data.faces.end(), mapped)) return;
+  out.warnings.push_back(where(object.loc) +
+                         (mesh != nullptr ? "the mesh has no texture coordinates (OBJ vt, PLY u and v)"
+                                          : "only meshes have texture coordinates") +
+                         ": its uv-mapped image is read at the point, as planar");
+}
+
 void add_light_warnings(const Scene& scene, RenderScene& out) {
   const Bounds shapes = bounded_shapes(out);
   for (std::size_t i = 0; i < out.lights.size() && i < scene.light_locs().size(); ++i) {
