@@ -185,14 +185,14 @@ void Parser::texture_block(const std::string& kind, Texture& tex) {
   if (kind == "pigment") tex.has_pigment = true;
   if (kind == "finish") tex.has_finish = true;
   if (kind == "interior") tex.has_interior = true;
+  bool uv = false;  // texture { uv_mapping … }: what follows is read at the surface's UVs
   while (!accept_symbol("}")) {
     const Token t = peek();
     if (kind == "texture") {
       next();
-      if (!texture_item(t, tex)) {
-        if (t.text == "scale" || t.text == "translate" || t.text == "rotate") vector();
-        else unsupported(t, "texture");
-      }
+      if (is_word(t, "uv_mapping")) uv = true;
+      else if (!texture_item(t, tex)) texture_transform(t, tex, uv);
+      if (uv) uv_mapping(t, tex.pigment);
     } else if (kind == "pigment") {
       pigment_item(tex.pigment);
     } else if (kind == "finish") {
@@ -206,15 +206,19 @@ void Parser::texture_block(const std::string& kind, Texture& tex) {
 void Parser::pigment_item(Pigment& p) {
   const Token t = peek();
   const std::string& n = t.text;
-  if (n == "checker") {
+  if (n == "uv_mapping") {
     next();
+    uv_mapping(t, p);
+  } else if (n == "checker") {
+    next();
+    if (p.uv) throw Error(loc(t), "strahl reads uv_mapping for an image_map only, not for checker");
     p.checker = true;
     p.color = color();
     accept_symbol(",");
     p.color2 = color();
   } else if (n == "image_map") {
     next();
-    image_map(p);
+    image_map(t, p);
   } else if (n == "scale") {
     next();
     const Num s = expression();
@@ -243,9 +247,30 @@ void Parser::pigment_item(Pigment& p) {
   }
 }
 
+// A texture's own transforms: left out, but in a uv-mapped texture they place its image in UV
+// space (after the pigment's own, as POV-Ray composes them).
+void Parser::texture_transform(const Token& t, Texture& tex, bool uv) {
+  if (t.text != "scale" && t.text != "translate" && t.text != "rotate") unsupported(t, "texture");
+  const Num v = expression();
+  if (!uv) return;
+  const bool whole = t.text == "scale" && v.dim == 1;
+  tex.pigment.steps.push_back("{" + t.text + ": " + (whole ? yaml_number(v.c[0]) : yaml_vector(to_vector(v))) + "}");
+}
+
+// uv_mapping (of a pigment, or of a texture at `t`): the image_map is read at the surface's UVs.
+// POV-Ray reads uv_mapping where a pigment's pattern begins; map_type still maps (u, v, 0), and
+// strahl's uv mapping is map_type 0's.
+void Parser::uv_mapping(const Token& t, Pigment& p) {
+  if (p.checker) throw Error(loc(t), "strahl reads uv_mapping for an image_map only, not for checker");
+  if (!p.image.empty() && p.mapping != "planar")
+    throw Error(loc(t), "strahl reads a uv-mapped image_map with map_type 0 only (map_type " +
+                            std::string(p.mapping == "spherical" ? "1" : "2") + " maps (u, v, 0) " + p.mapping + "ly)");
+  p.uv = true;
+}
+
 // image_map { [png|jpeg|ppm|exr] "file" map_type n interpolate n once … }: strahl's image texture
 // (shading/image_texture.h has POV-Ray's mappings 0, 1, 2 and its lookups 0 and 2).
-void Parser::image_map(Pigment& p) {
+void Parser::image_map(const Token& kw, Pigment& p) {
   expect_symbol("{", "after image_map");
   const Token kind = peek();
   if (kind.kind == TokenKind::Identifier) {  // the file's type, if given (else a string expression follows)
@@ -289,8 +314,10 @@ void Parser::image_map(Pigment& p) {
       unsupported(t, "image_map");
     }
   }
-  p.image = "file: " + yaml_string(file) + ", mapping: " + mapping + ", interpolate: " + interpolate +
-            ", once: " + (once ? "true" : "false");
+  p.image = "file: " + yaml_string(file);
+  p.mapping = mapping;
+  p.image_options = "interpolate: " + interpolate + ", once: " + (once ? "true" : "false");
+  if (p.uv) uv_mapping(kw, p);
 }
 
 Color Parser::finish_color() {

@@ -227,9 +227,12 @@ Object Parser::mesh(const Token& kw) {
         if (x.text == "texture") {
           warn(loc(x), "a mesh triangle's own texture is left out");
           skip_block();
+        } else if (x.text == "uv_vectors") {
+          triangle_uvs(data);
         } else unsupported(x, t.text);
       }
     }
+    zero_missing_uvs(data);
   } else {
     mesh2(kw, data);
   }
@@ -239,8 +242,57 @@ Object Parser::mesh(const Token& kw) {
   return o;
 }
 
+// uv_vectors <a>, <b>, <c> of a mesh's triangle (its last face): its corners' UVs.
+void Parser::triangle_uvs(MeshData& data) {
+  MeshData::Face& f = data.faces.back();
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (i > 0) expect_symbol(",", "between a triangle's uv_vectors");
+    f.t[i] = std::int32_t(data.texcoords.size());
+    data.texcoords.push_back(uv_vector());
+  }
+}
+
+// A mesh's triangles without uv_vectors, where others have them, are at <0, 0> (POV-Ray's UVs there).
+void Parser::zero_missing_uvs(MeshData& data) {
+  if (data.texcoords.empty()) return;
+  const auto zero = std::int32_t(data.texcoords.size());
+  bool used = false;
+  for (MeshData::Face& f : data.faces)
+    if (f.t[0] < 0) f.t = {zero, zero, zero}, used = true;
+  if (used) data.texcoords.push_back(Texcoord{});
+}
+
+// A UV: <u, v> (a float is <f, f>).
+Texcoord Parser::uv_vector() {
+  const Num n = expression();
+  return Texcoord{Real(n.c[0]), Real(n.dim == 1 ? n.c[0] : n.c[1])};
+}
+
+// mesh2's UVs of its faces: uv_indices, or without them face_indices (POV-Ray's rule).
+void Parser::mesh2_uvs(MeshData& data, const std::vector<std::array<std::int64_t, 3>>& uv_faces,
+                       const FileLoc& uv_where, const FileLoc& faces_where) {
+  if (data.texcoords.empty()) {
+    if (!uv_faces.empty()) throw Error(uv_where, "uv_indices without uv_vectors");
+    return;
+  }
+  if (!uv_faces.empty() && uv_faces.size() != data.faces.size())
+    throw Error(uv_where, "uv_indices needs one entry per face (" + std::to_string(uv_faces.size()) + " for " +
+                              std::to_string(data.faces.size()) + " faces)");
+  for (std::size_t i = 0; i < data.faces.size(); ++i)
+    for (std::size_t j = 0; j < 3; ++j) {
+      const std::int64_t k = uv_faces.empty() ? std::int64_t(data.faces[i].v[j]) : uv_faces[i][j];
+      if (std::size_t(k) >= data.texcoords.size())
+        throw Error(uv_faces.empty() ? faces_where : uv_where,
+                    std::string(uv_faces.empty() ? "face_indices" : "uv_indices") + ": index " + std::to_string(k) +
+                        " is past the uv_vectors (" + std::to_string(data.texcoords.size()) + ")" +
+                        (uv_faces.empty() ? "; without uv_indices the face indices index the uv_vectors" : ""));
+      data.faces[i].t[j] = std::int32_t(k);
+    }
+}
+
 void Parser::mesh2(const Token& kw, MeshData& data) {
-  std::vector<std::array<std::int64_t, 3>> normal_faces;
+  std::vector<std::array<std::int64_t, 3>> normal_faces, uv_faces;
+  FileLoc uv_where = loc(kw), faces_where = loc(kw);
   auto count = [&](const char* what) {
     const double c = real();
     if (!(c >= 0 && c <= 1e8) || c != std::floor(c)) throw Error(loc(kw), std::string(what) + " needs a whole count");
@@ -261,9 +313,20 @@ void Parser::mesh2(const Token& kw, MeshData& data) {
       }
       accept_symbol(",");
       expect_symbol("}", ("to close " + n + " (more entries than its count?)").c_str());
-    } else if (n == "face_indices" || n == "normal_indices") {
+    } else if (n == "uv_vectors") {
+      next();
+      expect_symbol("{", "after uv_vectors");
+      const std::size_t k = count(n.c_str());
+      for (std::size_t i = 0; i < k; ++i) {
+        expect_symbol(",", "in uv_vectors");
+        data.texcoords.push_back(uv_vector());
+      }
+      accept_symbol(",");
+      expect_symbol("}", "to close uv_vectors (more entries than its count?)");
+    } else if (n == "face_indices" || n == "normal_indices" || n == "uv_indices") {
       next();
       const FileLoc where = loc(t);
+      (n == "uv_indices" ? uv_where : faces_where) = where;
       expect_symbol("{", ("after " + n).c_str());
       const std::size_t k = count(n.c_str());
       for (std::size_t i = 0; i < k; ++i) {
@@ -286,12 +349,12 @@ void Parser::mesh2(const Token& kw, MeshData& data) {
           }
           data.faces.push_back(face);
         } else {
-          normal_faces.push_back(f);
+          (n == "uv_indices" ? uv_faces : normal_faces).push_back(f);
         }
       }
       accept_symbol(",");
       expect_symbol("}", ("to close " + n + " (more entries than its count?)").c_str());
-    } else if (n == "uv_vectors" || n == "texture_list" || n == "uv_indices" || n == "inside_vector") {
+    } else if (n == "texture_list" || n == "inside_vector") {
       next();
       if (n == "inside_vector") vector();
       else skip_block();
@@ -299,6 +362,7 @@ void Parser::mesh2(const Token& kw, MeshData& data) {
       break;
     }
   }
+  mesh2_uvs(data, uv_faces, uv_where, faces_where);
   if (!normal_faces.empty()) {
     if (normal_faces.size() != data.faces.size()) throw Error(loc(kw), "normal_indices needs one entry per face");
     for (std::size_t i = 0; i < normal_faces.size(); ++i)

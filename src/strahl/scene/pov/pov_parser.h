@@ -196,7 +196,9 @@ class Parser {
   bool texture_item(const Token& t, Texture& tex);
   void texture_block(const std::string& kind, Texture& tex);
   void pigment_item(Pigment& p);
-  void image_map(Pigment& p);
+  void texture_transform(const Token& t, Texture& tex, bool uv);
+  void uv_mapping(const Token& t, Pigment& p);
+  void image_map(const Token& kw, Pigment& p);
   Color finish_color();
   double grey(const Color& c, const FileLoc& loc, const std::string& what);
   void finish_item(Finish& f);
@@ -207,7 +209,12 @@ class Parser {
   void modifiers(Object& o, const std::string& what);
   std::string matrix_step();
   Object mesh(const Token& kw);
+  void triangle_uvs(MeshData& data);
+  static void zero_missing_uvs(MeshData& data);
+  Texcoord uv_vector();
   void mesh2(const Token& kw, MeshData& data);
+  static void mesh2_uvs(MeshData& data, const std::vector<std::array<std::int64_t, 3>>& uv_faces,
+                        const FileLoc& uv_where, const FileLoc& faces_where);
   Object isosurface(const Token& kw);
   std::string function_text(const Token& kw);
 

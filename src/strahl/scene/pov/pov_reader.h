@@ -53,10 +53,15 @@ struct Pigment {
   bool checker = false;
   Color color2{};
   double scale = 1;  // the checker's square size
-  // An image_map: its keys of a scene file's `image` map ("file: …, mapping: …"; empty: none) and
-  // the pigment's transforms in order (steps of a transform list), which place it.
-  std::string image;
+  // An image_map: its keys of a scene file's `image` map (empty: none) — `image` the file
+  // ("file: …"), `mapping` map_type's (planar, spherical, cylindrical), `image_options` the rest
+  // ("interpolate: …, once: …") — and the pigment's transforms in order (steps of a transform
+  // list), which place it.
+  std::string image, mapping = "planar", image_options;
   std::vector<std::string> steps;
+  // uv_mapping: the image is read at the surface's UVs (strahl's mapping uv), its transforms act
+  // on (u, v, 0) and the object's transforms do not move it.
+  bool uv = false;
 };
 
 // POV-Ray's default finish.

@@ -138,7 +138,7 @@ class Writer {
       // The pigment's own transforms act first, then the object's that came after it.
       std::vector<std::string> steps = p.steps;
       steps.insert(steps.end(), moving.begin(), moving.end());
-      s += ", image: {" + p.image;
+      s += ", image: {" + p.image + ", mapping: " + (p.uv ? "uv" : p.mapping) + ", " + p.image_options;
       if (!steps.empty()) s += ", transform: [" + join(steps) + "]";
       s += "}";
     }
@@ -162,10 +162,14 @@ class Writer {
     const std::string mirror = mirror_ ? "{scale: [-1, 1, 1]}" : "";
     // What moves an image_map: the object's transforms after its pigment (all of them for the
     // #default texture, which the object has from the start; the outermost node's for an operand's).
+    // A uv-mapped one lies on the surface's UVs: nothing moves it.
+    const bool uv = texture->pigment.uv && !texture->pigment.image.empty();
+    if (uv) check_uvs(o);
     std::vector<std::string> moving(o.steps.begin() + std::ptrdiff_t(texture == &o.texture ? o.texture_steps : 0),
                                     o.steps.end());
     if (!mirror.empty()) moving.push_back(mirror);
-    if (!texture->pigment.image.empty()) {
+    if (uv) moving.clear();
+    if (!texture->pigment.image.empty() && !uv) {
       if (texture != &o.texture && texture != fallback)
         warn(o.loc, "a CSG operand's image_map is placed by the outermost node's transforms only");
     }
@@ -173,6 +177,18 @@ class Writer {
     if (o.inverse) s = "{type: inverse, objects: [" + s + "]";
     else s.pop_back();  // its '}'
     return s + ", material: " + material(*texture, o.loc, moving) + "}";
+  }
+
+  // A uv-mapped image needs the UVs of a mesh (uv_vectors): strahl has no UV parametrisation of
+  // POV-Ray's other shapes.
+  void check_uvs(const pov::Object& o) const {
+    if (o.mesh < 0) {
+      const std::string name = o.type == "disk" ? "disc" : o.type == "implicit" ? "isosurface" : o.type;
+      throw Error(o.loc, "uv_mapping on a " + name + ": strahl reads uv-mapped images on meshes with uv_vectors only "
+                         "(POV-Ray's own UV mapping of a " + name + " is not read)");
+    }
+    if (p_.meshes[std::size_t(o.mesh)].texcoords.empty())
+      throw Error(o.loc, "uv_mapping on a mesh without uv_vectors (POV-Ray reads the image at <0, 0> all over it)");
   }
 
   Vector mirrored(const Vector& v) const { return mirror_ ? Vector{0 - v[0], v[1], v[2]} : v; }  // (0 − 0 = +0)
