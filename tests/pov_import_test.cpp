@@ -410,6 +410,70 @@ TEST(PovImport, ImageMapsArePlacedAsPovRayPlacesThem) {
     EXPECT_EQ(pov_error(text).rfind(message, 0), 0u) << pov_error(text);
 }
 
+// uv_mapping reads a mesh's uv_vectors (bench/pov/uvmap.pov renders as POV-Ray draws it): the
+// pigment's transforms act on (u, v, 0); neither the object's transforms nor the mirror of
+// POV-Ray's left-handed camera move the picture, which lies on the surface.
+TEST(PovImport, UvMappedImageMapsLieOnTheMeshesUvs) {
+  const std::string quad = "mesh2 { vertex_vectors { 4, <0, 0, 0>, <1, 0, 0>, <1, 1, 0>, <0, 1, 0> } "
+                           "uv_vectors { 4, <0, 0>, <0.5, 0>, <0.5, 0.25>, <0, 0.25> } face_indices { 2, <0, 1, 2>, <0, 2, 3> } ";
+  const std::string y = translate_pov(quad + "pigment { uv_mapping image_map { png \"a.png\" interpolate 2 } scale 2 rotate z*10 }\n"
+                                             "  rotate y*30 translate x }\n" +
+                                          quad + "texture { uv_mapping pigment { image_map { \"b.png\" once } } scale 3 } translate y }",
+                                      "test.pov", {})
+                            .yaml;
+  EXPECT_NE(y.find("image: {file: \"a.png\", mapping: uv, interpolate: bilinear, once: false, transform: "
+                   "[{scale: 2}, {rotate: [0, 0, 10]}]}"),
+            std::string::npos)
+      << y;
+  EXPECT_NE(y.find("image: {file: \"b.png\", mapping: uv, interpolate: nearest, once: true, transform: [{scale: 3}]}"),
+            std::string::npos)
+      << y;
+
+  // The UVs: by uv_indices, by face_indices without them, a triangle's uv_vectors (<0, 0> where a
+  // triangle of the mesh has none, as in POV-Ray).
+  const Scene s = pov_scene(
+      "mesh2 { vertex_vectors { 3, <0, 0, 0>, <1, 0, 0>, <0, 1, 0> } uv_vectors { 2, <0.5, 0.25>, 0.75 }\n"
+      "  face_indices { 1, <0, 1, 2> } uv_indices { 1, <1, 0, 1> } }\n"
+      "mesh2 { vertex_vectors { 3, <0, 0, 0>, <1, 0, 0>, <0, 1, 0> } uv_vectors { 3, <0, 0>, <1, 0>, <0, 1> }\n"
+      "  face_indices { 1, <2, 0, 1> } }\n"
+      "mesh { triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> uv_vectors <0, 0.5>, <1, 0.5>, <0.25, 1> }\n"
+      "  smooth_triangle { <0, 0, 0>, z, <1, 0, 0>, z, <0, 1, 0>, z } }");
+  ASSERT_EQ(s.objects().size(), 3u);
+  const auto data = [&](std::size_t i) -> const MeshData& { return dynamic_cast<const Mesh&>(*s.objects()[i]).data; };
+  ASSERT_EQ(data(0).texcoords.size(), 2u);
+  EXPECT_EQ(data(0).texcoords[0], (Texcoord{0.5, 0.25}));
+  EXPECT_EQ(data(0).texcoords[1], (Texcoord{0.75, 0.75}));
+  EXPECT_EQ(data(0).faces[0].t, (std::array<std::int32_t, 3>{1, 0, 1}));
+  EXPECT_EQ(data(1).faces[0].t, (std::array<std::int32_t, 3>{2, 0, 1}));
+  ASSERT_EQ(data(2).texcoords.size(), 4u);
+  EXPECT_EQ(data(2).texcoords[2], (Texcoord{0.25, 1}));
+  EXPECT_EQ(data(2).faces[0].t, (std::array<std::int32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(data(2).faces[1].t, (std::array<std::int32_t, 3>{3, 3, 3}));
+  EXPECT_EQ(data(2).texcoords[3], (Texcoord{0, 0}));
+}
+
+TEST(PovImport, UvMappingErrorsNameWhatIsMissing) {
+  const std::string verts = "mesh2 { vertex_vectors { 3, <0, 0, 0>, <1, 0, 0>, <0, 1, 0> } ";
+  const std::string image = " pigment { uv_mapping image_map { \"a.png\" } } }";
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {"sphere { 0, 1" + image, "test.pov:1:1: uv_mapping on a sphere: strahl reads uv-mapped images on meshes"},
+           {"disc { 0, y, 1" + image, "test.pov:1:1: uv_mapping on a disc:"},
+           {verts + "face_indices { 1, <0, 1, 2> }" + image, "test.pov:1:1: uv_mapping on a mesh without uv_vectors"},
+           {verts + "uv_vectors { 2, 0, 1 } face_indices { 1, <0, 1, 2> } }",
+                     "test.pov:1:86: face_indices: index 2 is past the uv_vectors (2); without uv_indices"},
+           {verts + "uv_vectors { 2, 0, 1 } face_indices { 1, <0, 1, 2> } uv_indices { 1, <0, 1, 2> } }",
+                     "test.pov:1:116: uv_indices: index 2 is past the uv_vectors (2)"},
+           {verts + "uv_vectors { 2, 0, 1 } face_indices { 1, <0, 1, 2> } uv_indices { 2, <0, 1, 1>, <0, 0, 0> } }",
+                     "test.pov:1:116: uv_indices needs one entry per face (2 for 1 faces)"},
+           {verts + "face_indices { 1, <0, 1, 2> } uv_indices { 1, <0, 1, 1> } }",
+                     "test.pov:1:93: uv_indices without uv_vectors"},
+           {"mesh { triangle { 0, x, y uv_vectors 0, 1 } }", "test.pov:1:43: expected ','"},
+           {"sphere { 0, 1 pigment { uv_mapping image_map { \"a.png\" map_type 1 } } }",
+                     "test.pov:1:36: strahl reads a uv-mapped image_map with map_type 0 only"},
+           {"sphere { 0, 1 pigment { uv_mapping checker } }", "test.pov:1:36: strahl reads uv_mapping for an image_map only"}})
+    EXPECT_EQ(pov_error(text).rfind(message, 0), 0u) << text << "\n" << pov_error(text);
+}
+
 // A fade is the light's own (POV-Ray's formula, tests/spotlight_test.cpp), but a parallel light
 // is directional in strahl and does not fade: a warning says so.
 TEST(PovImport, AParallelLightsFadeIsLeftOutWithAWarning) {
