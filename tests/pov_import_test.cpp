@@ -265,7 +265,7 @@ TEST(PovImport, MeshesAndIncludes) {
   test::write_text(dir / "quad.inc",
                    "#declare Q = mesh2 {\n"
                    "  vertex_vectors { 4, <0, 0, 0>, <1, 0, 0>, <1, 1, 0>, <0, 1, 0> }\n"
-                   "  normal_vectors { 4, <0, 0, -1>, <0, 0, -1>, <0, 0, -1>, <0, 0, -1> }\n"
+                   "  normal_vectors { 4, <0, 0, -1>, <0, 0, -1>, <0, 0.1, -1>, <0, 0, -1> }\n"
                    "  face_indices { 2, <0, 1, 2>, <0, 2, 3> }\n"
                    "}\n");
   test::write_text(dir / "main.pov",
@@ -283,6 +283,16 @@ TEST(PovImport, MeshesAndIncludes) {
   EXPECT_EQ(quad->data.faces.size(), 2u);
   EXPECT_EQ(quad->data.faces[1].n[2], 3);
   EXPECT_EQ(quad->transform.translate, Vec3(0, 0, 1));
+  // A mesh's triangle with one normal at its corners is flat in POV-Ray (checked with POV-Ray 3.7):
+  // the smooth_triangle above, and a mesh2 face; a smooth_triangle of its own keeps its normals.
+  const auto* triangles = dynamic_cast<const Mesh*>(s.objects()[2].get());
+  ASSERT_NE(triangles, nullptr);
+  EXPECT_EQ(triangles->data.faces[1].n[0], -1);
+  const Scene flat = pov_scene("mesh2 { vertex_vectors { 3, 0, x, y } normal_vectors { 3, <0, 0.3, -1>, <0, 0.6, -2>, "
+                               "<0, 0.3, -1> } face_indices { 1, <0, 1, 2> } }\n"
+                               "smooth_triangle { 0, <0, 0.3, -1>, x, <0, 0.3, -1>, y, <0, 0.3, -1> }");
+  EXPECT_EQ(dynamic_cast<const Mesh&>(*flat.objects()[0]).data.faces[0].n[0], -1);
+  EXPECT_EQ(dynamic_cast<const Mesh&>(*flat.objects()[1]).data.faces[0].n[0], 0);
 
   test::write_text(dir / "loop.pov", "#include \"loop.pov\"\n");
   EXPECT_NE(pov_error(test::read_text(dir / "loop.pov"), (dir / "loop.pov").string()).find("more than 256 #include"),

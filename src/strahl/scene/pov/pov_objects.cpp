@@ -20,6 +20,18 @@ bool is_function_name(const std::string& n) {
   return kNames.count(n) > 0;
 }
 
+// Whether a mesh's smooth_triangle has one normal at its three corners (their unit vectors within
+// POV-Ray's EPSILON, 1e-10, in squared distance): POV-Ray draws such a triangle flat.
+bool equal_normals(const std::array<Vector, 3>& n) {
+  std::array<Vector, 3> u{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double l = length(n[i]);
+    u[i] = l > 0 ? Vector{n[i][0] / l, n[i][1] / l, n[i][2] / l} : n[i];
+  }
+  const Vector d1 = minus(u[0], u[1]), d2 = minus(u[0], u[2]);
+  return dot(d1, d1) <= 1e-10 && dot(d2, d2) <= 1e-10;
+}
+
 }  // namespace
 
 bool is_shape(const std::string& keyword) {
@@ -193,6 +205,7 @@ Object Parser::mesh(const Token& kw) {
   o.type = "mesh";
   o.loc = loc(kw);
   MeshData data;
+  const bool in_mesh = kw.text == "mesh";
   auto add_triangle = [&](const Token& t, bool smooth) {
     std::array<Vector, 3> v{}, nn{};
     for (std::size_t i = 0; i < 3; ++i) {
@@ -204,6 +217,7 @@ Object Parser::mesh(const Token& kw) {
       }
     }
     (void)t;
+    if (smooth && in_mesh && equal_normals(nn)) smooth = false;
     MeshData::Face f;
     for (std::size_t i = 0; i < 3; ++i) {
       f.v[i] = std::uint32_t(data.positions.size());
@@ -374,6 +388,15 @@ void Parser::mesh2(const Token& kw, MeshData& data) {
     if (data.normals.size() != data.positions.size()) throw Error(loc(kw), "normal_vectors needs one normal per vertex (or normal_indices)");
     for (MeshData::Face& f : data.faces)
       for (std::size_t j = 0; j < 3; ++j) f.n[j] = std::int32_t(f.v[j]);
+  }
+  for (MeshData::Face& f : data.faces) {
+    if (f.n[0] < 0) continue;
+    std::array<Vector, 3> n{};
+    for (std::size_t j = 0; j < 3; ++j) {
+      const Vec3& v = data.normals[std::size_t(f.n[j])];
+      n[j] = {double(v.x), double(v.y), double(v.z)};
+    }
+    if (equal_normals(n)) f.n = {-1, -1, -1};
   }
 }
 
