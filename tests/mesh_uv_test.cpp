@@ -194,6 +194,21 @@ TEST(MeshUv, AnObjectWithoutThemIsWarnedOf) {
   EXPECT_NE(rs.warnings[1].find("only meshes have texture coordinates"), std::string::npos) << rs.warnings[1];
 }
 
+// The C++ API's mesh data is checked as the files are: a coordinate that is not finite is an
+// error (where it is kept: the material has an image).
+TEST(MeshUv, NonFiniteOnesAreRefused) {
+  Scene s;
+  MeshData data = turned_square();
+  data.texcoords[2].v = std::nan("");
+  s.add(Mesh(data, wall_scene(s, ImageMapping::UV), Transform{}));
+  try {
+    compile(s);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh texture coordinate is not a finite number"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MeshUv, ObjReadsVtAndTheCornersThatNameThem) {
   const MeshData m = parse_obj(
       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"

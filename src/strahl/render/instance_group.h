@@ -1,7 +1,8 @@
 #pragma once
 // A group of objects shared by instances (geometry/instance.h), as kernels read it: its own
 // primitive set and acceleration structure (of the scene's --accel kind; Embree falls back to
-// the BVH), and its vertex normals and texture coordinates. Materials index the scene's one material array.
+// the BVH), and its vertex normals and texture coordinates. Materials index the scene's one
+// material array.
 
 #include "strahl/accel/accel.h"
 #include "strahl/geometry/instance.h"

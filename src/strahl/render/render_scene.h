@@ -193,7 +193,8 @@ inline void InstanceGroups::push_back(RenderScene&& group) {
 
 inline void InstanceGroups::rebuild_views() {
   views_.clear();
-  for (const RenderScene& g : scenes_) views_.push_back({g.accel.view(g.primitives()), g.vertex_normals.data(), g.vertex_texcoords.data()});
+  for (const RenderScene& g : scenes_)
+    views_.push_back({g.accel.view(g.primitives()), g.vertex_normals.data(), g.vertex_texcoords.data()});
 }
 
 }  // namespace strahl

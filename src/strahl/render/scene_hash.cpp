@@ -139,13 +139,13 @@ void hash(Hasher& h, const SamplingSettings& s) {
 }
 
 void hash(Hasher& h, const kernel::Sphere& x) {
-    h.add(x.center);
+  h.add(x.center);
   h.add(x.radius);
   h.add(x.material);
 }
 
 void hash(Hasher& h, const kernel::Plane& x) {
-    h.add(x.normal);
+  h.add(x.normal);
   h.add(x.distance);
   h.add(x.tangent);
   h.add(x.bitangent);
@@ -173,7 +173,7 @@ void hash(Hasher& h, const kernel::VertexTexcoords& x) {
 }
 
 void hash(Hasher& h, const kernel::MovingSphere& x) {
-    h.add(x.center0);
+  h.add(x.center0);
   h.add(x.center1);
   h.add(x.radius0);
   h.add(x.radius1);
@@ -181,7 +181,7 @@ void hash(Hasher& h, const kernel::MovingSphere& x) {
 }
 
 void hash(Hasher& h, const kernel::MovingTriangle& x) {
-    for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 3; ++k) {
     h.add(x.p0[k]);
     h.add(x.p1[k]);
   }

@@ -349,6 +349,8 @@ void compile_mesh(const MeshData& data, const Transform& transform, const Motion
           throw Error(loc, "mesh face refers to a texture coordinate that does not exist");
       const Texcoord &t0 = data.texcoords[std::size_t(f.t[0])], &t1 = data.texcoords[std::size_t(f.t[1])],
                      &t2 = data.texcoords[std::size_t(f.t[2])];
+      for (const Real c : {t0.u, t0.v, t1.u, t1.v, t2.u, t2.v})
+        if (!std::isfinite(c)) throw Error(loc, "mesh texture coordinate is not a finite number");
       uvs = static_cast<std::int32_t>(out.vertex_texcoords.size());
       out.vertex_texcoords.push_back({t0.u, t0.v, t1.u, t1.v, t2.u, t2.v});
     }
