@@ -10,24 +10,14 @@
 
 #include "strahl/image/image_io.h"
 #include "test_helpers.h"
+#include "test_picture.h"
 
 namespace strahl::image_texture_test {
 namespace {
 
-constexpr int kW = 4, kH = 2;
-
-// Pixel (x, row) of the test picture: every pixel different, dyadic values (blends are exact).
-Vec3 picture_pixel(int x, int row) { return {x * 0.25, row * 0.5, 0.0625 * (1 + x + kW * row)}; }
-
-std::shared_ptr<const Image> picture() {
-  auto image = std::make_shared<Image>(kW, kH);
-  for (int row = 0; row < kH; ++row)
-    for (int x = 0; x < kW; ++x) {
-      const Vec3 c = picture_pixel(x, row);
-      image->at(x, row) = {float(c.x), float(c.y), float(c.z)};
-    }
-  return image;
-}
+constexpr int kW = test::kPictureWidth, kH = test::kPictureHeight;
+using test::picture;
+using test::picture_pixel;
 
 // The compiled texture (and its texels) of one ImageTexture.
 struct Compiled {

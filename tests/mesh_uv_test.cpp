@@ -13,24 +13,14 @@
 #include "strahl/scene/ply_loader.h"
 #include "strahl/scene/scene_writer.h"
 #include "test_helpers.h"
+#include "test_picture.h"
 
 namespace strahl::mesh_uv_test {
 namespace {
 
-constexpr int kW = 4, kH = 2;
-
-// Pixel (x, row) of the test picture: every pixel different.
-Vec3 picture_pixel(int x, int row) { return {x * 0.25, row * 0.5, 0.0625 * (1 + x + kW * row)}; }
-
-std::shared_ptr<const Image> picture() {
-  auto image = std::make_shared<Image>(kW, kH);
-  for (int row = 0; row < kH; ++row)
-    for (int x = 0; x < kW; ++x) {
-      const Vec3 c = picture_pixel(x, row);
-      image->at(x, row) = {float(c.x), float(c.y), float(c.z)};
-    }
-  return image;
-}
+constexpr int kW = test::kPictureWidth, kH = test::kPictureHeight;
+using test::picture;
+using test::picture_pixel;
 
 // The picture's pixel at texture coordinate (u, v) (planar: u across, v up), repeated.
 Vec3 picture_at(Real u, Real v) {

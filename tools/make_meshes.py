@@ -26,35 +26,19 @@ def fix_winding(verts, faces, outward):
     return fixed
 
 
-def write(path, header, verts, faces, normals=None):
+def write(path, header, verts, faces, normals=None, texcoords=None):
+    """Normals and texture coordinates, if any, one per vertex (a corner's index is its vertex's)."""
     with open(path, "w") as out:
         out.write("".join("# " + line + "\n" for line in header))
         for v in verts:
             out.write("v %.6f %.6f %.6f\n" % tuple(v))
-        for n in normals or []:
-            out.write("vn %.6f %.6f %.6f\n" % tuple(n))
-        for f in faces:
-            if normals:
-                out.write("f " + " ".join("%d//%d" % (i + 1, i + 1) for i in f) + "\n")
-            else:
-                out.write("f " + " ".join(str(i + 1) for i in f) + "\n")
-
-
-def write_uv(path, header, verts, faces, texcoords, normals=None):
-    """Faces as (vertex, texture coordinate) index triples; normals, if any, one per vertex."""
-    with open(path, "w") as out:
-        out.write("".join("# " + line + "\n" for line in header))
-        for v in verts:
-            out.write("v %.6f %.6f %.6f\n" % tuple(v))
-        for t in texcoords:
+        for t in texcoords or []:
             out.write("vt %.6f %.6f\n" % tuple(t))
         for n in normals or []:
             out.write("vn %.6f %.6f %.6f\n" % tuple(n))
+        form = "%d/%d/%d" if texcoords and normals else "%d/%d" if texcoords else "%d//%d" if normals else "%d"
         for f in faces:
-            if normals:
-                out.write("f " + " ".join("%d/%d/%d" % (v + 1, t + 1, v + 1) for v, t in f) + "\n")
-            else:
-                out.write("f " + " ".join("%d/%d" % (v + 1, t + 1) for v, t in f) + "\n")
+            out.write("f " + " ".join(form % ((i + 1,) * form.count("%d")) for i in f) + "\n")
 
 
 def torus_uv(big_r=1.0, small_r=0.35, nu=24, nv=12):
@@ -75,24 +59,23 @@ def torus_uv(big_r=1.0, small_r=0.35, nu=24, nv=12):
             a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
             tris += [(a, b, c), (a, c, d)]
     outward = lambda f: [sum(normals[i][k] for i in f) for k in range(3)]
-    faces = [tuple((i, i) for i in f) for f in fix_winding(verts, tris, outward)]
-    return verts, normals, texcoords, faces
+    return verts, normals, texcoords, fix_winding(verts, tris, outward)
 
 
 def cube_uv():
     """Six faces of two triangles, each face's corners at texture coordinates (0,0) (1,0) (1,1) (0,1)."""
-    verts, faces = [], []
-    texcoords = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    verts, texcoords, faces = [], [], []
+    corners = [(0, 0), (1, 0), (1, 1), (0, 1)]
     # Each face: its centre's axis, and the directions of u and v across it (seen from outside).
     sides = [((0, 0, 1), (1, 0, 0), (0, 1, 0)), ((1, 0, 0), (0, 0, -1), (0, 1, 0)),
              ((0, 0, -1), (-1, 0, 0), (0, 1, 0)), ((-1, 0, 0), (0, 0, 1), (0, 1, 0)),
              ((0, 1, 0), (1, 0, 0), (0, 0, -1)), ((0, -1, 0), (1, 0, 0), (0, 0, 1))]
     for n, du, dv in sides:
         first = len(verts)
-        for su, sv in texcoords:
+        for su, sv in corners:
             verts.append(tuple(n[k] + (2 * su - 1) * du[k] + (2 * sv - 1) * dv[k] for k in range(3)))
-        quad = [(first + k, k) for k in range(4)]
-        faces += [(quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3])]
+            texcoords.append((su, sv))
+        faces += [(first, first + 1, first + 2), (first, first + 2, first + 3)]
     return verts, texcoords, faces
 
 
@@ -139,11 +122,11 @@ if __name__ == "__main__":
     write("scenes/meshes/icosahedron.obj", ["regular icosahedron, circumradius 1, 20 triangles, no normals",
                                             "(flat shaded; written by tools/make_meshes.py)"], v, f)
     v, n, t, f = torus_uv()
-    write_uv("scenes/meshes/torus-uv.obj",
+    write("scenes/meshes/torus-uv.obj",
              ["torus about the y axis: major radius 1, minor radius 0.35, 24 x 12 segments, %d triangles" % len(f),
               "with vertex normals and texture coordinates: u once around the ring, v once around the tube",
-              "(written by tools/make_meshes.py)"], v, f, t, n)
+              "(written by tools/make_meshes.py)"], v, f, n, t)
     v, t, f = cube_uv()
-    write_uv("scenes/meshes/cube-uv.obj",
+    write("scenes/meshes/cube-uv.obj",
              ["cube from -1 to 1, 12 triangles, each face's texture coordinates the whole unit square",
-              "(written by tools/make_meshes.py)"], v, f, t)
+              "(written by tools/make_meshes.py)"], v, f, texcoords=t)
