@@ -157,6 +157,7 @@ void Parser::assign_vertex_roles(Header& h, Element& e, int index) const {
       {"x"}, {"y"}, {"z"}, {"nx"}, {"ny"}, {"nz"}, {"u", "s", "texture_u", "texture_s"},
       {"v", "t", "texture_v", "texture_t"}};
   Property* found[kVertexRoles] = {};
+  constexpr int kU = int(Role::U), kV = int(Role::V);
   for (Property& p : e.properties)
     for (int i = 0; i < kVertexRoles; ++i)
       for (const std::string_view name : kNames[i])
@@ -164,7 +165,7 @@ void Parser::assign_vertex_roles(Header& h, Element& e, int index) const {
           if (found[i] && found[i]->name == p.name) fail(p.line, "property '" + p.name + "' appears twice in element 'vertex'");
           if (found[i])
             fail(p.line, "properties '" + found[i]->name + "' and '" + p.name +
-                             "' of element 'vertex' both give the texture coordinate " + (i == 6 ? "u" : "v"));
+                             "' of element 'vertex' both give the texture coordinate " + (i == kU ? "u" : "v"));
           if (p.list) fail(p.line, "property '" + p.name + "' of element 'vertex' must be a single value, not a list");
           found[i] = &p;
         }
@@ -177,9 +178,9 @@ void Parser::assign_vertex_roles(Header& h, Element& e, int index) const {
   if (h.normals)
     for (int i = 3; i < 6; ++i) found[i]->role = static_cast<Role>(i);
   // Texture coordinates likewise only as a pair.
-  h.texcoords = found[6] && found[7];
+  h.texcoords = found[kU] && found[kV];
   if (h.texcoords)
-    for (int i = 6; i < 8; ++i) found[i]->role = static_cast<Role>(i);
+    for (const int i : {kU, kV}) found[i]->role = static_cast<Role>(i);
 }
 
 void Parser::assign_face_roles(Header& h, Element& e, int index) const {
