@@ -22,6 +22,7 @@
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/ply_loader.h"
 #include "strahl/strahl.h"
+#include "test_helpers.h"
 
 namespace ply_test {
 namespace {
@@ -184,17 +185,7 @@ void expect_pyramid(const MeshData& m) {
   }
 }
 
-// The message of the strahl::Error that f throws ("" and a failure if it throws none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const strahl::Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no strahl::Error thrown";
-  return {};
-}
+using strahl::test::error_of;
 
 // ---------------------------------------------------------------------------------------------
 

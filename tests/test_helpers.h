@@ -170,6 +170,18 @@ inline std::string read_text(const fs::path& path) {
 
 inline Real deg(Real degrees) { return degrees * kPi / 180; }
 
+// The message of the strahl::Error that f throws ("" and a failure if it throws none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no strahl::Error thrown";
+  return {};
+}
+
 // The error a scene file's text (read as "bad.yaml") gives when parsed and compiled, or "no error".
 inline std::string compile_error(const std::string& text) {
   try {
