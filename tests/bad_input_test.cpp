@@ -154,7 +154,7 @@ TEST_F(BadInput, NonRegularFilesAreRefused) {
   expect_refused("fifo scene", d.path(), "fifo.yaml", 2, "fifo.yaml: is not a regular file");
   expect_refused("/dev/zero scene", d.path(), "zero.yaml", 2, "zero.yaml: is not a regular file");
 
-  for (const char* ext : {"obj", "ply"}) {
+  for (const char* ext : {"obj", "ply", "gltf", "glb"}) {
     const std::string fifo = std::string("fifo.") + ext, zero = std::string("zero.") + ext;
     ASSERT_EQ(::mkfifo((d / fifo).c_str(), 0600), 0);
     fs::create_symlink("/dev/zero", d / zero);

@@ -34,6 +34,7 @@ TEST(FuzzRegression, SceneInputs) { EXPECT_GT(replay("scene", &fuzz::scene_input
 TEST(FuzzRegression, PovInputs) { EXPECT_GT(replay("pov", &fuzz::pov_input), 4); }
 TEST(FuzzRegression, ObjInputs) { EXPECT_GT(replay("obj", &fuzz::obj_input), 5); }
 TEST(FuzzRegression, PlyInputs) { EXPECT_GT(replay("ply", &fuzz::ply_input), 5); }
+TEST(FuzzRegression, GltfInputs) { EXPECT_GT(replay("gltf", &fuzz::gltf_input), 5); }
 TEST(FuzzRegression, ExpressionInputs) { EXPECT_GT(replay("expression", &fuzz::expression_input), 5); }
 
 // The seeds that are valid meshes and scenes are accepted (so the targets reach compile()).
@@ -50,6 +51,8 @@ TEST(FuzzRegression, ValidSeedsAreAccepted) {
   EXPECT_TRUE(accepted(&fuzz::obj_input, corpus / "obj" / "icosahedron.obj"));
   EXPECT_TRUE(accepted(&fuzz::ply_input, corpus / "ply" / "binary_big_endian-quad.ply"));
   EXPECT_TRUE(accepted(&fuzz::ply_input, corpus / "ply" / "ascii-normals.ply"));
+  for (const char* gltf : {"carousel.glb", "fan-data-uri.gltf", "sparse-quantized.gltf"})
+    EXPECT_TRUE(accepted(&fuzz::gltf_input, corpus / "gltf" / gltf)) << gltf;
   EXPECT_TRUE(accepted(&fuzz::expression_input, corpus / "expression" / "torus"));
 }
 

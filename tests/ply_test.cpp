@@ -603,7 +603,7 @@ TEST_F(PlyTest, SceneMeshErrors) {
   write("pyramid.stl", "solid\n");
   const std::string m1 = error_of([&] { render_scene(mesh_scene("pyramid.stl"), dir_); });
   EXPECT_EQ(m1.rfind("scene.yaml:7:11: mesh: ", 0), 0u) << m1;
-  EXPECT_NE(m1.find("unknown mesh format '.stl' (use .obj or .ply)"), std::string::npos) << m1;
+  EXPECT_NE(m1.find("unknown mesh format '.stl' (use .obj, .ply, .gltf or .glb)"), std::string::npos) << m1;
   const std::string m2 = error_of([&] { render_scene(mesh_scene("noext"), dir_); });
   EXPECT_NE(m2.find("unknown mesh format ''"), std::string::npos) << m2;
   // A PLY error keeps its own file and line behind the scene's position.

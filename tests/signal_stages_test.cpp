@@ -1,6 +1,6 @@
 // Every signal at every stage of a run (issue 12, "Signals and streams"; docs/cli.md,
-// "Interrupting a run"): SIGINT, SIGTERM and SIGHUP while loading (the YAML scene, its OBJ and
-// its PLY mesh) or building end the run with 130 and
+// "Interrupting a run"): SIGINT, SIGTERM and SIGHUP while loading (the YAML scene, its OBJ, PLY
+// and glTF meshes) or building end the run with 130 and
 // nothing written; while rendering, the image so far is written; while writing, the image is
 // finished; SIGPIPE is ignored throughout. Never a half-written file or a stray temporary one.
 // The CLI's test hook (STRAHL_TEST_HOLD=STAGE:SECONDS) holds the stage open until the signal
@@ -27,9 +27,18 @@ const char* kScene =
     "  - {type: plane, normal: [0, 1, 0], distance: 0}\n"
     "  - {type: sphere, center: [0, 0.5, 0], radius: 0.5}\n"
     "  - {type: mesh, file: quad.obj, translate: [0, 0, -1]}\n"
-    "  - {type: mesh, file: quad.ply, translate: [0, 0, -2]}\n";
+    "  - {type: mesh, file: quad.ply, translate: [0, 0, -2]}\n"
+    "  - {type: mesh, file: quad.gltf, translate: [0, 0, -3]}\n";
 
 const char* kQuad = "v -1 0 0\nv 1 0 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+// The quad as a glTF triangle fan, its buffer a data: URI.
+const char* kQuadGltf =
+    "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"mesh\": 0}],\n"
+    " \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"mode\": 6}]}],\n"
+    " \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"type\": \"VEC3\", \"count\": 4}],\n"
+    " \"bufferViews\": [{\"buffer\": 0, \"byteLength\": 48}],\n"
+    " \"buffers\": [{\"byteLength\": 48, \"uri\": \"data:application/octet-stream;base64,"
+    "AACAvwAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAA\"}]}\n";
 const char* kQuadPly =
     "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
     "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
@@ -39,6 +48,7 @@ void write_inputs(const fs::path& dir) {
   test::write_text(dir / "scene.yaml", kScene);
   test::write_text(dir / "quad.obj", kQuad);
   test::write_text(dir / "quad.ply", kQuadPly);
+  test::write_text(dir / "quad.gltf", kQuadGltf);
 }
 
 std::set<std::string> listing(const fs::path& dir) {
@@ -84,8 +94,8 @@ TEST(SignalStages, EachSignalAtEachStageDoesWhatTheDocsSay) {
 
   const std::pair<int, const char*> signals[] = {{SIGINT, "SIGINT"}, {SIGTERM, "SIGTERM"}, {SIGHUP, "SIGHUP"},
                                                  {SIGPIPE, "SIGPIPE"}};
-  // Loading the scene file, its OBJ mesh and its PLY mesh; compiling; rendering; writing.
-  for (const char* stage : {"yaml", "obj", "ply", "build", "render", "write"}) {
+  // Loading the scene file, its OBJ, PLY and glTF meshes; compiling; rendering; writing.
+  for (const char* stage : {"yaml", "obj", "ply", "gltf", "build", "render", "write"}) {
     for (const auto& [sig, name] : signals) {
       SCOPED_TRACE(std::string(name) + " while at stage " + stage);
       test::TempDir dir;
@@ -125,7 +135,7 @@ TEST(SignalStages, EachSignalAtEachStageDoesWhatTheDocsSay) {
         }
       }
       // Nothing but the inputs and (where one was written) the whole image: no temporary files.
-      std::set<std::string> expected = {"scene.yaml", "quad.obj", "quad.ply"};
+      std::set<std::string> expected = {"scene.yaml", "quad.obj", "quad.ply", "quad.gltf"};
       if (ignored || stage_s == "render" || stage_s == "write") expected.insert("out.png");
       EXPECT_EQ(listing(dir.path()), expected);
     }

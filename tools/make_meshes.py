@@ -8,9 +8,15 @@
                    tube (vertices doubled along the seams, where u or v jumps from 1 back to 0)
   cube-uv.obj      a cube from -1 to 1, each face's texture coordinates the whole unit square
                    (upright on the sides, the picture's top towards -z on the top and bottom)
+  cube-uv.glb      the same cube as binary glTF 2.0 (for tests/gltf_test.cpp: the same mesh)
+  carousel.glb     binary glTF with a node hierarchy: a turned stand holding the cube and a ring
+                   of six tori (torus-uv, one mesh drawn by six nodes), each placed by its node's
+                   translation, rotation (quaternion) and scale
 
 Faces are wound counter-clockwise seen from outside, so their geometric normals point outwards."""
+import json
 import math
+import struct
 
 
 def fix_winding(verts, faces, outward):
@@ -39,6 +45,74 @@ def write(path, header, verts, faces, normals=None, texcoords=None):
         form = "%d/%d/%d" if texcoords and normals else "%d/%d" if texcoords else "%d//%d" if normals else "%d"
         for f in faces:
             out.write("f " + " ".join(form % ((i + 1,) * form.count("%d")) for i in f) + "\n")
+
+
+def write_glb(path, meshes, nodes, roots):
+    """Binary glTF 2.0: meshes = [(verts, faces, normals, texcoords)] (normals, texcoords: one per
+    vertex or None), nodes = glTF node objects referring to them, roots = the scene's nodes.
+    Positions, normals and texture coordinates as float32, indices as uint16; glTF's v runs down
+    the picture from its top edge, so a coordinate (u, v) is written as (u, 1 - v)."""
+    doc = {"asset": {"version": "2.0", "generator": "strahl tools/make_meshes.py"},
+           "scene": 0, "scenes": [{"nodes": roots}], "nodes": nodes,
+           "meshes": [], "accessors": [], "bufferViews": [], "buffers": []}
+    blob = bytearray()
+
+    def accessor(values, fmt, component, kind, count, target):
+        while len(blob) % 4:
+            blob.append(0)
+        data = struct.pack("<%d%s" % (len(values), fmt), *values)
+        doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target})
+        blob.extend(data)
+        a = {"bufferView": len(doc["bufferViews"]) - 1, "componentType": component, "type": kind, "count": count}
+        if kind == "VEC3" and fmt == "f":
+            a["min"] = [min(values[k::3]) for k in range(3)]
+            a["max"] = [max(values[k::3]) for k in range(3)]
+        doc["accessors"].append(a)
+        return len(doc["accessors"]) - 1
+
+    for verts, faces, normals, texcoords in meshes:
+        attributes = {"POSITION": accessor([c for v in verts for c in v], "f", 5126, "VEC3", len(verts), 34962)}
+        if normals:
+            attributes["NORMAL"] = accessor([c for n in normals for c in n], "f", 5126, "VEC3", len(normals), 34962)
+        if texcoords:
+            attributes["TEXCOORD_0"] = accessor([c for u, v in texcoords for c in (u, 1 - v)], "f", 5126, "VEC2",
+                                                len(texcoords), 34962)
+        indices = accessor([i for f in faces for i in f], "H", 5123, "SCALAR", 3 * len(faces), 34963)
+        doc["meshes"].append({"primitives": [{"attributes": attributes, "indices": indices}]})
+    while len(blob) % 4:
+        blob.append(0)
+    doc["buffers"].append({"byteLength": len(blob)})
+    text = json.dumps(doc, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    with open(path, "wb") as out:
+        out.write(struct.pack("<4sII", b"glTF", 2, 12 + 8 + len(text) + 8 + len(blob)))
+        out.write(struct.pack("<I4s", len(text), b"JSON") + text)
+        out.write(struct.pack("<I4s", len(blob), b"BIN\0") + bytes(blob))
+
+
+def quaternion(axis, degrees):
+    """glTF's rotation (x, y, z, w) about a unit axis."""
+    h = math.radians(degrees) / 2
+    return [axis[0] * math.sin(h), axis[1] * math.sin(h), axis[2] * math.sin(h), math.cos(h)]
+
+
+def carousel():
+    """Nodes: 0 the stand (turned 20 degrees about y, raised 0.68), its children 1 the cube (scale 0.55)
+    and 2..7 six tori at radius 2 (scale 0.5, each turned about y and stood up about its own x)."""
+    nodes = [{"name": "stand", "translation": [0, 0.68, 0], "rotation": quaternion((0, 1, 0), 20),
+              "children": list(range(1, 8))},
+             {"name": "cube", "mesh": 0, "scale": [0.55, 0.55, 0.55], "rotation": quaternion((1, 0, 0), 15)}]
+    for k in range(6):
+        a = 60 * k
+        # Stood up about x, then turned about y to face the centre: q_y * q_x.
+        qy, qx = quaternion((0, 1, 0), -a), quaternion((1, 0, 0), 90)
+        q = [qy[3] * qx[0] + qy[0] * qx[3] + qy[1] * qx[2] - qy[2] * qx[1],
+             qy[3] * qx[1] - qy[0] * qx[2] + qy[1] * qx[3] + qy[2] * qx[0],
+             qy[3] * qx[2] + qy[0] * qx[1] - qy[1] * qx[0] + qy[2] * qx[3],
+             qy[3] * qx[3] - qy[0] * qx[0] - qy[1] * qx[1] - qy[2] * qx[2]]
+        nodes.append({"name": "torus %d" % k, "mesh": 1, "scale": [0.5, 0.5, 0.5], "rotation": q,
+                      "translation": [2 * math.cos(math.radians(a)), 0, 2 * math.sin(math.radians(a))]})
+    return nodes
 
 
 def torus_uv(big_r=1.0, small_r=0.35, nu=24, nv=12):
@@ -130,3 +204,6 @@ if __name__ == "__main__":
     write("scenes/meshes/cube-uv.obj",
              ["cube from -1 to 1, 12 triangles, each face's texture coordinates the whole unit square",
               "(written by tools/make_meshes.py)"], v, f, texcoords=t)
+    write_glb("scenes/meshes/cube-uv.glb", [(v, f, None, t)], [{"mesh": 0}], [0])
+    tv, tn, tt, tf = torus_uv()
+    write_glb("scenes/meshes/carousel.glb", [(v, f, None, t), (tv, tf, tn, tt)], carousel(), [0])

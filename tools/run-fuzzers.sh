@@ -1,9 +1,9 @@
 #!/bin/sh
-# Runs each libFuzzer target (YAML scenes, POV-Ray scenes, OBJ, PLY, implicit-surface expressions) for a bounded time over its seed corpus.
+# Runs each libFuzzer target (YAML scenes, POV-Ray scenes, OBJ, PLY, glTF, implicit-surface expressions) for a bounded time over its seed corpus.
 #   tools/run-fuzzers.sh [BUILD_DIR] [SECONDS]     defaults: build-fuzz 20
 # Build the targets first: cmake --preset fuzz && cmake --build --preset fuzz
 # As many targets run at once as the machine has cores (each fuzzes on one core for SECONDS), so
-# the five take 3 × SECONDS on two cores; each one's summary is printed when its batch ends.
+# the six take 3 × SECONDS on two cores; each one's summary is printed when its batch ends.
 # New interesting inputs go to BUILD_DIR/fuzz-corpus/KIND (the seeds in tests/fuzz/corpus/KIND
 # are only read); a crashing input is written to BUILD_DIR/fuzz-artifacts/ and the script fails.
 # Keep such an input as a regression test: copy it to tests/fuzz/regressions/KIND/.
@@ -37,7 +37,7 @@ finish_batch() {
   running=0
 }
 
-kinds="scene pov obj ply expression"
+kinds="scene pov obj ply gltf expression"
 # Every target must be there (the build preset `fuzz` names them all): a missing one would
 # otherwise print nothing and pass.
 for kind in $kinds; do

@@ -1,4 +1,6 @@
 # Meshes from numpy arrays are the same meshes as from files: the same compiled scene and image.
+import os
+
 import numpy as np
 import pytest
 
@@ -106,6 +108,19 @@ def test_mesh_arguments_are_checked():
         strahl.Mesh.load("/nonexistent/x.obj")
     mesh = strahl.Mesh(v, np.array([[0, 1, 2]], dtype=np.uint8))  # any integer dtype
     assert mesh.indices.tolist() == [[0, 1, 2]] and mesh.vertices.dtype == np.float64
+
+
+def test_gltf_mesh_equals_its_obj_twin(source_dir):
+    """Mesh.load reads glTF (.glb) as the scene files do: the example cube equals its OBJ twin
+    (the glTF's v runs down the picture, turned on reading), and a glTF error is a strahl.Error."""
+    meshes = os.path.join(source_dir, "scenes", "meshes")
+    obj = strahl.Mesh.load(os.path.join(meshes, "cube-uv.obj"))
+    glb = strahl.Mesh.load(os.path.join(meshes, "cube-uv.glb"))
+    for name in ("vertices", "indices", "texcoords", "texcoord_indices"):
+        assert np.array_equal(getattr(glb, name), getattr(obj, name)), name
+    bad = os.path.join(source_dir, "tests", "bad-input", "meshes", "gltf-node-cycle.gltf")
+    with pytest.raises(strahl.Error, match=r"nodes\[0\]: is reached twice"):
+        strahl.Mesh.load(bad)
 
 
 def test_mesh_texcoords_equal_the_same_obj(tmp_path):

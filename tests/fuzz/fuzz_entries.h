@@ -18,6 +18,7 @@
 #include "strahl/render/scene_hash.h"
 #include "strahl/scene/expression_ast.h"
 #include "strahl/scene/expression_compiler.h"
+#include "strahl/scene/gltf_loader.h"
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/ply_loader.h"
 #include "strahl/scene/pov/pov_scene.h"
@@ -124,6 +125,13 @@ inline Outcome obj_input(const std::uint8_t* data, std::size_t size) {
 }
 inline Outcome ply_input(const std::uint8_t* data, std::size_t size) {
   return mesh_outcome(&parse_ply, "fuzz.ply", data, size);
+}
+// A .gltf's text or a .glb's bytes; buffer files are looked for in a directory that does not exist.
+inline MeshData parse_gltf_bytes(std::string_view bytes, const std::string& name) {
+  return parse_gltf(bytes, name, "/nonexistent-strahl-fuzz-dir");
+}
+inline Outcome gltf_input(const std::uint8_t* data, std::size_t size) {
+  return mesh_outcome(&parse_gltf_bytes, "fuzz.gltf", data, size);
 }
 
 // ---- the expression compiler and evaluator (implicit surfaces) ----

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "strahl/scene/gltf_loader.h"
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/ply_loader.h"
 #include "strahl/util/error.h"
@@ -40,7 +41,8 @@ MeshData load_mesh(const std::filesystem::path& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".obj") return load_obj(path);
   if (ext == ".ply") return load_ply(path);
-  throw Error(FileLoc{path.string()}, "unknown mesh format '" + path.extension().string() + "' (use .obj or .ply)");
+  if (ext == ".gltf" || ext == ".glb") return load_gltf(path);
+  throw Error(FileLoc{path.string()}, "unknown mesh format '" + path.extension().string() + "' (use .obj, .ply, .gltf or .glb)");
 }
 
 }  // namespace strahl

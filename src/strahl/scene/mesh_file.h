@@ -1,5 +1,6 @@
 #pragma once
-// A mesh file read by its extension (case-insensitive): .obj (obj_loader.h) or .ply (ply_loader.h).
+// A mesh file read by its extension (case-insensitive): .obj (obj_loader.h), .ply (ply_loader.h),
+// .gltf or .glb (gltf_loader.h).
 // The one place that maps extensions to readers, shared by scene files and strahl-bench.
 
 #include <filesystem>
@@ -10,7 +11,7 @@
 namespace strahl {
 
 // Throws strahl::Error naming the file (and line/column where the reader knows them), also for
-// an extension that is neither .obj nor .ply.
+// an extension that is none of these.
 MeshData load_mesh(const std::filesystem::path& path);
 
 // The whole file in memory, in one read (a LargeArray: 2 MiB pages from 1 MiB on, not zeroed

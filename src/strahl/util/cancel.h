@@ -19,7 +19,7 @@ class Cancelled : public std::exception {
 // The flag the loaders poll; nullptr (the default) for none. It must outlive the loading.
 void set_cancel_flag(const std::atomic<bool>* flag);
 
-// A function called at every poll with the stage ("yaml", "obj", "ply": reading those files;
+// A function called at every poll with the stage ("yaml", "obj", "ply", "gltf": reading those files;
 // "build": compile() and the acceleration structure), before the flag is tested:
 // tests use it to hold a stage open until a signal arrives. nullptr (the default) for none.
 using CancelHook = void (*)(const char* stage);
