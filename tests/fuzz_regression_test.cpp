@@ -51,7 +51,7 @@ TEST(FuzzRegression, ValidSeedsAreAccepted) {
   EXPECT_TRUE(accepted(&fuzz::obj_input, corpus / "obj" / "icosahedron.obj"));
   EXPECT_TRUE(accepted(&fuzz::ply_input, corpus / "ply" / "binary_big_endian-quad.ply"));
   EXPECT_TRUE(accepted(&fuzz::ply_input, corpus / "ply" / "ascii-normals.ply"));
-  for (const char* gltf : {"carousel.glb", "fan-data-uri.gltf", "sparse-quantized.gltf"})
+  for (const char* gltf : {"carousel.glb", "fan-data-uri.gltf", "sparse-quantized.gltf", "material-image.gltf"})
     EXPECT_TRUE(accepted(&fuzz::gltf_input, corpus / "gltf" / gltf)) << gltf;
   EXPECT_TRUE(accepted(&fuzz::expression_input, corpus / "expression" / "torus"));
 }

@@ -10,10 +10,12 @@
 #include "strahl/render/render_scene.h"
 #include "strahl/render/scene_hash.h"
 #include "strahl/scene/gltf_data.h"
+#include "strahl/scene/file_materials.h"
 #include "strahl/scene/gltf_loader.h"
 #include "strahl/scene/mesh_file.h"
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/scene_file.h"
+#include "strahl/scene/scene_writer.h"
 #include "test_helpers.h"
 
 namespace strahl {
@@ -288,6 +290,118 @@ TEST(Gltf, TheExampleCubeIsItsObjTwin) {
             scene_hash(compile(parse_scene(scene("cube-uv.glb"), "a.yaml", dir))));
 }
 
+// A 2 x 1 binary PPM (stb_image reads it as it reads a PNG): (64, 128, 255) and (255, 0, 32).
+const std::string kPpm = std::string("P6\n2 1\n255\n") + std::string("\x40\x80\xff\xff\x00\x20", 6);
+
+// Two triangles side by side with their materials (a colour; a picture in a bufferView tinted by
+// its factor), and a third without one; the second has texture coordinates.
+Gltf with_materials(const std::vector<Real>& tint = {1, 0.5, 1, 1}) {
+  Gltf g;
+  const int p0 = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const int p1 = g.positions({2, 0, 0, 3, 0, 0, 2, 1, 0});
+  const int p2 = g.positions({4, 0, 0, 5, 0, 0, 4, 1, 0});
+  const int t1 = g.accessor(std::vector<float>{0.25f, 0.5f, 0.75f, 0.5f, 0.25f, 0}, 5126, "VEC2", 2);
+  const int image = g.accessor(std::vector<char>(kPpm.begin(), kPpm.end()), 5121, "SCALAR", 1);
+  g.doc["images"] = json::array({{{"bufferView", g.doc["accessors"][std::size_t(image)]["bufferView"]}, {"mimeType", "image/png"}}});
+  g.doc["samplers"] = json::array({{{"magFilter", 9728}}});
+  g.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+  g.doc["materials"] = json::array({{{"name", "unused"}},
+                                    {{"name", "violet"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1, 1}}}}},
+                                    {{"name", "picture"},
+                                     {"pbrMetallicRoughness", {{"baseColorFactor", tint}, {"baseColorTexture", {{"index", 0}}}}}}});
+  json prims = json::array({{{"attributes", {{"POSITION", p0}}}, {"material", 1}},
+                            {{"attributes", {{"POSITION", p1}, {"TEXCOORD_0", t1}}}, {"material", 2}},
+                            {{"attributes", {{"POSITION", p2}}}}});
+  g.doc["meshes"].push_back({{"primitives", prims}});
+  g.node({{"mesh", 0}});
+  return g;
+}
+
+Real srgb(int code) {
+  const Real c = Real(code) / 255;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+TEST(Gltf, MaterialsAreReadWhenAskedFor) {
+  const Gltf g = with_materials();
+  const MeshData plain = parse(g.text());
+  EXPECT_TRUE(plain.materials.empty() && plain.face_materials.empty());
+  const MeshData m = parse_gltf(g.text(), "t.gltf", "/nonexistent-strahl-test-dir", true);
+  // The materials the faces use, in order of use ("unused" is not read).
+  ASSERT_EQ(m.materials.size(), 2u);
+  EXPECT_EQ(m.materials[0].name, "violet");
+  EXPECT_EQ(m.materials[0].color, Vec3(0.5, 0.25, 1));
+  EXPECT_EQ(m.materials[0].image, nullptr);
+  ASSERT_EQ(m.face_materials.size(), 3u);
+  EXPECT_EQ(m.face_materials[0], 0);
+  EXPECT_EQ(m.face_materials[1], 1);
+  EXPECT_EQ(m.face_materials[2], -1);
+  // The picture, decoded from sRGB and times the factor; its sampler says NEAREST.
+  const FileMaterial& p = m.materials[1];
+  ASSERT_NE(p.image, nullptr);
+  ASSERT_EQ(p.image->width(), 2);
+  EXPECT_FALSE(p.bilinear);
+  EXPECT_FLOAT_EQ(p.image->at(0, 0).r, float(srgb(64)));
+  EXPECT_FLOAT_EQ(p.image->at(0, 0).g, float(float(srgb(128)) * 0.5));
+  EXPECT_FLOAT_EQ(p.image->at(1, 0).b, float(srgb(32)));
+  // Errors name the member.
+  Gltf bad = with_materials({1, 2, 1, 1});
+  EXPECT_NE(error_of([&] { parse_gltf(bad.text(), "t.gltf", "/", true); })
+                .find("t.gltf: materials[2].pbrMetallicRoughness.baseColorFactor: must hold numbers from 0 to 1"),
+            std::string::npos);
+  bad = with_materials();
+  bad.doc["images"][0] = {{"uri", "data:image/png;base64,AAAA"}};
+  const std::string e = error_of([&] { parse_gltf(bad.text(), "t.gltf", "/", true); });
+  EXPECT_NE(e.find("t.gltf: images[0]: cannot read image"), std::string::npos) << e;
+  bad.doc["images"][0] = json::object();
+  EXPECT_NE(error_of([&] { parse_gltf(bad.text(), "t.gltf", "/", true); }).find("images[0]: has neither uri nor bufferView"),
+            std::string::npos);
+}
+
+// `file_materials: true` draws each face in its file material — the scene's material with the
+// file's colour or picture — exactly as the same triangles drawn as separate OBJ meshes with
+// those materials; inside an instanced group too. Without the key, all in the scene's material.
+TEST(Gltf, FileMaterialsRenderAsTheSameMeshesWithThoseMaterials) {
+  test::TempDir dir;
+  test::write_text(dir / "model.gltf", with_materials({1, 1, 1, 1}).text());
+  test::write_text(dir / "t.ppm", kPpm);
+  test::write_text(dir / "a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  test::write_text(dir / "b.obj", "v 2 0 0\nv 3 0 0\nv 2 1 0\nvt 0.25 0.5\nvt 0.75 0.5\nvt 0.25 1\nf 1/1 2/2 3/3\n");
+  test::write_text(dir / "c.obj", "v 4 0 0\nv 5 0 0\nv 4 1 0\nf 1 2 3\n");
+  const std::string head =
+      "camera: {position: [2.5, 0.5, 4], look_at: [2.5, 0.5, 0], fov: 70}\nrender: {width: 48, height: 16}\n"
+      "lights: [{type: point, position: [2, 3, 4]}]\n";
+  const std::string look = "specular: 0.3, shininess: 20";
+  const auto image_of = [&](const std::string& text) { return test::render_image(parse_scene(text, "s.yaml", dir.path())); };
+  const Image gltf = image_of(head + "objects:\n  - {type: mesh, file: model.gltf, file_materials: true, material: {" + look +
+                              ", color: [0.2, 0.9, 0.3]}}\n");
+  const Image objs = image_of(head + "objects:\n"
+                              "  - {type: mesh, file: a.obj, material: {" + look + ", color: [0.5, 0.25, 1]}}\n"
+                              "  - {type: mesh, file: b.obj, material: {" + look + ", image: {file: t.ppm, mapping: uv, interpolate: nearest}}}\n"
+                              "  - {type: mesh, file: c.obj, material: {" + look + ", color: [0.2, 0.9, 0.3]}}\n");
+  EXPECT_EQ(test::max_abs_diff(gltf, objs), 0.0f);
+  const Image grouped = image_of(head + "groups: {g: [{type: mesh, file: model.gltf, file_materials: true, material: {" + look +
+                                 ", color: [0.2, 0.9, 0.3]}}]}\nobjects:\n  - {type: instance, of: g}\n");
+  EXPECT_EQ(test::max_abs_diff(grouped, gltf), 0.0f);
+  // The file's materials matter: without the key the picture differs.
+  const Image plain = image_of(head + "objects:\n  - {type: mesh, file: model.gltf, material: {" + look +
+                               ", color: [0.2, 0.9, 0.3]}}\n");
+  EXPECT_GT(test::max_abs_diff(plain, gltf), 0.1f);
+  // Only glTF files give materials.
+  EXPECT_NE(test::compile_error("objects: [{type: mesh, file: x.obj, file_materials: true}]\n")
+                .find("bad.yaml:1:53: file_materials: only glTF files (.gltf, .glb) give materials"),
+            std::string::npos);
+  // The scene writer names the glTF file again (by its absolute path), with file_materials.
+  const Scene scene = parse_scene(head + "objects:\n  - {type: mesh, file: model.gltf, file_materials: true}\n", "s.yaml", dir.path());
+  const std::string yaml = scene_to_yaml(scene);
+  EXPECT_NE(yaml.find("file: \"" + (dir / "model.gltf").string() + "\"\n    file_materials: true\n"), std::string::npos) << yaml;
+  Scene built;
+  built.add(Mesh(parse_gltf(with_materials().text(), "t.gltf", "/", true), Material{}));
+  use_file_materials(built, static_cast<Mesh&>(*built.objects().back()));
+  EXPECT_NE(error_of([&] { scene_to_yaml(built); }).find("cannot write a mesh in file materials that were not read from a file"),
+            std::string::npos);
+}
+
 TEST(Gltf, DataHelpers) {
   EXPECT_EQ(gltf::uri_scheme("data:application/octet-stream;base64,AA=="), "data");
   EXPECT_EQ(gltf::uri_scheme("https://x/y.bin"), "https");
@@ -318,6 +432,7 @@ TEST(Gltf, ErrorsNameWhereAndWhat) {
   };
   expect(error("{\"asset\": {\"version\": \"2.0\"},\n  \"nodes\": [}"), "t.gltf:2:13: syntax error");
   expect(error("[1, 2]"), "t.gltf: the JSON text is not an object");
+  expect(error("{\"asset\": {\"version\": \"2.0\"}, \"x\": 1e999}"), "t.gltf: JSON: number overflow parsing '1e999'");
   expect(error("{\"asset\": {\"version\": \"1.0\"}}"), "t.gltf: asset.version: '1.0' (strahl reads glTF 2)");
   expect(error("{\"asset\": {\"version\": \"2.0\"}}"), "t.gltf: the scene holds no triangles");
   expect(changed([](Gltf& g) { g.doc["accessors"][0]["count"] = 4; }),

@@ -11,7 +11,8 @@
   cube-uv.glb      the same cube as binary glTF 2.0 (for tests/gltf_test.cpp: the same mesh)
   carousel.glb     binary glTF with a node hierarchy: a turned stand holding the cube and a ring
                    of six tori (torus-uv, one mesh drawn by six nodes), each placed by its node's
-                   translation, rotation (quaternion) and scale
+                   translation, rotation (quaternion) and scale; two materials: the cube's shows
+                   textures/grid.png (embedded), the tori's is a brass colour
 
 Faces are wound counter-clockwise seen from outside, so their geometric normals point outwards."""
 import json
@@ -47,14 +48,18 @@ def write(path, header, verts, faces, normals=None, texcoords=None):
             out.write("f " + " ".join(form % ((i + 1,) * form.count("%d")) for i in f) + "\n")
 
 
-def write_glb(path, meshes, nodes, roots):
-    """Binary glTF 2.0: meshes = [(verts, faces, normals, texcoords)] (normals, texcoords: one per
-    vertex or None), nodes = glTF node objects referring to them, roots = the scene's nodes.
+def write_glb(path, meshes, nodes, roots, materials=None, images=None):
+    """Binary glTF 2.0: meshes = [(verts, faces, normals, texcoords[, material])] (normals,
+    texcoords: one per vertex or None; material: an index into materials), nodes = glTF node
+    objects referring to them, roots = the scene's nodes, materials = glTF material objects,
+    images = PNG files embedded in the BIN chunk (textures[i] shows images[i]).
     Positions, normals and texture coordinates as float32, indices as uint16; glTF's v runs down
     the picture from its top edge, so a coordinate (u, v) is written as (u, 1 - v)."""
     doc = {"asset": {"version": "2.0", "generator": "strahl tools/make_meshes.py"},
            "scene": 0, "scenes": [{"nodes": roots}], "nodes": nodes,
            "meshes": [], "accessors": [], "bufferViews": [], "buffers": []}
+    if materials:
+        doc["materials"] = materials
     blob = bytearray()
 
     def accessor(values, fmt, component, kind, count, target):
@@ -70,7 +75,16 @@ def write_glb(path, meshes, nodes, roots):
         doc["accessors"].append(a)
         return len(doc["accessors"]) - 1
 
-    for verts, faces, normals, texcoords in meshes:
+    for png in images or []:
+        while len(blob) % 4:
+            blob.append(0)
+        with open(png, "rb") as f:
+            data = f.read()
+        doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)})
+        blob.extend(data)
+        doc.setdefault("images", []).append({"bufferView": len(doc["bufferViews"]) - 1, "mimeType": "image/png"})
+        doc.setdefault("textures", []).append({"source": len(doc["images"]) - 1})
+    for verts, faces, normals, texcoords, *material in meshes:
         attributes = {"POSITION": accessor([c for v in verts for c in v], "f", 5126, "VEC3", len(verts), 34962)}
         if normals:
             attributes["NORMAL"] = accessor([c for n in normals for c in n], "f", 5126, "VEC3", len(normals), 34962)
@@ -78,7 +92,10 @@ def write_glb(path, meshes, nodes, roots):
             attributes["TEXCOORD_0"] = accessor([c for u, v in texcoords for c in (u, 1 - v)], "f", 5126, "VEC2",
                                                 len(texcoords), 34962)
         indices = accessor([i for f in faces for i in f], "H", 5123, "SCALAR", 3 * len(faces), 34963)
-        doc["meshes"].append({"primitives": [{"attributes": attributes, "indices": indices}]})
+        primitive = {"attributes": attributes, "indices": indices}
+        if material:
+            primitive["material"] = material[0]
+        doc["meshes"].append({"primitives": [primitive]})
     while len(blob) % 4:
         blob.append(0)
     doc["buffers"].append({"byteLength": len(blob)})
@@ -206,4 +223,8 @@ if __name__ == "__main__":
               "(written by tools/make_meshes.py)"], v, f, texcoords=t)
     write_glb("scenes/meshes/cube-uv.glb", [(v, f, None, t)], [{"mesh": 0}], [0])
     tv, tn, tt, tf = torus_uv()
-    write_glb("scenes/meshes/carousel.glb", [(v, f, None, t), (tv, tf, tn, tt)], carousel(), [0])
+    # The cube's material shows the picture (embedded), the tori's is a colour.
+    write_glb("scenes/meshes/carousel.glb", [(v, f, None, t, 0), (tv, tf, tn, tt, 1)], carousel(), [0],
+              materials=[{"name": "picture", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}},
+                         {"name": "brass", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.5, 0.12, 1]}}],
+              images=["scenes/textures/grid.png"])

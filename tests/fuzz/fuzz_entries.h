@@ -18,6 +18,7 @@
 #include "strahl/render/scene_hash.h"
 #include "strahl/scene/expression_ast.h"
 #include "strahl/scene/expression_compiler.h"
+#include "strahl/scene/file_materials.h"
 #include "strahl/scene/gltf_loader.h"
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/ply_loader.h"
@@ -126,12 +127,20 @@ inline Outcome obj_input(const std::uint8_t* data, std::size_t size) {
 inline Outcome ply_input(const std::uint8_t* data, std::size_t size) {
   return mesh_outcome(&parse_ply, "fuzz.ply", data, size);
 }
-// A .gltf's text or a .glb's bytes; buffer files are looked for in a directory that does not exist.
-inline MeshData parse_gltf_bytes(std::string_view bytes, const std::string& name) {
-  return parse_gltf(bytes, name, "/nonexistent-strahl-fuzz-dir");
-}
+// A .gltf's text or a .glb's bytes, read with its materials (their pictures decoded) and drawn in
+// them; buffer and image files are looked for in a directory that does not exist.
 inline Outcome gltf_input(const std::uint8_t* data, std::size_t size) {
-  return mesh_outcome(&parse_gltf_bytes, "fuzz.gltf", data, size);
+  Scene scene;
+  try {
+    MeshData mesh = parse_gltf(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.gltf",
+                               "/nonexistent-strahl-fuzz-dir", true);
+    use_file_materials(scene, scene.add(Mesh(std::move(mesh), Material{}, Transform{})));
+  } catch (const Error&) {
+    return Outcome::Refused;
+  }
+  scene.settings.width = 4;
+  scene.settings.height = 4;
+  return compile_scene(scene);
 }
 
 // ---- the expression compiler and evaluator (implicit surfaces) ----

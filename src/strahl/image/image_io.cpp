@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <new>
 #include <sstream>
@@ -303,19 +304,12 @@ void check_output_path(const fs::path& target) {
   }
 }
 
-Image read_image(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw Error(path.string() + ": no such file");
-  const std::string ext = lower_extension(path);
-  if (ext == ".pfm") return read_pfm(path);
-  if (ext == ".exr") return read_exr(path);
-  int w = 0, h = 0, n = 0;
-  const bool sixteen = stbi_is_16_bit(path.c_str());
-  std::unique_ptr<void, void (*)(void*)> data(
-      sixteen ? static_cast<void*>(stbi_load_16(path.c_str(), &w, &h, &n, 3))
-              : static_cast<void*>(stbi_load(path.c_str(), &w, &h, &n, 3)),
-      stbi_image_free);
-  if (!data) throw Error(path.string() + ": cannot read image: " + stbi_failure_reason());
+namespace {
+
+// stb_image's RGB pixels (8 or 16 bit, freed here) as values / 255 or / 65535.
+Image from_stb(void* pixels, int w, int h, bool sixteen, const std::string& name) {
+  std::unique_ptr<void, void (*)(void*)> data(pixels, stbi_image_free);
+  if (!data) throw Error(name + ": cannot read image: " + stbi_failure_reason());
   Image image(w, h);
   const float scale = sixteen ? 1.0f / 65535.0f : 1.0f / 255.0f;
   for (int y = 0; y < h; ++y)
@@ -328,6 +322,37 @@ Image read_image(const fs::path& path) {
       image.at(x, y) = Rgb{v(0), v(1), v(2)};
     }
   return image;
+}
+
+}  // namespace
+
+Image read_image(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw Error(path.string() + ": no such file");
+  const std::string ext = lower_extension(path);
+  if (ext == ".pfm") return read_pfm(path);
+  if (ext == ".exr") return read_exr(path);
+  int w = 0, h = 0, n = 0;
+  const bool sixteen = stbi_is_16_bit(path.c_str());
+  void* pixels = sixteen ? static_cast<void*>(stbi_load_16(path.c_str(), &w, &h, &n, 3))
+                         : static_cast<void*>(stbi_load(path.c_str(), &w, &h, &n, 3));
+  return from_stb(pixels, w, h, sixteen, path.string());  // (after the load has set w and h)
+}
+
+Image decode_image(std::string_view bytes, const std::string& name) {
+  if (bytes.size() > std::size_t(std::numeric_limits<int>::max())) throw Error(name + ": the image is too large");
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = int(bytes.size());
+  int w = 0, h = 0, n = 0;
+  // (Its size first: a few bytes of a compressed image must not ask for gigabytes.)
+  if (!stbi_info_from_memory(data, size, &w, &h, &n)) throw Error(name + ": cannot read image: " + stbi_failure_reason());
+  if (std::int64_t(w) * h > kMaxDecodedPixels)
+    throw Error(name + ": the image has " + std::to_string(w) + " x " + std::to_string(h) + " pixels, more than " +
+                std::to_string(kMaxDecodedPixels));
+  const bool sixteen = stbi_is_16_bit_from_memory(data, size);
+  void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_memory(data, size, &w, &h, &n, 3))
+                         : static_cast<void*>(stbi_load_from_memory(data, size, &w, &h, &n, 3));
+  return from_stb(pixels, w, h, sixteen, name);
 }
 
 }  // namespace strahl

@@ -4,8 +4,10 @@
 // renamed over it only when complete (image/output_file.h), so an existing image is never left
 // half-written.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "strahl/image/image.h"
 
@@ -39,6 +41,12 @@ void write_image(const Image& image, const std::filesystem::path& path, const Wr
 // Reads .png (8 or 16 bit), .jpg, .ppm, .pfm and .exr; 8/16-bit values are taken as they are
 // stored (no sRGB decoding), divided by 255 or 65535. Throws strahl::Error.
 Image read_image(const std::filesystem::path& path);
+
+// A PNG or JPEG (or another format stb_image reads) from its bytes in memory, as read_image reads
+// it; `name` stands for it in messages. At most kMaxDecodedPixels pixels (checked before
+// decoding). Throws strahl::Error.
+inline constexpr std::int64_t kMaxDecodedPixels = std::int64_t(1) << 26;  // 8192 x 8192
+Image decode_image(std::string_view bytes, const std::string& name);
 
 // 8-bit encodings.
 float linear_to_srgb(float linear);

@@ -5,6 +5,7 @@
 #include "strahl/accel/embree_range.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/camera_build.h"
+#include "strahl/scene/file_materials.h"
 #include "strahl/scene/instances.h"
 #include "strahl/scene/move_solid.h"
 #include "strahl/scene/scene.h"
@@ -268,9 +269,12 @@ void Triangle::compile_into(RenderScene& out, std::uint32_t material_index, std:
 namespace {
 // The mesh `data` placed by `transform` and moved by `motion` (one that does not turn it), its
 // faces as triangles or moving triangles; with `texcoords`, each face whose corners all have
-// texture coordinates keeps them (for a uv-mapped image).
+// texture coordinates keeps them (for a uv-mapped image). A face with a file material
+// (data.face_materials[f] = k ≥ 0) takes material file_material_base + k (0: none), the others
+// material_index.
 void compile_mesh(const MeshData& data, const Transform& transform, const Motion& motion, const FileLoc& loc,
-                  RenderScene& out, std::uint32_t material_index, std::uint32_t object_id, bool texcoords) {
+                  RenderScene& out, std::uint32_t material_index, std::uint32_t object_id, bool texcoords,
+                  std::uint32_t file_material_base) {
   validate::finite(transform.scale, loc, "mesh scale");
   validate::finite(transform.rotate_degrees, loc, "mesh rotate");
   validate::finite(transform.translate, loc, "mesh translate");
@@ -313,7 +317,12 @@ void compile_mesh(const MeshData& data, const Transform& transform, const Motion
   texcoords = texcoords && !data.texcoords.empty();
   if (texcoords) out.vertex_texcoords.reserve(out.vertex_texcoords.size() + data.faces.size());
   std::size_t kept = 0;
-  for (MeshData::Face f : data.faces) {
+  const bool file_materials = file_material_base != 0 && !data.face_materials.empty();
+  for (std::size_t face = 0; face < data.faces.size(); ++face) {
+    MeshData::Face f = data.faces[face];
+    const std::uint32_t material =
+        file_materials && data.face_materials[face] >= 0 ? file_material_base + std::uint32_t(data.face_materials[face])
+                                                         : material_index;
     if (mirrored) {
       std::swap(f.v[1], f.v[2]);
       std::swap(f.n[1], f.n[2]);
@@ -358,7 +367,7 @@ void compile_mesh(const MeshData& data, const Transform& transform, const Motion
     if (motion.moving())
       for (int key = 0; key < 2; ++key)
         for (int i = 0; i < 3; ++i) keyed[3 * key + i] = keyed_positions[key][f.v[i]];
-    if (push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material_index, normals,
+    if (push_triangle(out, positions[f.v[0]], positions[f.v[1]], positions[f.v[2]], material, normals,
                       object_id, motion.moving() ? keyed : nullptr, uvs)) {
       ++kept;
     } else {
@@ -380,16 +389,26 @@ void Mesh::compile_into(RenderScene& out, std::uint32_t material_index, std::uin
   validate_motion(motion, loc);
   // (Whether the image is uv-mapped is not known here, in an instanced group's scene: the
   // texture coordinates are kept for any image, and the renderer asks the mapping.)
-  const bool uv_texture = material.texture != kNoTexture;
+  bool uv_texture = material.texture != kNoTexture;
+  // The file's materials follow the mesh's own in the scene's list (add_object_materials).
+  const std::uint32_t file_material_base = material_index + 1;
+  const bool by_file = !file_materials.empty();
+  if (by_file && data.face_materials.size() != data.faces.size())
+    throw Error(loc, "mesh face materials: one per face is needed");
+  for (const Material& m : file_materials) uv_texture = uv_texture || m.texture != kNoTexture;
+  if (by_file)
+    for (const std::int32_t k : data.face_materials)
+      if (k >= std::int32_t(file_materials.size()))
+        throw Error(loc, "mesh face refers to a file material that does not exist");
   if (!(motion.moving() && motion_turns(motion, out.camera, loc, "mesh"))) {
-    compile_mesh(data, transform, motion, loc, out, material_index, object_id, uv_texture);
+    compile_mesh(data, transform, motion, loc, out, material_index, object_id, uv_texture, by_file ? file_material_base : 0);
     return;
   }
   // Keyframes that turn it (in its own coordinates, before its transform P) move its points on
   // arcs: it becomes an instance of a group holding it unmoved, carried by P·A(u).
   const Affine post = mesh_motion_post(transform, loc);
   RenderScene group;
-  compile_mesh(data, Transform{}, Motion{}, loc, group, material_index, object_id, uv_texture);
+  compile_mesh(data, Transform{}, Motion{}, loc, group, material_index, object_id, uv_texture, by_file ? file_material_base : 0);
   move_by_instance(out, std::move(group), moving_map(motion, out.camera, loc, "mesh", &post), loc);
 }
 
@@ -465,10 +484,8 @@ RenderScene compile(const Scene& scene) {
   std::uint32_t object_id = 0;  // (the camera, with its shutter, is built first: moving shapes need it)
   for (const auto& object : scene.objects()) {
     if ((object_id & 0x3ff) == 0) check_cancelled("build");
-    validate::material(object->material, out.textures.size(), object->loc);
     add_texture_warning(*object, out);
-    const auto material_index = static_cast<std::uint32_t>(out.materials.size());
-    out.materials.push_back(object->material);
+    const std::uint32_t material_index = add_object_materials(*object, out);
     object->compile_into(out, material_index, object_id++);
   }
   // Bounded solids first (they enter the acceleration structure), unclipped quadrics and CSG

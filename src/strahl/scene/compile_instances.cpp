@@ -8,6 +8,7 @@
 
 #include "strahl/render/render_scene.h"
 #include "strahl/scene/copy_object.h"
+#include "strahl/scene/file_materials.h"
 #include "strahl/scene/move_solid.h"
 #include "strahl/scene/scene_warnings.h"
 #include "strahl/scene/shape_bounds.h"
@@ -245,10 +246,8 @@ void unfold(RenderScene& out, std::uint32_t group, const Mat3& m, const Vec3& t,
 // shapes may be there.
 void compile_group_object(RenderScene& out, RenderScene& g, const SceneObject& object, const std::string& name,
                           std::uint32_t object_id) {
-  validate::material(object.material, out.textures.size(), object.loc);
   add_texture_warning(object, out);
-  const auto material_index = static_cast<std::uint32_t>(out.materials.size());
-  out.materials.push_back(object.material);
+  const std::uint32_t material_index = add_object_materials(object, out);
   // (A group keeps only its static shapes: whatever else an object compiles to is refused.)
   const auto placed = [&] { return g.instances.size() + g.moving_instances.size(); };
   const auto moving = [&] { return g.moving_spheres.size() + g.moving_triangles.size() + g.moving_solids.size(); };

@@ -14,6 +14,7 @@
 #include "strahl/math/transform.h"
 #include "strahl/scene/gltf_data.h"
 #include "strahl/scene/mesh_file.h"
+#include "strahl/scene/scene.h"
 #include "strahl/util/cancel.h"
 #include "strahl/util/error.h"
 
@@ -79,7 +80,8 @@ struct Placement {
 // A mesh's primitive that holds triangles.
 struct Primitive {
   std::string where;
-  int mode = 4;  // 4 triangles, 5 strip, 6 fan
+  int mode = 4;           // 4 triangles, 5 strip, 6 fan
+  std::int32_t material = -1;  // into MeshData::materials (with materials read), −1 none
   Accessor position;
   std::optional<Accessor> normal, texcoord, indices;
   std::uint64_t triangles = 0;
@@ -94,8 +96,8 @@ std::string item(const char* array, std::size_t i) { return std::string(array) +
 
 class GltfReader {
  public:
-  GltfReader(std::string_view bytes, const std::string& name, std::filesystem::path dir)
-      : name_(name), dir_(std::move(dir)), file_size_(bytes.size()) {
+  GltfReader(std::string_view bytes, const std::string& name, std::filesystem::path dir, bool materials)
+      : name_(name), dir_(std::move(dir)), file_size_(bytes.size()), read_materials_(materials) {
     container_ = gltf::split_container(bytes, name);
     parse_json();
   }
@@ -115,8 +117,10 @@ class GltfReader {
     MeshData mesh;
     mesh.positions.reserve(vertices);
     mesh.faces.reserve(faces);
+    if (read_materials_) mesh.face_materials.reserve(faces);
     for (const Draw& d : draws)
       for (const Primitive& p : primitives(d.mesh)) add(p, d.at, mesh);
+    mesh.materials = std::move(materials_);
     return mesh;
   }
 
@@ -142,6 +146,11 @@ class GltfReader {
       if (container_.binary)
         throw Error(FileLoc{name_}, "JSON chunk, line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + what);
       throw Error(FileLoc{name_, line, column}, what);
+    } catch (const json::exception& e) {
+      // Others while parsing, without a place: "[json.exception.out_of_range.406] number overflow parsing '1e999'".
+      const std::string what = e.what();
+      const std::size_t tag = what.find("] ");
+      fail("", "JSON: " + (tag == std::string::npos ? what : what.substr(tag + 2)));
     }
     if (!root_.is_object()) fail("", "the JSON text is not an object");
     const json* asset = member(root_, "asset");
@@ -151,6 +160,8 @@ class GltfReader {
     const std::string& v = version->get_ref<const std::string&>();
     if (v.rfind("2.", 0) != 0) fail("asset.version", "'" + v + "' (strahl reads glTF 2)");
     buffers_.resize(array("buffers").size());
+    material_slots_.assign(array("materials").size(), -1);
+    images_.resize(array("images").size());
   }
 
   static const json* member(const json& object, const char* key) {
@@ -434,6 +445,7 @@ class GltfReader {
       p.indices = accessor(*i, where + ".indices", "indices", 1, true);
       corners = p.indices->count;
     }
+    if (const json* m = member(j, "material"); m && read_materials_) p.material = material(*m, where + ".material");
     if (p.mode == 4 && corners % 3 != 0)
       fail(where, "holds " + std::to_string(corners) + " corners of triangles, not a multiple of 3");
     p.triangles = p.mode == 4 ? corners / 3 : corners >= 3 ? corners - 2 : 0;
@@ -579,7 +591,101 @@ class GltfReader {
         if (texcoord_base >= 0) face.t[std::size_t(c)] = texcoord_base + std::int32_t(v);
       }
       mesh.faces.push_back(face);
+      if (read_materials_) mesh.face_materials.push_back(p.material);
     }
+  }
+
+  // ---- materials (read only when asked for) ----
+
+  // The FileMaterial of materials[i] (its slot in materials_, made at its first use): the base
+  // colour factor (linear RGB; alpha is not used) and the base colour texture, the picture
+  // times the factor, where it reads TEXCOORD_0.
+  std::int32_t material(const json& ref, const std::string& ref_where) {
+    const std::size_t i = index(ref, ref_where, "materials");
+    if (material_slots_[i] >= 0) return material_slots_[i];
+    const std::string where = item("materials", i);
+    const json& m = object(array("materials")[i], where);
+    FileMaterial out;
+    if (const json* n = member(m, "name"); n && n->is_string()) out.name = n->get<std::string>();
+    if (const json* pbr = member(m, "pbrMetallicRoughness")) {
+      const std::string at = where + ".pbrMetallicRoughness";
+      object(*pbr, at);
+      if (const json* f = member(*pbr, "baseColorFactor")) {
+        const std::vector<Real> c = numbers(*f, 4, at + ".baseColorFactor");
+        for (std::size_t k = 0; k < 4; ++k)
+          if (c[k] < 0 || c[k] > 1) fail(at + ".baseColorFactor", "must hold numbers from 0 to 1");
+        out.color = Vec3(c[0], c[1], c[2]);
+      }
+      if (const json* t = member(*pbr, "baseColorTexture")) {
+        object(*t, at + ".baseColorTexture");
+        if (integer_or(*t, "texCoord", at + ".baseColorTexture", 0) == 0)
+          texture(required(*t, "index", at + ".baseColorTexture"), at + ".baseColorTexture.index", out);
+      }
+    }
+    materials_.push_back(std::move(out));
+    material_slots_[i] = std::int32_t(materials_.size() - 1);
+    return material_slots_[i];
+  }
+
+  // textures[i]'s picture (decoded once, then times the material's colour) and its sampler's
+  // magnification filter (NEAREST: the nearest pixel; else bilinear).
+  void texture(const json& ref, const std::string& ref_where, FileMaterial& out) {
+    const std::size_t i = index(ref, ref_where, "textures");
+    const std::string where = item("textures", i);
+    const json& t = object(array("textures")[i], where);
+    const json* source = member(t, "source");
+    if (!source) return;  // (a texture whose picture is in an extension's format: the colour alone)
+    const std::size_t k = index(*source, where + ".source", "images");
+    if (const json* s = member(t, "sampler")) {
+      const std::size_t si = index(*s, where + ".sampler", "samplers");
+      const std::string sw = item("samplers", si);
+      const json& sampler = object(array("samplers")[si], sw);
+      out.bilinear = integer_or(sampler, "magFilter", sw, 9729) != 9728;  // 9728 NEAREST, 9729 LINEAR
+    }
+    std::shared_ptr<const Image> picture = image(k);
+    if (out.color == Vec3(1, 1, 1)) {
+      out.image = std::move(picture);
+      return;
+    }
+    auto tinted = std::make_shared<Image>(*picture);
+    for (int y = 0; y < tinted->height(); ++y)
+      for (int x = 0; x < tinted->width(); ++x) {
+        Rgb& p = tinted->at(x, y);
+        p = Rgb{float(p.r * out.color.x), float(p.g * out.color.y), float(p.b * out.color.z)};
+      }
+    out.image = std::move(tinted);
+  }
+
+  // images[k]: a PNG or JPEG in a file, a data: URI or a bufferView, decoded from sRGB.
+  std::shared_ptr<const Image> image(std::size_t k) {
+    if (images_[k]) return images_[k];
+    const std::string where = item("images", k);
+    const json& im = object(array("images")[k], where);
+    std::string_view bytes;
+    LargeArray<char> held;
+    if (const json* u = member(im, "uri")) {
+      if (!u->is_string()) fail(where + ".uri", "must be a string");
+      const std::string& uri = u->get_ref<const std::string&>();
+      const std::string scheme = gltf::uri_scheme(uri);
+      if (!scheme.empty() && scheme != "data")
+        fail(where + ".uri", "'" + scheme + ":' URIs are not read (only data: URIs and file names)");
+      try {
+        held = scheme == "data" ? gltf::decode_data_uri(uri) : read_mesh_file(dir_ / gltf::decode_percent(uri));
+      } catch (const Error& e) {
+        fail(where + ".uri", e.what());
+      }
+      bytes = std::string_view(held.data(), held.size());
+    } else if (const json* v = member(im, "bufferView")) {
+      bytes = buffer_view(index(*v, where + ".bufferView", "bufferViews")).first;
+    } else {
+      fail(where, "has neither uri nor bufferView");
+    }
+    try {
+      images_[k] = decode_texture_image(bytes, where);
+    } catch (const Error& e) {
+      fail("", e.what());
+    }
+    return images_[k];
   }
 
   std::string name_;
@@ -590,17 +696,21 @@ class GltfReader {
   std::deque<LargeArray<char>> owned_;                    // decoded data: URIs and buffer files
   std::vector<std::optional<std::string_view>> buffers_;  // each buffer's bytes, once read
   std::vector<std::optional<std::vector<Primitive>>> meshes_;
+  bool read_materials_;
+  std::vector<FileMaterial> materials_;             // those the drawn primitives use, in order of use
+  std::vector<std::int32_t> material_slots_;        // materials[i]'s index in materials_, −1 not yet
+  std::vector<std::shared_ptr<const Image>> images_;  // decoded pictures, once each
 };
 
 }  // namespace
 
-MeshData load_gltf(const std::filesystem::path& path) {
+MeshData load_gltf(const std::filesystem::path& path, bool materials) {
   const LargeArray<char> bytes = read_mesh_file(path);
-  return parse_gltf(std::string_view(bytes.data(), bytes.size()), path.string(), path.parent_path());
+  return parse_gltf(std::string_view(bytes.data(), bytes.size()), path.string(), path.parent_path(), materials);
 }
 
-MeshData parse_gltf(std::string_view bytes, const std::string& name, const std::filesystem::path& dir) {
-  return GltfReader(bytes, name, dir).read();
+MeshData parse_gltf(std::string_view bytes, const std::string& name, const std::filesystem::path& dir, bool materials) {
+  return GltfReader(bytes, name, dir, materials).read();
 }
 
 }  // namespace strahl

@@ -4,8 +4,11 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
+#include "strahl/image/image.h"
 #include "strahl/math/vec3.h"
 #include "strahl/util/large_array.h"
 
@@ -16,6 +19,16 @@ namespace strahl {
 struct Texcoord {
   Real u = 0, v = 0;
   friend bool operator==(const Texcoord&, const Texcoord&) = default;
+};
+
+// A material a mesh file gives some of its faces (a glTF material's base colour), read only when
+// asked for (load_mesh's `materials`); a scene's mesh with `file_materials` uses it
+// (scene/file_materials.h).
+struct FileMaterial {
+  std::string name;
+  Vec3 color{1, 1, 1};                // linear RGB
+  std::shared_ptr<const Image> image;  // the colour's picture (linear RGB, times `color`), or none
+  bool bilinear = true;               // false: the nearest pixel
 };
 
 struct MeshData {
@@ -29,6 +42,9 @@ struct MeshData {
   LargeArray<Vec3> normals;
   LargeArray<Texcoord> texcoords;
   LargeArray<Face> faces;
+  // With `materials` read: each face's index into them (−1: none); empty otherwise.
+  std::vector<FileMaterial> materials;
+  LargeArray<std::int32_t> face_materials;
 };
 
 }  // namespace strahl

@@ -36,12 +36,24 @@ LargeArray<char> read_mesh_file(const std::filesystem::path& path) {
   return bytes;
 }
 
-MeshData load_mesh(const std::filesystem::path& path) {
+namespace {
+std::string lower_extension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+}  // namespace
+
+bool is_gltf_file(const std::filesystem::path& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".gltf" || ext == ".glb";
+}
+
+MeshData load_mesh(const std::filesystem::path& path, bool materials) {
+  const std::string ext = lower_extension(path);
   if (ext == ".obj") return load_obj(path);
   if (ext == ".ply") return load_ply(path);
-  if (ext == ".gltf" || ext == ".glb") return load_gltf(path);
+  if (is_gltf_file(path)) return load_gltf(path, materials);
   throw Error(FileLoc{path.string()}, "unknown mesh format '" + path.extension().string() + "' (use .obj, .ply, .gltf or .glb)");
 }
 

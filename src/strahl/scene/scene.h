@@ -148,6 +148,11 @@ class Mesh : public SceneObject {
 
   MeshData data;
   Transform transform;
+  // The materials its faces take from the file (data.face_materials index them; −1 and a mesh
+  // without them: `material`), made by use_file_materials() (scene/file_materials.h), and the
+  // file they came from (absolute: the scene writer names it instead of writing the mesh).
+  std::vector<Material> file_materials;
+  std::filesystem::path file_materials_source;
 };
 
 // Area lights (shading/area_light.h). `radiance` is the emitted radiance L (colour × intensity);
@@ -281,6 +286,9 @@ struct ImageTexture {
 // Reads a texture's picture (.png, .jpg, .ppm, .pfm, .exr): linear RGB; 8- and 16-bit formats are
 // decoded from sRGB (as POV-Ray and image editors take them) unless `linear`. Throws strahl::Error.
 std::shared_ptr<const Image> read_texture_image(const std::filesystem::path& file, bool linear = false);
+// The same from a PNG's or JPEG's bytes in memory (image_io.h decode_image), always sRGB-decoded
+// (a glTF file's embedded pictures). Throws strahl::Error naming `name`.
+std::shared_ptr<Image> decode_texture_image(std::string_view bytes, const std::string& name);
 
 // A named group of objects, placed by instances (scene/instances.h; docs/scene-format.md,
 // "Instances").

@@ -159,9 +159,18 @@ std::string matrix_rows(const Transform& t, const std::string& what) {
 }
 void matrix(Writer& w, const Transform& t, const std::string& what) { w.line(4, "matrix: " + matrix_rows(t, what)); }
 
+// A mesh in its glTF file's materials names that file again (its data and materials are the
+// file's); any other mesh names the OBJ file save_scene writes for it.
 void mesh(Writer& w, const Mesh& mesh, const std::string& file) {
   using W = Writer;
-  w.line(4, "file: " + file);
+  if (mesh.file_materials.empty()) {
+    w.line(4, "file: " + file);
+  } else {
+    if (mesh.file_materials_source.empty())
+      throw Error(mesh.loc, "cannot write a mesh in file materials that were not read from a file");
+    w.line(4, "file: " + W::quoted(mesh.file_materials_source.string()));
+    w.line(4, "file_materials: true");
+  }
   if (mesh.transform.general()) return matrix(w, mesh.transform, "mesh matrix");
   w.line(4, "scale: " + W::vec(mesh.transform.scale, "mesh scale"));
   w.line(4, "rotate: " + W::vec(mesh.transform.rotate_degrees, "mesh rotate"));
@@ -458,11 +467,13 @@ void save_scene(const Scene& scene, const std::filesystem::path& path) {
   std::vector<std::string> objs;  // every file's text first: a number that cannot be written fails before any file
   const auto add_meshes = [&](const std::vector<std::unique_ptr<SceneObject>>& objects) {
     for (const auto& o : objects)
-      if (const auto* m = dynamic_cast<const Mesh*>(o.get())) objs.push_back(mesh_to_obj(m->data));
+      if (const auto* m = dynamic_cast<const Mesh*>(o.get()))
+        objs.push_back(m->file_materials.empty() ? mesh_to_obj(m->data) : std::string());  // (one names its glTF file)
   };
   for (const ObjectGroup& g : scene.groups) add_meshes(g.objects);  // in the order scene_to_yaml numbers them
   add_meshes(scene.objects());
-  for (std::size_t i = 0; i < objs.size(); ++i) write(path.parent_path() / mesh_file(stem, int(i)), objs[i]);
+  for (std::size_t i = 0; i < objs.size(); ++i)
+    if (!objs[i].empty()) write(path.parent_path() / mesh_file(stem, int(i)), objs[i]);
   std::vector<const Image*> pictures;
   picture_numbers(scene, &pictures);
   for (std::uint32_t i = 0; i < pictures.size(); ++i)  // (linear float: the pixels exactly)

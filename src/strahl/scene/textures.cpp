@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <map>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "strahl/image/image_io.h"
@@ -21,22 +23,31 @@ bool stores_linear(const std::filesystem::path& file) {
   return ext == ".pfm" || ext == ".exr";
 }
 
+// An 8- or 16-bit picture's stored values decoded from sRGB. read_image gives an 8-bit code c as
+// c/255 and a 16-bit one as c/65535 (in float); both are k/65535 for a whole k (c/255 =
+// 257c/65535), which rounding v·65535 finds exactly. So one table of the 65536 decoded values
+// serves both depths, exact to the encoded fraction.
+void decode_srgb(Image& image) {
+  std::vector<float> decoded(65536);
+  for (std::size_t k = 0; k < decoded.size(); ++k) decoded[k] = float(srgb_to_linear(double(k) / 65535.0));
+  for (int row = 0; row < image.height(); ++row)
+    for (int x = 0; x < image.width(); ++x) {
+      Rgb& p = image.at(x, row);
+      for (float* c : {&p.r, &p.g, &p.b}) *c = decoded[std::size_t(std::lround(double(*c) * 65535.0))];
+    }
+}
+
 }  // namespace
 
 std::shared_ptr<const Image> read_texture_image(const std::filesystem::path& file, bool linear) {
   auto image = std::make_shared<Image>(read_image(file));
-  if (!linear && !stores_linear(file)) {
-    // read_image gives an 8-bit code c as c/255 and a 16-bit one as c/65535 (in float); both are
-    // k/65535 for a whole k (c/255 = 257c/65535), which rounding v·65535 finds exactly. So one
-    // table of the 65536 decoded values serves both depths, exact to the encoded fraction.
-    std::vector<float> decoded(65536);
-    for (std::size_t k = 0; k < decoded.size(); ++k) decoded[k] = float(srgb_to_linear(double(k) / 65535.0));
-    for (int row = 0; row < image->height(); ++row)
-      for (int x = 0; x < image->width(); ++x) {
-        Rgb& p = image->at(x, row);
-        for (float* c : {&p.r, &p.g, &p.b}) *c = decoded[std::size_t(std::lround(double(*c) * 65535.0))];
-      }
-  }
+  if (!linear && !stores_linear(file)) decode_srgb(*image);
+  return image;
+}
+
+std::shared_ptr<Image> decode_texture_image(std::string_view bytes, const std::string& name) {
+  auto image = std::make_shared<Image>(decode_image(bytes, name));
+  decode_srgb(*image);
   return image;
 }
 

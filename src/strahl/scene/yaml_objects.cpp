@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "strahl/scene/file_materials.h"
 #include "strahl/scene/instances.h"
 #include "strahl/scene/mesh_file.h"
 #include "strahl/scene/place_solid.h"
@@ -86,18 +87,29 @@ void YamlReader::object(const YAML::Node& n, Scene& scene) const {
     if (!(length_squared(cross(b - a, c - a)) > 0)) fail(v, "degenerate triangle (its vertices are collinear)");
     added = &scene.add(Triangle(a, b, c, object_material(n)));
   } else if (type == "mesh") {
-    keys(n, {"type", "file", "material", "scale", "rotate", "translate", "matrix", "transform", "motion"}, "mesh");
+    keys(n, {"type", "file", "material", "file_materials", "scale", "rotate", "translate", "matrix", "transform", "motion"},
+         "mesh");
     const YAML::Node f = required(n, "file", "mesh");
     const std::string file = scalar(f, "mesh file");
     const Transform t = placement(n, "mesh ");
     const Material m = object_material(n);
+    const YAML::Node fm = n["file_materials"];
+    const bool by_file = fm && boolean(fm, "mesh file_materials");
+    if (by_file && !is_gltf_file(file)) fail(fm, "file_materials: only glTF files (.gltf, .glb) give materials");
     MeshData data;
     try {
-      data = meshes_ ? meshes_(file) : load_mesh(base_dir_ / file);
+      data = meshes_ ? meshes_(file) : load_mesh(base_dir_ / file, by_file);
     } catch (const Error& e) {
       fail(f, std::string("mesh: ") + e.what());
     }
-    added = &scene.add(Mesh(std::move(data), m, t));
+    Mesh& mesh = scene.add(Mesh(std::move(data), m, t));
+    mesh.loc = loc(n);
+    if (by_file && !meshes_) mesh.file_materials_source = std::filesystem::absolute(base_dir_ / file);
+    use_file_materials(mesh, [&](ImageTexture texture) {
+      textures_.push_back(std::move(texture));
+      return std::uint32_t(textures_.size() - 1);
+    });
+    added = &mesh;
   } else if (SceneObject* solid = this->solid(type, n, scene)) {
     added = solid;
   } else if (is_csg_type(type)) {

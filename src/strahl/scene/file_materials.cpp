@@ -1,0 +1,42 @@
+#include "strahl/scene/file_materials.h"
+
+#include "strahl/render/render_scene.h"
+#include "strahl/scene/scene.h"
+#include "strahl/scene/validate.h"
+
+namespace strahl {
+
+void use_file_materials(Scene& scene, Mesh& mesh) {
+  use_file_materials(mesh, [&](ImageTexture t) { return scene.add_texture(std::move(t)); });
+}
+
+void use_file_materials(Mesh& mesh, const std::function<std::uint32_t(ImageTexture)>& add_texture) {
+  mesh.file_materials.clear();
+  for (const FileMaterial& f : mesh.data.materials) {
+    Material m = mesh.material;
+    m.color = f.color;
+    if (f.image) {
+      ImageTexture t;
+      t.image = f.image;
+      t.mapping = ImageMapping::UV;
+      t.bilinear = f.bilinear;
+      t.loc = mesh.loc;
+      m.texture = add_texture(std::move(t));
+    }
+    mesh.file_materials.push_back(m);
+  }
+}
+
+std::uint32_t add_object_materials(const SceneObject& object, RenderScene& out) {
+  validate::material(object.material, out.textures.size(), object.loc);
+  const auto index = static_cast<std::uint32_t>(out.materials.size());
+  out.materials.push_back(object.material);
+  if (const auto* mesh = dynamic_cast<const Mesh*>(&object))
+    for (const Material& m : mesh->file_materials) {
+      validate::material(m, out.textures.size(), object.loc);
+      out.materials.push_back(m);
+    }
+  return index;
+}
+
+}  // namespace strahl
