@@ -484,6 +484,12 @@ TEST(Gltf, ErrorsNameWhereAndWhat) {
            g.doc["accessors"][0]["count"] = 100000000;
          }),
          "accessors[0]: has no bufferView, and its count 100000000 is larger than the file");
+  // A mesh drawn by many nodes counts for each (the limit is checked before anything is allocated).
+  Gltf many = triangle();
+  for (int k = 0; k < 9; ++k) many.node({{"mesh", 0}});
+  EXPECT_EQ(parse(many.text()).faces.size(), 10u);
+  expect(error_of([&] { parse_gltf(many.text(), "t.gltf", "/", false, 9); }),
+         "t.gltf: the scene holds more than 9 triangles (a mesh counts once for each node that draws it)");
   // The buffer's URI.
   Gltf g = triangle();
   expect(error(g.text("https://example.com/t.bin")), "buffers[0].uri: 'https:' URIs are not read");

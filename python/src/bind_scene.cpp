@@ -12,6 +12,7 @@
 #include "bindings.h"
 #include "convert.h"
 #include "shape_args.h"
+#include "strahl/scene/file_materials.h"
 #include "strahl/scene/instances.h"
 #include "strahl/scene/move_solid.h"
 #include "strahl/scene/scene.h"
@@ -34,9 +35,15 @@ Real ior_arg(const py::handle& value) {
   return value.cast<double>();
 }
 
+// A mesh read with its glTF file's materials: their pictures become this scene's textures.
+void use_file_materials_in(Scene& scene, SceneObject& object) {
+  if (auto* mesh = dynamic_cast<Mesh*>(&object); mesh && !mesh->data.materials.empty()) use_file_materials(scene, *mesh);
+}
+
 void add_object(Scene& scene, const SceneObject& object) {
   std::unique_ptr<SceneObject> copy = copy_object(object);
   if (!copy) throw py::type_error("Scene.add takes a shape (a Sphere, Plane, Triangle, Mesh, solid or CSG tree) or a light");
+  use_file_materials_in(scene, *copy);
   scene.addSceneObject(copy.release());
 }
 
@@ -211,6 +218,7 @@ void bind_scene_class(py::module_& m) {
              for (const SceneObject* o : objects) {
                std::unique_ptr<SceneObject> copy = o ? copy_object(*o) : nullptr;
                if (!copy) throw py::type_error("a group holds shapes (a Sphere, Triangle, Mesh, solid or CSG tree)");
+               use_file_materials_in(s, *copy);
                g.objects.push_back(std::move(copy));
              }
              s.groups.push_back(std::move(g));

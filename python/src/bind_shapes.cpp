@@ -229,16 +229,22 @@ void bind_shapes(py::module_& m) {
       .def_static(
           "load",
           [](const std::filesystem::path& path, const py::object& color, const std::optional<Material>& material,
-             const py::object& scale, const Vec3& rotate, const Vec3& translate, const std::optional<Motion>& motion) {
+             const py::object& scale, const Vec3& rotate, const Vec3& translate, const std::optional<Motion>& motion,
+             bool file_materials) {
             Material mat = object_material(color, material);
             Transform t = make_transform(scale, rotate, translate, "mesh");
-            Mesh mesh(interruptible<MeshData>([&] { return load_mesh(path); }), mat, t);
+            if (file_materials && !is_gltf_file(path))
+              throw Error("file_materials: only glTF files (.gltf, .glb) give materials");
+            Mesh mesh(interruptible<MeshData>([&] { return load_mesh(path, file_materials); }), mat, t);
+            if (file_materials) mesh.file_materials_source = std::filesystem::absolute(path);
             return placed(mesh, motion);
           },
           py::arg("path"), py::arg("color") = py::none(), py::kw_only(), py::arg("material") = py::none(),
           py::arg("scale") = 1.0, py::arg("rotate") = py::make_tuple(0, 0, 0),
-          py::arg("translate") = py::make_tuple(0, 0, 0), py::arg("motion") = py::none(),
-          "Reads a mesh file (.obj or .ply) with the scene files' reader and its errors.")
+          py::arg("translate") = py::make_tuple(0, 0, 0), py::arg("motion") = py::none(), py::arg("file_materials") = false,
+          "Reads a mesh file (.obj, .ply, .gltf or .glb) with the scene files' reader and its errors; with "
+          "file_materials, a glTF file's faces are drawn in its materials' base colours and pictures (the rest "
+          "from `material`) once the mesh is added to a scene.")
       .def_property_readonly("vertices", [](const Mesh& mesh) { return vec3_rows(mesh.data.positions); })
       .def_property_readonly("normals", [](const Mesh& mesh) { return vec3_rows(mesh.data.normals); })
       .def_property_readonly("indices", [](const Mesh& mesh) {

@@ -121,6 +121,28 @@ def test_gltf_mesh_equals_its_obj_twin(source_dir):
     bad = os.path.join(source_dir, "tests", "bad-input", "meshes", "gltf-node-cycle.gltf")
     with pytest.raises(strahl.Error, match=r"nodes\[0\]: is reached twice"):
         strahl.Mesh.load(bad)
+    with pytest.raises(strahl.Error, match="only glTF files"):
+        strahl.Mesh.load(os.path.join(meshes, "cube-uv.obj"), file_materials=True)
+
+
+def test_gltf_file_materials_as_in_a_scene_file(source_dir, tmp_path):
+    """Mesh.load(..., file_materials=True) added to a scene (or a group) is the scene file's
+    `file_materials: true`: the same compiled scene; without them, another."""
+    glb = os.path.join(source_dir, "scenes", "meshes", "carousel.glb")
+    (tmp_path / "s.yaml").write_text("objects:\n  - {type: mesh, file: %s, file_materials: true, "
+                                     "material: {specular: 0.3}}\n" % glb)
+    from_file = strahl.load(tmp_path / "s.yaml")
+    material = strahl.Material(specular=0.3)
+    scene = strahl.Scene()
+    scene.add(strahl.Mesh.load(glb, material=material, file_materials=True))
+    assert strahl._scene_hash(scene) == strahl._scene_hash(from_file)
+    plain = strahl.Scene()
+    plain.add(strahl.Mesh.load(glb, material=material))
+    assert strahl._scene_hash(plain) != strahl._scene_hash(from_file)
+    # Saved, the scene names the glTF file again, and reads back to the same scene.
+    scene.save(tmp_path / "saved.yaml")
+    assert "file_materials: true" in (tmp_path / "saved.yaml").read_text()
+    assert strahl._scene_hash(strahl.load(tmp_path / "saved.yaml")) == strahl._scene_hash(scene)
 
 
 def test_mesh_texcoords_equal_the_same_obj(tmp_path):

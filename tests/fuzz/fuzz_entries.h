@@ -128,12 +128,13 @@ inline Outcome ply_input(const std::uint8_t* data, std::size_t size) {
   return mesh_outcome(&parse_ply, "fuzz.ply", data, size);
 }
 // A .gltf's text or a .glb's bytes, read with its materials (their pictures decoded) and drawn in
-// them; buffer and image files are looked for in a directory that does not exist.
+// them; buffer and image files are looked for in a directory that does not exist. At most 2^20
+// triangles (bounded memory and time: a few bytes of nodes can draw a mesh many times).
 inline Outcome gltf_input(const std::uint8_t* data, std::size_t size) {
   Scene scene;
   try {
     MeshData mesh = parse_gltf(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.gltf",
-                               "/nonexistent-strahl-fuzz-dir", true);
+                               "/nonexistent-strahl-fuzz-dir", true, std::uint64_t(1) << 20);
     use_file_materials(scene, scene.add(Mesh(std::move(mesh), Material{}, Transform{})));
   } catch (const Error&) {
     return Outcome::Refused;

@@ -96,8 +96,10 @@ std::string item(const char* array, std::size_t i) { return std::string(array) +
 
 class GltfReader {
  public:
-  GltfReader(std::string_view bytes, const std::string& name, std::filesystem::path dir, bool materials)
-      : name_(name), dir_(std::move(dir)), file_size_(bytes.size()), read_materials_(materials) {
+  GltfReader(std::string_view bytes, const std::string& name, std::filesystem::path dir, bool materials,
+             std::uint64_t max_triangles)
+      : name_(name), dir_(std::move(dir)), file_size_(bytes.size()), max_triangles_(std::min(max_triangles, kMaxElements)),
+        read_materials_(materials) {
     container_ = gltf::split_container(bytes, name);
     parse_json();
   }
@@ -110,8 +112,9 @@ class GltfReader {
       for (const Primitive& p : primitives(d.mesh)) {
         vertices += p.position.count;
         faces += p.triangles;
-        if (vertices > kMaxElements || faces > kMaxElements)
-          fail("", "the scene holds more than " + std::to_string(kMaxElements) + " vertices or triangles");
+        if (vertices > kMaxElements || faces > max_triangles_)
+          fail("", "the scene holds more than " + std::to_string(faces > max_triangles_ ? max_triangles_ : kMaxElements) +
+                       (faces > max_triangles_ ? " triangles" : " vertices") + " (a mesh counts once for each node that draws it)");
       }
     if (faces == 0) fail("", "the scene holds no triangles");
     MeshData mesh;
@@ -691,6 +694,7 @@ class GltfReader {
   std::string name_;
   std::filesystem::path dir_;
   std::uint64_t file_size_;
+  std::uint64_t max_triangles_;
   gltf::Container container_;
   json root_;
   std::deque<LargeArray<char>> owned_;                    // decoded data: URIs and buffer files
@@ -709,8 +713,9 @@ MeshData load_gltf(const std::filesystem::path& path, bool materials) {
   return parse_gltf(std::string_view(bytes.data(), bytes.size()), path.string(), path.parent_path(), materials);
 }
 
-MeshData parse_gltf(std::string_view bytes, const std::string& name, const std::filesystem::path& dir, bool materials) {
-  return GltfReader(bytes, name, dir, materials).read();
+MeshData parse_gltf(std::string_view bytes, const std::string& name, const std::filesystem::path& dir, bool materials,
+                    std::uint64_t max_triangles) {
+  return GltfReader(bytes, name, dir, materials, max_triangles).read();
 }
 
 }  // namespace strahl

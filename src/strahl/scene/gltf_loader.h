@@ -6,6 +6,7 @@
 // morph targets and animations are not read. What is read and what is refused is listed in
 // docs/scene-format.md (`mesh`).
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -21,8 +22,11 @@ namespace strahl {
 MeshData load_gltf(const std::filesystem::path& path, bool materials = false);
 
 // The same from the bytes of a .gltf or .glb file already in memory (tests, fuzzing); `name`
-// stands for the file in messages, and buffer files are looked up in `dir`.
+// stands for the file in messages, and buffer files are looked for in `dir`. A scene of more than
+// `max_triangles` triangles (a mesh drawn by many nodes is counted for each) is an error, before
+// anything is allocated for them; the fuzz target lowers it.
+inline constexpr std::uint64_t kMaxGltfTriangles = 0x7fffffff;  // (MeshData's 32-bit indices)
 MeshData parse_gltf(std::string_view bytes, const std::string& name, const std::filesystem::path& dir,
-                    bool materials = false);
+                    bool materials = false, std::uint64_t max_triangles = kMaxGltfTriangles);
 
 }  // namespace strahl
