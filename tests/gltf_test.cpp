@@ -17,12 +17,15 @@
 #include "strahl/scene/scene_file.h"
 #include "strahl/scene/scene_writer.h"
 #include "test_helpers.h"
+#include "test_picture.h"
 
 namespace strahl {
 namespace {
 
 using nlohmann::json;
 using test::error_of;
+using test::kPpm;
+using test::srgb_code;
 
 std::string base64(const std::string& bytes) {
   static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -290,9 +293,6 @@ TEST(Gltf, TheExampleCubeIsItsObjTwin) {
             scene_hash(compile(parse_scene(scene("cube-uv.glb"), "a.yaml", dir))));
 }
 
-// A 2 x 1 binary PPM (stb_image reads it as it reads a PNG): (64, 128, 255) and (255, 0, 32).
-const std::string kPpm = std::string("P6\n2 1\n255\n") + std::string("\x40\x80\xff\xff\x00\x20", 6);
-
 // Two triangles side by side with their materials (a colour; a picture in a bufferView tinted by
 // its factor), and a third without one; the second has texture coordinates.
 Gltf with_materials(const std::vector<Real>& tint = {1, 0.5, 1, 1}) {
@@ -317,11 +317,6 @@ Gltf with_materials(const std::vector<Real>& tint = {1, 0.5, 1, 1}) {
   return g;
 }
 
-Real srgb(int code) {
-  const Real c = Real(code) / 255;
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
 TEST(Gltf, MaterialsAreReadWhenAskedFor) {
   const Gltf g = with_materials();
   const MeshData plain = parse(g.text());
@@ -341,9 +336,9 @@ TEST(Gltf, MaterialsAreReadWhenAskedFor) {
   ASSERT_NE(p.image, nullptr);
   ASSERT_EQ(p.image->width(), 2);
   EXPECT_FALSE(p.bilinear);
-  EXPECT_FLOAT_EQ(p.image->at(0, 0).r, float(srgb(64)));
-  EXPECT_FLOAT_EQ(p.image->at(0, 0).g, float(float(srgb(128)) * 0.5));
-  EXPECT_FLOAT_EQ(p.image->at(1, 0).b, float(srgb(32)));
+  EXPECT_FLOAT_EQ(p.image->at(0, 0).r, float(srgb_code(64)));
+  EXPECT_FLOAT_EQ(p.image->at(0, 0).g, float(float(srgb_code(128)) * 0.5));
+  EXPECT_FLOAT_EQ(p.image->at(1, 0).b, float(srgb_code(32)));
   // Errors name the member.
   Gltf bad = with_materials({1, 2, 1, 1});
   EXPECT_NE(error_of([&] { parse_gltf(bad.text(), "t.gltf", "/", true); })
@@ -387,9 +382,9 @@ TEST(Gltf, FileMaterialsRenderAsTheSameMeshesWithThoseMaterials) {
   const Image plain = image_of(head + "objects:\n  - {type: mesh, file: model.gltf, material: {" + look +
                                ", color: [0.2, 0.9, 0.3]}}\n");
   EXPECT_GT(test::max_abs_diff(plain, gltf), 0.1f);
-  // Only glTF files give materials.
-  EXPECT_NE(test::compile_error("objects: [{type: mesh, file: x.obj, file_materials: true}]\n")
-                .find("bad.yaml:1:53: file_materials: only glTF files (.gltf, .glb) give materials"),
+  // Only glTF and OBJ files give materials.
+  EXPECT_NE(test::compile_error("objects: [{type: mesh, file: x.ply, file_materials: true}]\n")
+                .find("bad.yaml:1:53: file_materials: only glTF (.gltf, .glb) and OBJ files give materials"),
             std::string::npos);
   // The scene writer names the glTF file again (by its absolute path), with file_materials.
   const Scene scene = parse_scene(head + "objects:\n  - {type: mesh, file: model.gltf, file_materials: true}\n", "s.yaml", dir.path());

@@ -233,8 +233,8 @@ void bind_shapes(py::module_& m) {
              bool file_materials) {
             Material mat = object_material(color, material);
             Transform t = make_transform(scale, rotate, translate, "mesh");
-            if (file_materials && !is_gltf_file(path))
-              throw Error("file_materials: only glTF files (.gltf, .glb) give materials");
+            if (file_materials && !gives_materials(path))
+              throw Error("file_materials: only glTF (.gltf, .glb) and OBJ files give materials");
             Mesh mesh(interruptible<MeshData>([&] { return load_mesh(path, file_materials); }), mat, t);
             if (file_materials) mesh.file_materials_source = std::filesystem::absolute(path);
             return placed(mesh, motion);

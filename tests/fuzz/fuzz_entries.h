@@ -20,6 +20,7 @@
 #include "strahl/scene/expression_compiler.h"
 #include "strahl/scene/file_materials.h"
 #include "strahl/scene/gltf_loader.h"
+#include "strahl/scene/mtl_loader.h"
 #include "strahl/scene/obj_loader.h"
 #include "strahl/scene/ply_loader.h"
 #include "strahl/scene/pov/pov_scene.h"
@@ -121,8 +122,20 @@ inline Outcome mesh_outcome(MeshData (*parse)(std::string_view, const std::strin
   return compile_scene(scene);
 }
 
+// An OBJ file (also read with its materials, whose mtllib files are not found, and read as an
+// MTL file: both must refuse or accept cleanly).
 inline Outcome obj_input(const std::uint8_t* data, std::size_t size) {
-  return mesh_outcome(&parse_obj, "fuzz.obj", data, size);
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  try {
+    (void)parse_obj(text, "fuzz.obj", "/nonexistent-strahl-fuzz-dir");
+  } catch (const Error&) {
+  }
+  try {
+    (void)parse_mtl(text, "fuzz.mtl", "/nonexistent-strahl-fuzz-dir");
+  } catch (const Error&) {
+  }
+  MeshData (*const plain)(std::string_view, const std::string&) = &parse_obj;
+  return mesh_outcome(plain, "fuzz.obj", data, size);
 }
 inline Outcome ply_input(const std::uint8_t* data, std::size_t size) {
   return mesh_outcome(&parse_ply, "fuzz.ply", data, size);

@@ -27,6 +27,17 @@ void use_file_materials(Mesh& mesh, const std::function<std::uint32_t(ImageTextu
   }
 }
 
+std::shared_ptr<const Image> tinted(std::shared_ptr<const Image> picture, const Vec3& color) {
+  if (color == Vec3(1, 1, 1)) return picture;
+  auto out = std::make_shared<Image>(*picture);
+  for (int y = 0; y < out->height(); ++y)
+    for (int x = 0; x < out->width(); ++x) {
+      Rgb& p = out->at(x, y);
+      p = Rgb{float(p.r * color.x), float(p.g * color.y), float(p.b * color.z)};
+    }
+  return out;
+}
+
 std::uint32_t add_object_materials(const SceneObject& object, RenderScene& out) {
   validate::material(object.material, out.textures.size(), object.loc);
   const auto index = static_cast<std::uint32_t>(out.materials.size());

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "strahl/math/transform.h"
+#include "strahl/scene/file_materials.h"
 #include "strahl/scene/gltf_data.h"
 #include "strahl/scene/mesh_file.h"
 #include "strahl/scene/scene.h"
@@ -249,6 +250,19 @@ class GltfReader {
 
   // ---- buffers, views, accessors ----
 
+  // The bytes a buffer's or image's `uri` names: a data: URI's, or a file's beside the glTF file.
+  LargeArray<char> uri_bytes(const json& u, const std::string& where) const {
+    if (!u.is_string()) fail(where, "must be a string");
+    const std::string& uri = u.get_ref<const std::string&>();
+    const std::string scheme = gltf::uri_scheme(uri);
+    if (!scheme.empty() && scheme != "data") fail(where, "'" + scheme + ":' URIs are not read (only data: URIs and file names)");
+    try {
+      return scheme == "data" ? gltf::decode_data_uri(uri) : read_mesh_file(dir_ / gltf::decode_percent(uri));
+    } catch (const Error& e) {
+      fail(where, e.what());
+    }
+  }
+
   std::string_view buffer(std::size_t i) {
     if (buffers_[i]) return *buffers_[i];
     const std::string where = item("buffers", i);
@@ -256,16 +270,7 @@ class GltfReader {
     const std::uint64_t length = integer(required(b, "byteLength", where), where + ".byteLength");
     std::string_view data;
     if (const json* u = member(b, "uri")) {
-      if (!u->is_string()) fail(where + ".uri", "must be a string");
-      const std::string& uri = u->get_ref<const std::string&>();
-      const std::string scheme = gltf::uri_scheme(uri);
-      if (!scheme.empty() && scheme != "data")
-        fail(where + ".uri", "'" + scheme + ":' URIs are not read (only data: URIs and file names)");
-      try {
-        owned_.push_back(scheme == "data" ? gltf::decode_data_uri(uri) : read_mesh_file(dir_ / gltf::decode_percent(uri)));
-      } catch (const Error& e) {
-        fail(where + ".uri", e.what());
-      }
+      owned_.push_back(uri_bytes(*u, where + ".uri"));
       data = std::string_view(owned_.back().data(), owned_.back().size());
     } else if (container_.binary && i == 0 && container_.bin.data() != nullptr) {
       data = container_.bin;
@@ -645,18 +650,7 @@ class GltfReader {
       const json& sampler = object(array("samplers")[si], sw);
       out.bilinear = integer_or(sampler, "magFilter", sw, 9729) != 9728;  // 9728 NEAREST, 9729 LINEAR
     }
-    std::shared_ptr<const Image> picture = image(k);
-    if (out.color == Vec3(1, 1, 1)) {
-      out.image = std::move(picture);
-      return;
-    }
-    auto tinted = std::make_shared<Image>(*picture);
-    for (int y = 0; y < tinted->height(); ++y)
-      for (int x = 0; x < tinted->width(); ++x) {
-        Rgb& p = tinted->at(x, y);
-        p = Rgb{float(p.r * out.color.x), float(p.g * out.color.y), float(p.b * out.color.z)};
-      }
-    out.image = std::move(tinted);
+    out.image = tinted(image(k), out.color);
   }
 
   // images[k]: a PNG or JPEG in a file, a data: URI or a bufferView, decoded from sRGB.
@@ -667,16 +661,7 @@ class GltfReader {
     std::string_view bytes;
     LargeArray<char> held;
     if (const json* u = member(im, "uri")) {
-      if (!u->is_string()) fail(where + ".uri", "must be a string");
-      const std::string& uri = u->get_ref<const std::string&>();
-      const std::string scheme = gltf::uri_scheme(uri);
-      if (!scheme.empty() && scheme != "data")
-        fail(where + ".uri", "'" + scheme + ":' URIs are not read (only data: URIs and file names)");
-      try {
-        held = scheme == "data" ? gltf::decode_data_uri(uri) : read_mesh_file(dir_ / gltf::decode_percent(uri));
-      } catch (const Error& e) {
-        fail(where + ".uri", e.what());
-      }
+      held = uri_bytes(*u, where + ".uri");
       bytes = std::string_view(held.data(), held.size());
     } else if (const json* v = member(im, "bufferView")) {
       bytes = buffer_view(index(*v, where + ".bufferView", "bufferViews")).first;

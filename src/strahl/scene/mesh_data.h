@@ -21,7 +21,8 @@ struct Texcoord {
   friend bool operator==(const Texcoord&, const Texcoord&) = default;
 };
 
-// A material a mesh file gives some of its faces (a glTF material's base colour), read only when
+// A material a mesh file gives some of its faces (a glTF material's base colour, an OBJ file's
+// usemtl material's Kd and map_Kd), read only when
 // asked for (load_mesh's `materials`); a scene's mesh with `file_materials` uses it
 // (scene/file_materials.h).
 struct FileMaterial {

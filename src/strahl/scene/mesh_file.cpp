@@ -49,9 +49,11 @@ bool is_gltf_file(const std::filesystem::path& path) {
   return ext == ".gltf" || ext == ".glb";
 }
 
+bool gives_materials(const std::filesystem::path& path) { return is_gltf_file(path) || lower_extension(path) == ".obj"; }
+
 MeshData load_mesh(const std::filesystem::path& path, bool materials) {
   const std::string ext = lower_extension(path);
-  if (ext == ".obj") return load_obj(path);
+  if (ext == ".obj") return load_obj(path, materials);
   if (ext == ".ply") return load_ply(path);
   if (is_gltf_file(path)) return load_gltf(path, materials);
   throw Error(FileLoc{path.string()}, "unknown mesh format '" + path.extension().string() + "' (use .obj, .ply, .gltf or .glb)");

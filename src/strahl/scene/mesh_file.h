@@ -12,12 +12,14 @@ namespace strahl {
 
 // Throws strahl::Error naming the file (and line/column where the reader knows them), also for
 // an extension that is none of these.
-// With `materials`, a glTF file's faces also get its materials (MeshData::materials); OBJ and PLY
+// With `materials`, a glTF or OBJ file's faces also get its materials (MeshData::materials); PLY
 // files give none.
 MeshData load_mesh(const std::filesystem::path& path, bool materials = false);
 
-// Whether the file's extension is .gltf or .glb (case-insensitive).
+// Whether the file's extension is .gltf or .glb (case-insensitive); whether it is a format that
+// gives its faces materials (glTF, OBJ with mtllib).
 bool is_gltf_file(const std::filesystem::path& path);
+bool gives_materials(const std::filesystem::path& path);
 
 // The whole file in memory, in one read (a LargeArray: 2 MiB pages from 1 MiB on, not zeroed
 // first); its size is what was actually read (the file may have shrunk since its size was asked).

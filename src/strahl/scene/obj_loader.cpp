@@ -3,10 +3,16 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
 #include <system_error>
 
+#include "strahl/scene/file_materials.h"
 #include "strahl/scene/mesh_file.h"
+#include "strahl/scene/mtl_loader.h"
 #include "strahl/scene/polygon.h"
+#include "strahl/scene/scene.h"
 #include "strahl/util/cancel.h"
 #include "strahl/util/error.h"
 #include "strahl/util/large_array.h"
@@ -22,7 +28,9 @@ namespace {
 // split by polygon.h once all vertices are read (a face may refer to vertices defined after it).
 class ObjReader {
  public:
-  ObjReader(const std::string& name, MeshData& mesh) : name_(name), mesh_(mesh) {}
+  // With `dir`, the faces' materials too (mtllib files looked for in dir; MeshData::materials).
+  ObjReader(const std::string& name, MeshData& mesh, const std::filesystem::path* dir)
+      : name_(name), mesh_(mesh), dir_(dir) {}
 
   void read(std::string_view text) {
     reserve(text);
@@ -43,6 +51,7 @@ class ObjReader {
                                    ", but the file has " + std::to_string(counts_[k]));
     }
     split_polygons();
+    if (dir_) resolve_materials();
   }
 
  private:
@@ -139,12 +148,63 @@ class ObjReader {
           f.t[k] = corners_[k].t;
         }
         mesh_.faces.push_back(f);
+        if (dir_) mesh_.face_materials.push_back(material_);
       } else {
-        polygons_.push_back({polygon_corners_.size(), corners_.size(), mesh_.faces.size(), line});
+        polygons_.push_back({polygon_corners_.size(), corners_.size(), mesh_.faces.size(), line, material_});
         polygon_corners_.insert(polygon_corners_.end(), corners_.begin(), corners_.end());
       }
+    } else if (key == "mtllib" && dir_) {
+      if (tokens.size() < 2) fail(line, tokens[0].column + 6, "mtllib needs a file name");
+      for (std::size_t t = 1; t < tokens.size(); ++t) {
+        std::vector<MtlMaterial> library;
+        try {
+          library = load_mtl(*dir_ / std::string(tokens[t].text));
+        } catch (const Error& e) {
+          fail(line, tokens[t].column, std::string("mtllib: ") + e.what());
+        }
+        library_.insert(library_.end(), library.begin(), library.end());
+      }
+      ++libraries_;
+    } else if (key == "usemtl" && dir_) {
+      if (tokens.size() != 2) fail(line, tokens[0].column, "usemtl needs one material name");
+      const std::string n(tokens[1].text);
+      const auto [it, fresh] = slots_.try_emplace(n, std::int32_t(slots_.size()));
+      if (fresh) slot_uses_.push_back({n, line, tokens[1].column});
+      material_ = it->second;
     }
-    // Everything else (o, g, s, usemtl, mtllib, l, p, ...) does not change the triangles.
+    // Everything else (o, g, s, l, p, ...; without `dir`, usemtl and mtllib) does not change the triangles.
+  }
+
+  // The materials usemtl named, in order of first use, from the mtllib files (map_Kd pictures
+  // read once each, times Kd).
+  void resolve_materials() {
+    std::map<std::filesystem::path, std::shared_ptr<const Image>> pictures;
+    for (const SlotUse& use : slot_uses_) {
+      const MtlMaterial* found = nullptr;
+      for (const MtlMaterial& m : library_)
+        if (m.name == use.name) {
+          found = &m;
+          break;
+        }
+      if (!found)
+        fail(use.line, use.column, "usemtl '" + use.name + "': no such material in " +
+                                       (libraries_ ? "the mtllib files" : "the file (it names no mtllib)"));
+      FileMaterial f;
+      f.name = found->name;
+      f.color = found->kd;
+      if (!found->map_kd.empty()) {
+        auto [it, fresh] = pictures.try_emplace(found->map_kd, nullptr);
+        if (fresh) {
+          try {
+            it->second = read_texture_image(found->map_kd);
+          } catch (const Error& e) {
+            throw Error(FileLoc{found->file, found->map_kd_line}, std::string("map_Kd: ") + e.what());
+          }
+        }
+        f.image = tinted(it->second, found->kd);
+      }
+      mesh_.materials.push_back(std::move(f));
+    }
   }
 
   // Checks the numbers of a v, vt or vn line and returns the first three (0 where there are fewer).
@@ -182,6 +242,11 @@ class ObjReader {
     std::size_t first, count;  // in polygon_corners_
     std::size_t at;            // the number of faces before it
     int line;
+    std::int32_t material;     // its usemtl slot (−1: none)
+  };
+  struct SlotUse {
+    std::string name;
+    int line, column;  // where usemtl first names it
   };
 
   // One face corner: v, v/vt, v//vn or v/vt/vn. Returns which indices it gives (1 v, 2 vt, 4 vn).
@@ -236,6 +301,8 @@ class ObjReader {
     if (polygons_.empty()) return;
     LargeArray<MeshData::Face> faces;
     faces.reserve(mesh_.faces.size() + polygon_corners_.size() - 2 * polygons_.size());
+    LargeArray<std::int32_t> materials;  // (parallel to faces, with materials read)
+    if (dir_) materials.reserve(faces.capacity());
     std::size_t copied = 0;
     std::vector<Vec3> points;
     std::vector<PolygonTriangle> triangles;
@@ -251,6 +318,9 @@ class ObjReader {
                                " corners with too many reflex (inward) corners to split into triangles in "
                                "reasonable time; split it into smaller polygons");
       faces.insert(faces.end(), mesh_.faces.begin() + std::ptrdiff_t(copied), mesh_.faces.begin() + std::ptrdiff_t(poly.at));
+      if (dir_)
+        materials.insert(materials.end(), mesh_.face_materials.begin() + std::ptrdiff_t(copied),
+                         mesh_.face_materials.begin() + std::ptrdiff_t(poly.at));
       copied = poly.at;
       for (const PolygonTriangle& t : triangles) {
         MeshData::Face f;
@@ -260,10 +330,15 @@ class ObjReader {
           f.t[k] = c[t[k]].t;
         }
         faces.push_back(f);
+        if (dir_) materials.push_back(poly.material);
       }
     }
     faces.insert(faces.end(), mesh_.faces.begin() + std::ptrdiff_t(copied), mesh_.faces.end());
     mesh_.faces = std::move(faces);
+    if (dir_) {
+      materials.insert(materials.end(), mesh_.face_materials.begin() + std::ptrdiff_t(copied), mesh_.face_materials.end());
+      mesh_.face_materials = std::move(materials);
+    }
   }
 
   const std::string& name_;
@@ -274,25 +349,39 @@ class ObjReader {
   std::vector<Corner> corners_;  // of the current face
   std::vector<Polygon> polygons_;
   std::vector<Corner> polygon_corners_;
+  const std::filesystem::path* dir_;   // nullptr: materials are not read
+  std::vector<MtlMaterial> library_;   // every mtllib file's materials, in order
+  int libraries_ = 0;                  // mtllib lines read
+  std::map<std::string, std::int32_t> slots_;  // usemtl names → their index in MeshData::materials
+  std::vector<SlotUse> slot_uses_;
+  std::int32_t material_ = -1;         // the current usemtl's slot
 };
 
 }  // namespace
 
 MeshData parse_obj(std::string_view text, const std::string& name) {
   MeshData mesh;
-  ObjReader(name, mesh).read(text);
+  ObjReader(name, mesh, nullptr).read(text);
   if (mesh.faces.empty()) throw Error(FileLoc{name}, "OBJ file contains no faces");
   return mesh;
 }
 
-MeshData load_obj(const std::filesystem::path& path) {
+MeshData parse_obj(std::string_view text, const std::string& name, const std::filesystem::path& dir) {
+  MeshData mesh;
+  ObjReader(name, mesh, &dir).read(text);
+  if (mesh.faces.empty()) throw Error(FileLoc{name}, "OBJ file contains no faces");
+  return mesh;
+}
+
+MeshData load_obj(const std::filesystem::path& path, bool materials) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(FileLoc{path.string()}, "cannot open mesh file (no such file)");
   if (std::filesystem::is_directory(path, ec)) throw Error(FileLoc{path.string()}, "is a directory, not a mesh file");
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error(FileLoc{path.string()}, "is not a regular file (a FIFO, device or socket), not a mesh file");
   const LargeArray<char> text = read_mesh_file(path);
-  return parse_obj(std::string_view(text.data(), text.size()), path.string());
+  const std::string_view view(text.data(), text.size());
+  return materials ? parse_obj(view, path.string(), path.parent_path()) : parse_obj(view, path.string());
 }
 
 }  // namespace strahl

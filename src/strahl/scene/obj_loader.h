@@ -12,11 +12,13 @@
 namespace strahl {
 
 // Throws strahl::Error naming the file, line and column. Refuses what is not a regular file
-// (directories, FIFOs, devices).
-MeshData load_obj(const std::filesystem::path& path);
+// (directories, FIFOs, devices). With `materials`, each face's `usemtl` material too, from the
+// `mtllib` files (mtl_loader.h): its Kd and map_Kd (MeshData::materials, face_materials).
+MeshData load_obj(const std::filesystem::path& path, bool materials = false);
 
 // The same from the bytes of an OBJ file already in memory (tests, fuzzing); `name` stands for
-// the file in messages.
+// the file in messages. The second reads the materials too, the mtllib files from `dir`.
 MeshData parse_obj(std::string_view text, const std::string& name);
+MeshData parse_obj(std::string_view text, const std::string& name, const std::filesystem::path& dir);
 
 }  // namespace strahl

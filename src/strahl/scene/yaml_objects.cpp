@@ -95,7 +95,7 @@ void YamlReader::object(const YAML::Node& n, Scene& scene) const {
     const Material m = object_material(n);
     const YAML::Node fm = n["file_materials"];
     const bool by_file = fm && boolean(fm, "mesh file_materials");
-    if (by_file && !is_gltf_file(file)) fail(fm, "file_materials: only glTF files (.gltf, .glb) give materials");
+    if (by_file && !gives_materials(file)) fail(fm, "file_materials: only glTF (.gltf, .glb) and OBJ files give materials");
     MeshData data;
     try {
       data = meshes_ ? meshes_(file) : load_mesh(base_dir_ / file, by_file);
