@@ -9,6 +9,9 @@
   cube-uv.obj      a cube from -1 to 1, each face's texture coordinates the whole unit square
                    (upright on the sides, the picture's top towards -z on the top and bottom)
   cube-uv.glb      the same cube as binary glTF 2.0 (for tests/gltf_test.cpp: the same mesh)
+  cornell-box.obj  the Cornell box (Cornell University's measured geometry, in millimetres): five
+                   walls and two blocks as quads, with cornell-box.mtl — usemtl white, red and
+                   green (their Kd) — for a mesh's file_materials
   carousel.glb     binary glTF with a node hierarchy: a turned stand holding the cube and a ring
                    of six tori (torus-uv, one mesh drawn by six nodes), each placed by its node's
                    translation, rotation (quaternion) and scale; two materials: the cube's shows
@@ -105,6 +108,69 @@ def write_glb(path, meshes, nodes, roots, materials=None, images=None):
         out.write(struct.pack("<4sII", b"glTF", 2, 12 + 8 + len(text) + 8 + len(blob)))
         out.write(struct.pack("<I4s", len(text), b"JSON") + text)
         out.write(struct.pack("<I4s", len(blob), b"BIN\0") + bytes(blob))
+
+
+def cornell_box():
+    """(name, material, corners) of each quad, wound counter-clockwise seen from inside the room
+    (walls) or from outside (blocks)."""
+    quads = [
+        ("floor", "white", [(552.8, 0, 0), (0, 0, 0), (0, 0, 559.2), (549.6, 0, 559.2)]),
+        ("ceiling", "white", [(556, 548.8, 0), (556, 548.8, 559.2), (0, 548.8, 559.2), (0, 548.8, 0)]),
+        ("back wall", "white", [(549.6, 0, 559.2), (0, 0, 559.2), (0, 548.8, 559.2), (556, 548.8, 559.2)]),
+        ("right wall", "green", [(0, 0, 559.2), (0, 0, 0), (0, 548.8, 0), (0, 548.8, 559.2)]),
+        ("left wall", "red", [(552.8, 0, 0), (549.6, 0, 559.2), (556, 548.8, 559.2), (556, 548.8, 0)]),
+    ]
+    short = [[(130, 165, 65), (82, 165, 225), (240, 165, 272), (290, 165, 114)],
+             [(290, 0, 114), (290, 165, 114), (240, 165, 272), (240, 0, 272)],
+             [(130, 0, 65), (130, 165, 65), (290, 165, 114), (290, 0, 114)],
+             [(82, 0, 225), (82, 165, 225), (130, 165, 65), (130, 0, 65)],
+             [(240, 0, 272), (240, 165, 272), (82, 165, 225), (82, 0, 225)]]
+    tall = [[(423, 330, 247), (265, 330, 296), (314, 330, 456), (472, 330, 406)],
+            [(423, 0, 247), (423, 330, 247), (472, 330, 406), (472, 0, 406)],
+            [(472, 0, 406), (472, 330, 406), (314, 330, 456), (314, 0, 456)],
+            [(314, 0, 456), (314, 330, 456), (265, 330, 296), (265, 0, 296)],
+            [(265, 0, 296), (265, 330, 296), (423, 330, 247), (423, 0, 247)]]
+    centre = (278, 274.4, 279.6)
+    out = []
+    for name, material, q in quads:  # walls face the room's centre
+        out.append((name, material, wind(q, lambda c: [centre[k] - c[k] for k in range(3)])))
+    for blocks, name in ((short, "short block"), (tall, "tall block")):
+        mid = [sum(c[k] for q in blocks for c in q) / (4 * len(blocks)) for k in range(3)]
+        for q in blocks:  # block faces face away from the block's centre
+            out.append((name, "white", wind(q, lambda c, m=mid: [c[k] - m[k] for k in range(3)])))
+    return out
+
+
+def wind(quad, towards):
+    """The quad, its corners reversed if its normal (right-hand rule) points away from towards(centre)."""
+    a, b, c = quad[0], quad[1], quad[2]
+    e1 = [b[k] - a[k] for k in range(3)]
+    e2 = [c[k] - a[k] for k in range(3)]
+    n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+    mid = [sum(p[k] for p in quad) / 4 for k in range(3)]
+    return quad if sum(n[k] * d for k, d in enumerate(towards(mid))) > 0 else quad[::-1]
+
+
+def write_cornell_box(stem):
+    colours = {"white": (0.725, 0.71, 0.68), "red": (0.63, 0.065, 0.05), "green": (0.14, 0.45, 0.091)}
+    with open(stem + ".mtl", "w") as out:
+        out.write("# the Cornell box's three diffuse colours (written by tools/make_meshes.py)\n")
+        for name, kd in colours.items():
+            out.write("newmtl %s\nKd %g %g %g\n" % ((name,) + kd))
+    with open(stem + ".obj", "w") as out:
+        out.write("# the Cornell box (Cornell University Program of Computer Graphics' measured data, in mm):\n"
+                  "# five walls and two blocks; its materials in cornell-box.mtl (written by tools/make_meshes.py)\n")
+        out.write("mtllib cornell-box.mtl\n")
+        quads = cornell_box()
+        for _, _, q in quads:
+            for p in q:
+                out.write("v %g %g %g\n" % p)
+        current = None
+        for i, (name, material, _) in enumerate(quads):
+            if material != current:
+                out.write("usemtl %s\n" % material)
+                current = material
+            out.write("f %d %d %d %d\n" % tuple(4 * i + k + 1 for k in range(4)))
 
 
 def quaternion(axis, degrees):
@@ -223,6 +289,7 @@ if __name__ == "__main__":
               "(written by tools/make_meshes.py)"], v, f, texcoords=t)
     write_glb("scenes/meshes/cube-uv.glb", [(v, f, None, t)], [{"mesh": 0}], [0])
     tv, tn, tt, tf = torus_uv()
+    write_cornell_box("scenes/meshes/cornell-box")
     # The cube's material shows the picture (embedded), the tori's is a colour.
     write_glb("scenes/meshes/carousel.glb", [(v, f, None, t, 0), (tv, tf, tn, tt, 1)], carousel(), [0],
               materials=[{"name": "picture", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}},

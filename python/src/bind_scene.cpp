@@ -35,7 +35,7 @@ Real ior_arg(const py::handle& value) {
   return value.cast<double>();
 }
 
-// A mesh read with its glTF file's materials: their pictures become this scene's textures.
+// A mesh read with its file's materials (glTF, OBJ): their pictures become this scene's textures.
 void use_file_materials_in(Scene& scene, SceneObject& object) {
   if (auto* mesh = dynamic_cast<Mesh*>(&object); mesh && !mesh->data.materials.empty()) use_file_materials(scene, *mesh);
 }

@@ -243,7 +243,7 @@ void bind_shapes(py::module_& m) {
           py::arg("scale") = 1.0, py::arg("rotate") = py::make_tuple(0, 0, 0),
           py::arg("translate") = py::make_tuple(0, 0, 0), py::arg("motion") = py::none(), py::arg("file_materials") = false,
           "Reads a mesh file (.obj, .ply, .gltf or .glb) with the scene files' reader and its errors; with "
-          "file_materials, a glTF file's faces are drawn in its materials' base colours and pictures (the rest "
+          "file_materials, a glTF or OBJ file's faces are drawn in its materials' colours and pictures (the rest "
           "from `material`) once the mesh is added to a scene.")
       .def_property_readonly("vertices", [](const Mesh& mesh) { return vec3_rows(mesh.data.positions); })
       .def_property_readonly("normals", [](const Mesh& mesh) { return vec3_rows(mesh.data.normals); })

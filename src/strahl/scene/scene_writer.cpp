@@ -159,7 +159,7 @@ std::string matrix_rows(const Transform& t, const std::string& what) {
 }
 void matrix(Writer& w, const Transform& t, const std::string& what) { w.line(4, "matrix: " + matrix_rows(t, what)); }
 
-// A mesh in its glTF file's materials names that file again (its data and materials are the
+// A mesh in its file's materials (glTF, OBJ) names that file again (its data and materials are the
 // file's); any other mesh names the OBJ file save_scene writes for it.
 void mesh(Writer& w, const Mesh& mesh, const std::string& file) {
   using W = Writer;
@@ -468,7 +468,7 @@ void save_scene(const Scene& scene, const std::filesystem::path& path) {
   const auto add_meshes = [&](const std::vector<std::unique_ptr<SceneObject>>& objects) {
     for (const auto& o : objects)
       if (const auto* m = dynamic_cast<const Mesh*>(o.get()))
-        objs.push_back(m->file_materials.empty() ? mesh_to_obj(m->data) : std::string());  // (one names its glTF file)
+        objs.push_back(m->file_materials.empty() ? mesh_to_obj(m->data) : std::string());  // (one names its own file)
   };
   for (const ObjectGroup& g : scene.groups) add_meshes(g.objects);  // in the order scene_to_yaml numbers them
   add_meshes(scene.objects());
