@@ -235,7 +235,8 @@ class GltfReader {
   }
 
   // Extensions the file says a reader must know: refused unless they leave the geometry alone
-  // (materials and textures, which strahl does not read from the file) or are read here.
+  // (material and texture extensions: the base colour is read as the core format defines it) or
+  // are read here.
   void check_extensions() const {
     const json& required_list = array("extensionsRequired");
     for (std::size_t i = 0; i < required_list.size(); ++i) {
