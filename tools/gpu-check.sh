@@ -173,6 +173,10 @@ run() {
   # own texture coordinates (uv).
   cp "$bundle/scenes/textures.yaml" "$bundle/scenes/uv-mesh.yaml" "$out/" && cp -r "$bundle/scenes/textures" "$out/"
   cases+=("textures|--sampler grid|rmse" "uv-mesh|--sampler grid|rmse")
+  # Meshes in their files' materials (per-face materials; a glTF model's embedded picture) under
+  # an area light (the Cornell box, OBJ + MTL).
+  cp "$bundle/scenes/gltf.yaml" "$bundle/scenes/cornell-box.yaml" "$out/"
+  cases+=("gltf|--sampler grid|rmse" "cornell-box|--spp 4|rmse")
   [[ " ${scenes[*]} " == *" bunny "* ]] && cases+=("bunny|--sampler grid --accel kdtree|exact" "bunny|--sampler grid --accel octree|exact")
   local c name opts mode i=0
   for c in "${cases[@]}"; do
