@@ -40,9 +40,9 @@ std::optional<Options> parse(int argc, char** argv, int& exit_code) {
   for (AccelKind k : accel_kinds()) names.emplace_back(accel_name(k));
   CLI::App app{"strahl-bench — ray throughput of strahl's acceleration structures (and Embree where built): build "
                "time, memory, Mrays/s for primary, incoherent and shadow rays at 1 and all threads, and a BVH scaling "
-               "table. Meshes (.obj, .ply) given as arguments are normalised to unit size resting on y = 0.",
+               "table. Meshes (.obj, .ply, .gltf, .glb) given as arguments are normalised to unit size resting on y = 0.",
                "strahl-bench"};
-  app.add_option("meshes", o.meshes, "Mesh files (.obj, .ply) to measure besides the built-in scenes");
+  app.add_option("meshes", o.meshes, "Mesh files (.obj, .ply, .gltf, .glb) to measure besides the built-in scenes");
   app.add_option("--threads", o.threads, "Threads for the \"all threads\" figures (default: all cores)")
       ->check(CLI::Range(1, 4096));
   app.add_option("--width", o.width, "Primary rays per row (default 1920; --quick: 160)")->check(CLI::Range(1, 16384));
