@@ -19,15 +19,7 @@ std::size_t entries(const fs::path& dir) {
   return std::size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
 
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 TEST(OutputFile, CommitRenamesAndAFailedCommitNamesTheReason) {
   test::TempDir dir;
