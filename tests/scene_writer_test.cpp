@@ -66,6 +66,8 @@ TEST(SceneWriter, EveryKindOfObjectLightAndCamera) {
   s.settings.background = Vec3(0.1, 0.2, 0.30000000000000004);
   s.settings.ambient_light = Vec3(0.9);
   s.settings.medium_ior = 1.333;
+  s.settings.ray_budget = 77;
+  s.settings.integrator = IntegratorKind::Path;
   s.settings.accel = AccelKind::KdTree;
   s.settings.sampling.sampler = SamplerKind::Sobol;
   s.settings.sampling.spp = 7;

@@ -177,6 +177,9 @@ run() {
   # an area light (the Cornell box, OBJ + MTL).
   cp "$bundle/scenes/gltf.yaml" "$bundle/scenes/cornell-box.yaml" "$out/"
   cases+=("gltf|--sampler grid|rmse" "cornell-box|--spp 4|rmse")
+  # Path tracing (integrator: path): one path per camera sample, diffuse bounces.
+  cp "$bundle/scenes/cornell-box-path.yaml" "$out/"
+  cases+=("cornell-box-path|--spp 16|rmse" "lecture-whitted|--integrator path --spp 4|rmse")
   [[ " ${scenes[*]} " == *" bunny "* ]] && cases+=("bunny|--sampler grid --accel kdtree|exact" "bunny|--sampler grid --accel octree|exact")
   local c name opts mode i=0
   for c in "${cases[@]}"; do

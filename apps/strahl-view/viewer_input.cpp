@@ -168,6 +168,12 @@ void Viewer::explain_under_cursor() {
   if (!scene_ || fx < 0 || fx >= 1 || fy < 0 || fy >= 1) return;
   SceneView view = scene_->view();
   view.settings.max_depth = settings_.max_depth;
+  if (view.settings.integrator != IntegratorKind::Whitted) {
+    note_ = "explain shows Whitted's ray tree; this scene renders with integrator: path";
+    note_time_ = Clock::now();
+    redraw_ = true;
+    return;
+  }
   try {
     view.camera = build_camera(settings_.camera, settings_.width, settings_.height);
   } catch (const Error&) {

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "strahl/accel/accel.h"
+#include "strahl/render/integrator_kind.h"
 #include "strahl/sampling/pixel_sampler.h"
 #include "strahl/util/number_syntax.h"
 #include "strahl/version.h"
@@ -118,6 +119,11 @@ ParseResult parse_options(int argc, char** argv, const char* program, const std:
   app.add_option("--height", o.height, "Image height in pixels (overrides the scene)")->transform(whole(1, 65536));
   app.add_option("--max-depth", o.max_depth, "Maximum recursion depth; camera rays are depth 1 (default 8)")
       ->transform(whole(1, 64));
+  app.add_option("--integrator", o.integrator,
+                 std::string("Integrator: ") + kIntegratorNames +
+                     " (whitted: the lecture's recursive ray tracing; path: path tracing, global illumination; "
+                     "default: the scene's, else whitted)")
+      ->check(CLI::IsMember({"whitted", "path"}));
   app.add_option("--supersample", o.supersample, "N×N regular samples per pixel, box filter (default 1)")
       ->transform(whole(1, 64));
   add_sampling_options(app, o);

@@ -19,7 +19,7 @@ struct Options {
   std::string output;  // empty: <scene name>.png in the current directory
   std::vector<std::pair<std::string, double>> declares;  // --declare NAME=VALUE (.pov scenes)
   std::optional<int> width, height, max_depth, supersample;
-  std::optional<std::string> accel;
+  std::optional<std::string> accel, integrator;
   // Sampling and output (issue 4).
   std::optional<int> spp, adaptive_min;
   std::optional<std::string> sampler, filter;

@@ -42,6 +42,7 @@ Scene configured_scene(const Options& o) {
   if (o.height) scene.settings.height = *o.height;
   if (o.max_depth) scene.settings.max_depth = *o.max_depth;
   if (o.supersample) scene.settings.supersample = *o.supersample;
+  if (o.integrator) scene.settings.integrator = *integrator_from_name(*o.integrator);
   if (o.accel) scene.settings.accel = *accel_from_name(*o.accel);
   apply_sampling_options(o, scene.settings.sampling);
   return scene;

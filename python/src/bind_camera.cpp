@@ -125,6 +125,12 @@ void bind_settings(py::module_& m) {
       .def_readwrite("ambient_light", &RenderSettings::ambient_light)
       .def_readwrite("medium_ior", &RenderSettings::medium_ior)
       .def_property(
+          "integrator", [](const RenderSettings& s) { return std::string(integrator_name(s.integrator)); },
+          [](RenderSettings& s, const std::string& n) {
+            s.integrator = kind_from(n, integrator_from_name, "integrator", kIntegratorNames);
+          },
+          "'whitted' (the lecture's recursive ray tracing) or 'path' (path tracing, global illumination)")
+      .def_property(
           "accel", [](const RenderSettings& s) { return std::string(accel_name(s.accel)); },
           [](RenderSettings& s, const std::string& n) { s.accel = kind_from(n, accel_from_name, "accel", accel_names()); })
       .def_property(

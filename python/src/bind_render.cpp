@@ -42,6 +42,7 @@ struct Overrides {
   std::optional<std::uint64_t> seed;
   std::optional<double> filter_radius, adaptive_threshold;
   double time_limit = 0;
+  std::optional<std::string> integrator;
 };
 
 template <class Kind>
@@ -58,6 +59,7 @@ void apply(const Overrides& o, RenderSettings& s) {
   if (o.max_depth) s.max_depth = *o.max_depth;
   if (o.supersample) s.supersample = *o.supersample;
   if (o.accel) s.accel = named(*o.accel, accel_from_name, "accel", accel_names());
+  if (o.integrator) s.integrator = named(*o.integrator, integrator_from_name, "integrator", kIntegratorNames);
   SamplingSettings& p = s.sampling;
   if (o.sampler) p.sampler = named(*o.sampler, sampler_from_name, "sampler", kSamplerNames);
   if (o.spp) {
@@ -215,9 +217,9 @@ void bind_render(py::module_& m) {
          std::optional<double> filter_radius, std::optional<int> adaptive_min, std::optional<double> adaptive_threshold,
          std::optional<int> max_depth, std::optional<int> supersample, std::optional<std::string> accel, int threads,
          int tile_size, double time_limit, const py::object& progress, const std::vector<std::string>& aovs,
-         const std::string& device) {
+         const std::string& device, std::optional<std::string> integrator) {
         Overrides o{width, height, spp, max_depth, supersample, adaptive_min, sampler, filter, accel, seed,
-                    filter_radius, adaptive_threshold, time_limit};
+                    filter_radius, adaptive_threshold, time_limit, integrator};
         return render(scene, o, threads, tile_size, progress, aovs, device);
       },
       py::arg("scene"), py::kw_only(), py::arg("width") = py::none(), py::arg("height") = py::none(),
@@ -226,7 +228,7 @@ void bind_render(py::module_& m) {
       py::arg("adaptive_threshold") = py::none(), py::arg("max_depth") = py::none(),
       py::arg("supersample") = py::none(), py::arg("accel") = py::none(), py::arg("threads") = 0,
       py::arg("tile_size") = 32, py::arg("time_limit") = 0.0, py::arg("progress") = py::none(),
-      py::arg("aovs") = std::vector<std::string>{}, py::arg("device") = "cpu",
+      py::arg("aovs") = std::vector<std::string>{}, py::arg("device") = "cpu", py::arg("integrator") = py::none(),
       "The compiled part of strahl.render (see its docstring).");
 
   m.def(

@@ -96,7 +96,8 @@ def _image(array):
 
 def render(scene, *, width=None, height=None, spp=None, sampler=None, seed=None, filter=None,
            filter_radius=None, adaptive_min=None, adaptive_threshold=None, max_depth=None, supersample=None,
-           accel=None, threads=0, tile_size=32, time_limit=0.0, progress=None, aovs=(), device="cpu"):
+           accel=None, threads=0, tile_size=32, time_limit=0.0, progress=None, aovs=(), device="cpu",
+           integrator=None):
     """Renders `scene` and returns a strahl.Image (a numpy float32 array, height × width × 3,
     linear RGB).
 
@@ -104,7 +105,8 @@ def render(scene, *, width=None, height=None, spp=None, sampler=None, seed=None,
     render only: width, height, spp, sampler ('grid', 'stratified', 'random', 'sobol',
     'adaptive'), seed, filter ('box', 'tent', 'gaussian', 'mitchell'), filter_radius,
     adaptive_min, adaptive_threshold, max_depth, supersample, accel ('bvh', 'naive', 'kdtree',
-    'octree', 'embree' where built); threads (0: all cores), tile_size, time_limit (seconds;
+    'octree', 'embree' where built), integrator ('whitted', 'path': path tracing, global
+    illumination); threads (0: all cores), tile_size, time_limit (seconds;
     the image so far when it runs out). progress(done, total) is called from the calling thread
     about every 50 ms while samples are being taken. device: 'cpu', 'cuda' (an NVIDIA GPU;
     strahl.Error when none is usable) or 'auto' (the GPU when one is usable, else the CPU with a
@@ -122,7 +124,7 @@ def render(scene, *, width=None, height=None, spp=None, sampler=None, seed=None,
         scene, width=width, height=height, spp=spp, sampler=sampler, seed=seed, filter=filter,
         filter_radius=filter_radius, adaptive_min=adaptive_min, adaptive_threshold=adaptive_threshold,
         max_depth=max_depth, supersample=supersample, accel=accel, threads=threads, tile_size=tile_size,
-        time_limit=time_limit, progress=progress, aovs=list(aovs), device=device)
+        time_limit=time_limit, progress=progress, aovs=list(aovs), device=device, integrator=integrator)
     if isinstance(result, tuple):
         image, planes = result
         return _image(image), {name: _image(plane) for name, plane in planes.items()}

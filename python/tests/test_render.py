@@ -54,6 +54,25 @@ def test_render_options_equal_cli_flags(cli, tmp_path, source_dir):
     assert np.isfinite(aovs["depth"]).any() and np.isinf(aovs["depth"]).any()
 
 
+def test_path_integrator_equals_cli_and_is_a_scene_setting(cli, tmp_path, source_dir):
+    scene_file = f"{source_dir}/scenes/lecture-whitted.yaml"
+    size = dict(width=48, height=36, spp=4)
+    cli(scene_file, "--integrator", "path", "--width", 48, "--height", 36, "--spp", 4, "-q", "-o", tmp_path / "cli.pfm")
+    expected = strahl.read(tmp_path / "cli.pfm")
+    scene = strahl.load(scene_file)
+    path = strahl.render(scene, integrator="path", **size)
+    assert_bits_equal(np.asarray(path), np.asarray(expected))
+    assert scene.settings.integrator == "whitted"  # the override is for one render
+    whitted = strahl.render(scene, **size)
+    assert not np.array_equal(np.asarray(whitted), np.asarray(path))
+    scene.settings.integrator = "path"
+    assert_bits_equal(np.asarray(strahl.render(scene, **size)), np.asarray(expected))
+    with pytest.raises(strahl.Error, match="unknown integrator 'radiosity'"):
+        scene.settings.integrator = "radiosity"
+    with pytest.raises(strahl.Error, match="unknown integrator"):
+        strahl.render(scene, integrator="photons", **size)
+
+
 def test_overrides_do_not_change_the_scene():
     scene = slide_scene()
     before = (scene.settings.width, scene.settings.height, scene.settings.spp, scene.settings.sampler)

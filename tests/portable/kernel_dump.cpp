@@ -135,8 +135,9 @@ void dump_queries(const char* name, const AccelView& a, const std::vector<Ray>& 
   dump_packets<16>(a, rays);
 }
 
-void dump_render(const std::string& path, int width, int height, AccelKind kind = AccelKind::Bvh) {
+void dump_render(const std::string& path, int width, int height, AccelKind kind = AccelKind::Bvh, int spp = 0) {
   Scene scene = load_scene(path);
+  if (spp > 0) scene.settings.sampling.spp = spp;
   scene.settings.width = width;
   scene.settings.height = height;
   scene.settings.accel = kind;
@@ -237,6 +238,8 @@ int main(int argc, char** argv) {
       dump_render(dir + "/scenes/" + scene, 40, 30);
     for (const AccelKind kind : {AccelKind::KdTree, AccelKind::Octree}) dump_render(dir + "/scenes/mesh.yaml", 40, 30, kind);
     dump_render(dir + "/scenes/instances.yaml", 40, 30);  // the two-level hierarchy the GPU walks too
+    // The path tracer (render/path_tracer.h), whose area light samples go one by one on the GPU.
+    dump_render(dir + "/scenes/cornell-box-path.yaml", 40, 30, AccelKind::Bvh, 16);
     dump_film();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

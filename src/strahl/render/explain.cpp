@@ -264,6 +264,9 @@ PixelExplanation explain_pixel(const RenderScene& scene, const SceneView& s, con
   if (x < 0 || x >= cam.nx || row < 0 || row >= cam.ny)
     throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") is outside the image of " +
                 std::to_string(cam.nx) + "×" + std::to_string(cam.ny) + " pixels");
+  if (s.settings.integrator != IntegratorKind::Whitted)
+    throw Error("explain shows Whitted's ray tree; the scene renders with integrator: " +
+                std::string(integrator_name(s.settings.integrator)));
   PixelExplanation out;
   // The sample as the renderer takes it (render/pixel.h), its ray tree told to the Explainer.
   std::string tree;

@@ -6,6 +6,8 @@
 // named); and each ray's colour as local + k_r·reflected + T·tint·refracted. The integrator that
 // renders the image walks the tree (trace()'s observer, render/whitted.h), so the explanation's
 // radiance is the renderer's for that sample, bit for bit (`strahl --explain`, docs/cli.md).
+// Whitted's integrator only: a scene that renders with integrator: path (render/path_tracer.h)
+// has no ray tree; explain_pixel() throws for it.
 
 #include <cstdint>
 #include <string>

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "strahl/camera/camera_sample.h"
+#include "strahl/render/path_tracer.h"
 #include "strahl/render/sample_guard.h"
 #include "strahl/render/whitted.h"
 #include "strahl/sampling/rng.h"
@@ -18,8 +19,12 @@ STRAHL_HOST_DEVICE inline Vec3 sample_radiance(const SceneView& s, const CameraS
                                                RayCounters& counters, Observer* observer = nullptr) {
   const Ray ray = s.camera.generate_ray(cs);
   ++counters.camera;
-  if constexpr (std::is_same_v<Observer, NoTraceObserver>) return guard_sample(trace(s, ray, counters, rng), counters);
-  else return guard_sample(trace_observed(s, ray, counters, rng, *observer), counters);
+  if constexpr (std::is_same_v<Observer, NoTraceObserver>) {
+    if (s.settings.integrator == IntegratorKind::Path) return guard_sample(trace_path(s, ray, counters, rng), counters);
+    return guard_sample(trace(s, ray, counters, rng), counters);
+  } else {
+    return guard_sample(trace_observed(s, ray, counters, rng, *observer), counters);
+  }
 }
 
 }  // namespace strahl

@@ -23,8 +23,11 @@
 
 namespace strahl {
 
-// Whether the packet front end handles the scene's lights (FirstHit::lights has room for each).
-STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) { return s.light_count <= kMaxPacketLights; }
+// Whether the packet front end handles the scene: Whitted's integrator (a path tracer's samples
+// go one by one) and lights that FirstHit::lights has room for.
+STRAHL_HOST_DEVICE inline bool packet_radiance_supported(const SceneView& s) {
+  return s.light_count <= kMaxPacketLights && s.settings.integrator == IntegratorKind::Whitted;
+}
 
 // local_illumination()'s per-surface terms of a material that spawns no ray: the colour at
 // `texcoord`, the ambient term, k_d (times the opacity), k_s and whether it is not black, the

@@ -126,6 +126,7 @@ void hash(Hasher& h, const TraceSettings& s) {
   h.add(s.ambient_light);
   h.add(s.medium_ior);
   h.add(s.ray_budget);
+  h.add(s.integrator);
 }
 
 void hash(Hasher& h, const SamplingSettings& s) {

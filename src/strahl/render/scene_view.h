@@ -16,6 +16,7 @@
 #include "strahl/geometry/triangle.h"
 #include "strahl/math/bounds.h"
 #include "strahl/render/instance_group.h"
+#include "strahl/render/integrator_kind.h"
 #include "strahl/render/ray_budget.h"
 #include "strahl/shading/light.h"
 #include "strahl/shading/material.h"
@@ -32,6 +33,7 @@ struct TraceSettings {
   // With min_weight 0 and glass (k_r + k_t = 1 at every hit) the ray tree doubles at each bounce;
   // the budget bounds one sample's work, so a cancel checked between samples acts in bounded time.
   std::uint32_t ray_budget = kDefaultRayBudget;
+  IntegratorKind integrator = IntegratorKind::Whitted;
 };
 
 struct SceneView {

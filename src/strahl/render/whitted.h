@@ -157,12 +157,12 @@ STRAHL_FORCE_INLINE void add_area_light_group(const SceneView& s, const AreaLigh
 }
 #endif
 
-// An area light's contribution: the mean over n×n jittered strata of its sample domain.
-STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const SceneView& s, const Light& light,
+// An area light's contribution: the mean over k×k jittered strata of its sample domain (k: the
+// light's n, or 1 at a path tracer's deeper vertices).
+STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const SceneView& s, const Light& light, int k,
                                                                      const SurfacePoint& sp, const Vec3& n,
                                                                      const Vec3& view, const Vec3& c, const Material& m,
                                                                      RayCounters& counters, SampleStream& rng) {
-  const int k = light.samples;
   const int strata = k * k;
   Vec3 sum{0};
 #if defined(STRAHL_AREA_LIGHT_ONE_BY_ONE)
@@ -193,14 +193,15 @@ STRAHL_HOST_DEVICE inline Vec3 ambient_term(const SceneView& s, const Material& 
   return c * s.settings.ambient_light * (m.ambient * opacity);
 }
 
-// `known`, where given, holds known[i] for each point light i (the packet front end's); else
-// local_illumination samples the lights and traces the shadow rays itself.
-STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
-                                                  const Vec3& view, RayCounters& counters, SampleStream& rng,
-                                                  const KnownLight* known = nullptr) {
-  const Material& m = s.materials[sp.material];
-  const Vec3 c = surface_color(m, sp.texcoord, s.textures);
-  Vec3 result = ambient_term(s, m, c);
+// Adds to `result` the light of every light source, one after another: Lambert + Blinn-Phong of
+// each unshadowed point light and each area light's mean over k×k samples — k the light's n, or
+// 1 where `one_sample` (a path's deeper vertices, render/path_tracer.h). `known`, where given,
+// holds known[i] for each point light i (the packet front end's); else the lights are sampled
+// and the shadow rays traced here.
+STRAHL_HOST_DEVICE inline void add_direct_light(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
+                                                const Vec3& view, const Vec3& c, const Material& m,
+                                                RayCounters& counters, SampleStream& rng, Vec3& result,
+                                                const KnownLight* known = nullptr, bool one_sample = false) {
   for (std::uint32_t i = 0; i < s.light_count; ++i) {
     const Light& light = s.lights[i];
     if (!light.is_area()) {
@@ -213,8 +214,18 @@ STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const Surf
                            known != nullptr ? &known[i] : nullptr);
       continue;
     }
-    result += area_light_illumination(s, light, sp, n, view, c, m, counters, rng);
+    result += area_light_illumination(s, light, one_sample ? 1 : light.samples, sp, n, view, c, m, counters, rng);
   }
+}
+
+// The local colour: the ambient term, then each light's (add_direct_light; `known` as there).
+STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
+                                                  const Vec3& view, RayCounters& counters, SampleStream& rng,
+                                                  const KnownLight* known = nullptr) {
+  const Material& m = s.materials[sp.material];
+  const Vec3 c = surface_color(m, sp.texcoord, s.textures);
+  Vec3 result = ambient_term(s, m, c);
+  add_direct_light(s, sp, n, view, c, m, counters, rng, result, known);
   return result;
 }
 

@@ -475,7 +475,7 @@ RenderScene compile(const Scene& scene) {
   RenderScene out;
   out.camera = build_camera(scene.camera, s.width, s.height);
   out.settings = {s.max_depth, s.min_weight, s.background, s.ambient_light, s.medium_ior,
-                  std::uint32_t(s.ray_budget)};
+                  std::uint32_t(s.ray_budget), s.integrator};
   out.supersample = s.supersample;
   out.sampling = compile_sampling(s);
 

@@ -18,6 +18,7 @@
 #include "strahl/accel/accel.h"
 #include "strahl/image/image.h"
 #include "strahl/math/transform.h"
+#include "strahl/render/integrator_kind.h"
 #include "strahl/render/ray_budget.h"
 #include "strahl/sampling/pixel_sampler.h"
 #include "strahl/scene/mesh_data.h"
@@ -259,6 +260,7 @@ struct RenderSettings {
   Vec3 background{0};
   Vec3 ambient_light{1};
   Real medium_ior = 1;
+  IntegratorKind integrator = IntegratorKind::Whitted;
   AccelKind accel = AccelKind::Bvh;
   // Pixel sampler, spp, seed, filter, adaptive settings; spp 0: supersample² on the grid.
   SamplingSettings sampling = [] {

@@ -382,10 +382,12 @@ void render_settings(Writer& w, const RenderSettings& s) {
   w.line(2, "height: " + W::integer(s.height));
   w.line(2, "max_depth: " + W::integer(s.max_depth));
   w.line(2, "min_weight: " + W::num(s.min_weight, "min_weight"));
+  w.line(2, "ray_budget: " + W::integer(s.ray_budget));
   w.line(2, "supersample: " + W::integer(s.supersample));
   w.line(2, "background: " + W::vec(s.background, "background"));
   w.line(2, "ambient_light: " + W::vec(s.ambient_light, "ambient_light"));
   w.line(2, "medium_ior: " + W::num(s.medium_ior, "medium_ior"));
+  w.line(2, std::string("integrator: ") + integrator_name(s.integrator));
   w.line(2, "accel: " + std::string(accel_name(s.accel)));
   w.line(2, std::string("sampler: ") + sampler_name(p.sampler));
   if (p.spp != 0) w.line(2, "spp: " + W::integer(p.spp));  // 0: supersample² (the key's default)

@@ -16,7 +16,7 @@ namespace strahl {
 void YamlReader::render(const YAML::Node& n, RenderSettings& s) const {
   map(n, "render");
   keys(n, {"width", "height", "max_depth", "min_weight", "ray_budget", "supersample", "background", "ambient_light", "medium_ior",
-           "accel", "sampler", "spp", "seed", "filter", "filter_radius", "adaptive_min", "adaptive_threshold"},
+           "integrator", "accel", "sampler", "spp", "seed", "filter", "filter_radius", "adaptive_min", "adaptive_threshold"},
        "render");
   s.loc = loc(n);
   if (const auto v = n["width"]) s.width = integer(v, "width", 1, 65536);
@@ -28,6 +28,11 @@ void YamlReader::render(const YAML::Node& n, RenderSettings& s) const {
   if (const auto v = n["background"]) s.background = color(v, "background");
   if (const auto v = n["ambient_light"]) s.ambient_light = color(v, "ambient_light");
   if (const auto v = n["medium_ior"]) s.medium_ior = ior(v, "medium_ior");
+  if (const auto v = n["integrator"]) {
+    const std::optional<IntegratorKind> kind = integrator_from_name(scalar(v, "integrator"));
+    if (!kind) fail(v, "unknown integrator '" + v.Scalar() + "' (" + kIntegratorNames + ")");
+    s.integrator = *kind;
+  }
   if (const auto v = n["accel"]) {
     const std::optional<AccelKind> kind = accel_from_name(scalar(v, "accel"));
     if (!kind) fail(v, "unknown accel '" + v.Scalar() + "' (" + accel_names() + ")");
