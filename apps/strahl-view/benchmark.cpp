@@ -33,6 +33,7 @@ int run_benchmark(const LoadedScene& scene, const std::string& name, int frames,
   request.width = rs.camera.nx;
   request.height = rs.camera.ny;
   request.max_depth = rs.settings.max_depth;
+  request.integrator = rs.settings.integrator;
   request.sampling = rs.sampling;
 
   constexpr int kWarmUp = 2;

@@ -20,6 +20,7 @@ inline constexpr KeyHelp kKeyHelp[] = {
     {"+ -", "field of view narrower / wider"},
     {"F", "look at (and focus on) the point under the cursor"},
     {"[ ]", "max depth - / +"},
+    {"G", "integrator: Whitted / path tracing"},
     {"M", "next pixel sampler"},
     {", .", "spp target halve / double"},
     {"U", "spp target: as set / unlimited"},

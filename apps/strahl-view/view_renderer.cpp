@@ -182,6 +182,7 @@ void ViewRenderer::render(const FrameRequest& request, bool interactive, std::ui
 
   SceneView view = request.scene->view();
   view.settings.max_depth = request.max_depth;
+  view.settings.integrator = request.integrator;
   try {
     view.camera = build_camera(request.camera, a->width, a->height);
   } catch (const Error& e) {

@@ -39,6 +39,7 @@ struct FrameRequest {
   CameraDescription camera;
   int width = 1, height = 1;  // the full resolution
   int max_depth = 8;
+  IntegratorKind integrator = IntegratorKind::Whitted;
   SamplingSettings sampling;  // of the still frames; interactive frames take 1 sample per pixel
   bool unlimited = false;     // still frames go on past sampling.spp (up to kMaxSpp)
   double time_limit = 0;      // still frames stop after this many seconds (0: none)

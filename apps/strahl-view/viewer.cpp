@@ -73,6 +73,7 @@ void Viewer::adopt(LoadedScene s, bool first) {
   // changes (the camera moved, a key pressed) stay where it did not.
   if (first || !same_camera(s.camera, file_camera_)) settings_.camera = settings_.home = s.camera;
   if (first || rs.settings.max_depth != file_max_depth_) settings_.max_depth = rs.settings.max_depth;
+  if (first || rs.settings.integrator != file_integrator_) settings_.integrator = rs.settings.integrator;
   if (first || !same_sampling(rs.sampling, file_sampling_)) settings_.sampling = rs.sampling;
   if (first || rs.camera.nx != file_width_ || rs.camera.ny != file_height_) {
     settings_.width = rs.camera.nx;
@@ -81,6 +82,7 @@ void Viewer::adopt(LoadedScene s, bool first) {
   }
   file_camera_ = s.camera;
   file_max_depth_ = rs.settings.max_depth;
+  file_integrator_ = rs.settings.integrator;
   file_sampling_ = rs.sampling;
   file_width_ = rs.camera.nx;
   file_height_ = rs.camera.ny;
@@ -141,6 +143,7 @@ void Viewer::submit() {
   r.width = settings_.width;
   r.height = settings_.height;
   r.max_depth = settings_.max_depth;
+  r.integrator = settings_.integrator;
   r.sampling = settings_.sampling;
   r.unlimited = settings_.unlimited;
   r.time_limit = options_.time_limit;
@@ -189,8 +192,8 @@ std::vector<std::string> Viewer::hud_lines(const FrameStatus& s) {
     l.push_back(fmt::format("{}x{}  spp {:.4g} / {}{}", s.width, s.height, s.spp,
                             settings_.unlimited ? std::string("unlimited") : std::to_string(s.target_spp),
                             s.finished ? "  done" : ""));
-  l.push_back(fmt::format("depth {}  sampler {}  spp {}  accel {}", settings_.max_depth,
-                          sampler_name(settings_.sampling.sampler), settings_.sampling.spp, accel_name(settings_.accel)));
+  l.push_back(fmt::format("{}  depth {}  sampler {}  spp {}  accel {}", integrator_name(settings_.integrator),
+                          settings_.max_depth, sampler_name(settings_.sampling.sampler), settings_.sampling.spp, accel_name(settings_.accel)));
   l.push_back(fmt::format("show {}  exposure {:+.1f}  (H: help)", display_name(settings_.display), settings_.exposure));
   l.push_back("device " + backend_.device_name());
   for (const std::string& c : lines_of(camera_yaml(settings_.camera))) l.push_back(c);

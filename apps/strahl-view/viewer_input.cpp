@@ -99,6 +99,10 @@ void Viewer::key_down(const SDL_Keysym& key, bool repeat) {
     case SDLK_COMMA: settings_.sampling.spp = std::max(1, settings_.sampling.spp / 2); break;
     case SDLK_PERIOD: settings_.sampling.spp = std::min(kMaxSpp, std::max(1, settings_.sampling.spp) * 2); break;
     case SDLK_u: settings_.unlimited = !settings_.unlimited; break;
+    case SDLK_g:
+      settings_.integrator =
+          settings_.integrator == IntegratorKind::Whitted ? IntegratorKind::Path : IntegratorKind::Whitted;
+      break;
     case SDLK_b: {
       if (repeat) return;
       const std::vector<AccelKind> kinds = accel_kinds();
@@ -168,6 +172,7 @@ void Viewer::explain_under_cursor() {
   if (!scene_ || fx < 0 || fx >= 1 || fy < 0 || fy >= 1) return;
   SceneView view = scene_->view();
   view.settings.max_depth = settings_.max_depth;
+  view.settings.integrator = settings_.integrator;
   if (view.settings.integrator != IntegratorKind::Whitted) {
     note_ = "explain shows Whitted's ray tree; this scene renders with integrator: path";
     note_time_ = Clock::now();

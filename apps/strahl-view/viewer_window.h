@@ -64,6 +64,7 @@ class Viewer {
   struct Settings {
     CameraDescription camera, home;
     int width = 1, height = 1, max_depth = 8;
+    IntegratorKind integrator = IntegratorKind::Whitted;
     SamplingSettings sampling;
     bool unlimited = false;
     AccelKind accel = AccelKind::Bvh;
@@ -100,6 +101,7 @@ class Viewer {
   std::shared_ptr<const RenderScene> scene_;
   CameraDescription file_camera_;
   int file_max_depth_ = 0, file_width_ = 0, file_height_ = 0;
+  IntegratorKind file_integrator_ = IntegratorKind::Whitted;
   SamplingSettings file_sampling_;
   Settings settings_;
   bool dirty_ = true;  // the camera or a setting changed: a new request is due

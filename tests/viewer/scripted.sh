@@ -171,6 +171,25 @@ else
   fail "explain: strahl-view failed: $(cat "$WORK/explain.err")"
 fi
 
+# G switches to path tracing (and back): the still image is `strahl --integrator path`'s, bit for
+# bit, and not Whitted's; a second G gives Whitted's again. X under path tracing explains nothing.
+printf '0 wait still\n0 key g\n0 wait still\n0 key ctrl+s\n0 key x\n0 key g\n0 wait still\n0 key ctrl+s\n0 quit\n' \
+  > "$WORK/path.txt"
+if view_offscreen "$SRC/scenes/lecture-whitted.yaml" --width 96 --height 54 --spp 4 --sampler sobol -o "$WORK/path.pfm" \
+    --script "$WORK/path.txt" > "$WORK/path.out" 2> "$WORK/path.err"; then
+  "$CLI" "$SRC/scenes/lecture-whitted.yaml" --width 96 --height 54 --spp 4 --sampler sobol --integrator path -q \
+    -o "$WORK/path.strahl.pfm" || fail "strahl --integrator path failed"
+  "$CLI" "$SRC/scenes/lecture-whitted.yaml" --width 96 --height 54 --spp 4 --sampler sobol -q \
+    -o "$WORK/whitted.strahl.pfm" || fail "strahl failed"
+  if ! cmp -s "$WORK/path-0001.pfm" "$WORK/path.strahl.pfm"; then fail "G: the image is not strahl --integrator path's"
+  elif cmp -s "$WORK/path.strahl.pfm" "$WORK/whitted.strahl.pfm"; then fail "G: path tracing gave Whitted's image"
+  elif ! cmp -s "$WORK/path-0002.pfm" "$WORK/whitted.strahl.pfm"; then fail "G twice: the image is not Whitted's"
+  elif grep -q "^pixel (" "$WORK/path.out"; then fail "X explained a path-traced pixel"
+  else echo "ok: G switches between path tracing and Whitted's ray tracing"; fi
+else
+  fail "path: strahl-view failed: $(cat "$WORK/path.err")"
+fi
+
 check grid       lecture.yaml         pfm --supersample 2
 check png        lecture-whitted.yaml png --supersample 2
 check stratified lecture-whitted.yaml pfm --sampler stratified --spp 4 --filter mitchell --filter-radius 2

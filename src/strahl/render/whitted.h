@@ -165,25 +165,28 @@ STRAHL_HOST_DEVICE STRAHL_NOINLINE inline Vec3 area_light_illumination(const Sce
                                                                      RayCounters& counters, SampleStream& rng) {
   const int strata = k * k;
   Vec3 sum{0};
-#if defined(STRAHL_AREA_LIGHT_ONE_BY_ONE)
+#if !defined(STRAHL_AREA_LIGHT_ONE_BY_ONE)
+  // On the CPU a group of samples at a time, side by side (add_area_light_group): 2×2 strata in
+  // 4 lanes, more in groups of 8. One sample alone (a light of 1×1, a path's deeper hits) is
+  // taken as below: in 4 lanes it would leave three idle.
+  if (strata > 1) {
+    if (strata <= 4) {
+      add_area_light_group<4>(s, AreaLightLanes<4>(light, sp.p), k, 0, strata, sp, n, view, c, m, counters, rng, sum);
+    } else {
+      const AreaLightLanes<8> lanes(light, sp.p);
+      for (int first = 0; first < strata; first += 8)
+        add_area_light_group<8>(s, lanes, k, first, strata - first < 8 ? strata - first : 8, sp, n, view, c, m,
+                                counters, rng, sum);
+    }
+    return sum * (Real(1) / (k * k));
+  }
+#endif
   const AreaLightSampler sampler(light, sp.p);
   for (int stratum = 0; stratum < strata; ++stratum) {
     const AreaLightSample ls = sampler.sample(stratified(stratum % k, stratum / k, k, rng.next2()));
     if (is_black(ls.intensity)) continue;
     sum += shade_from(s, sp, n, view, c, m, ls.to_light, ls.distance, ls.intensity, counters);
   }
-#else
-  // On the CPU a group of samples at a time, side by side (add_area_light_group): 1×1 and 2×2
-  // strata in 4 lanes, more in groups of 8.
-  if (strata <= 4) {
-    add_area_light_group<4>(s, AreaLightLanes<4>(light, sp.p), k, 0, strata, sp, n, view, c, m, counters, rng, sum);
-  } else {
-    const AreaLightLanes<8> lanes(light, sp.p);
-    for (int first = 0; first < strata; first += 8)
-      add_area_light_group<8>(s, lanes, k, first, strata - first < 8 ? strata - first : 8, sp, n, view, c, m,
-                              counters, rng, sum);
-  }
-#endif
   return sum * (Real(1) / (k * k));
 }
 
