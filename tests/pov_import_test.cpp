@@ -392,6 +392,18 @@ TEST(PovImport, WarningsNameWhatIsLeftOut) {
   EXPECT_TRUE(pov_scene("#version 3.7;\nsphere { 0, 1 }").warnings.empty());
 }
 
+// global_settings { radiosity { … } } is drawn by path tracing (render.integrator: path), with a
+// warning that names what differs; without it the scene is Whitted's.
+TEST(PovImport, RadiosityIsDrawnByPathTracing) {
+  const std::string body = "sphere { 0, 1 pigment { color rgb 1 } }\nlight_source { <2, 3, -4> color rgb 1 }\n";
+  const Scene s = pov_scene("#version 3.7;\nglobal_settings { radiosity { count 100 error_bound 0.5 } max_trace_level 7 }\n" + body);
+  EXPECT_EQ(s.settings.integrator, IntegratorKind::Path);
+  EXPECT_EQ(s.settings.max_depth, 7);  // (what follows the radiosity block is read)
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].rfind("test.pov:2:19: radiosity is drawn by path tracing (integrator: path)", 0), 0u) << s.warnings[0];
+  EXPECT_EQ(pov_scene("#version 3.7;\n" + body).settings.integrator, IntegratorKind::Whitted);
+}
+
 // image_map: the picture, its mapping and lookup as the scene file's `image` keys; the pigment's
 // transforms and the object's after the pigment (not those before it) place it, as in POV-Ray,
 // and the left-handed camera's mirror too. bench/pov/imagemap.pov renders as POV-Ray renders it

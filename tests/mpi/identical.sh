@@ -34,6 +34,7 @@ check mitchell-3   3 1 8  lecture-whitted.yaml --sampler stratified --spp 4 --fi
 check aov-2        2 2 16 lecture-whitted.yaml --aov depth,normal,albedo,id
 check motion-4     4 2 8  motion-blur.yaml --sampler sobol --spp 4
 check dof-3        3 1 8  depth-of-field.yaml --sampler sobol --spp 4
+check path-3       3 2 8  cornell-box-path.yaml --spp 4
 
 # A worker with T render threads gets prefetch × T tiles in flight (3 × T by default), not 3: with
 # 3 its other threads would idle. The summary says how many it held at once.

@@ -133,6 +133,14 @@ void Parser::global_settings() {
       out_.max_trace_level = whole(real(), -1, 1000);
     } else if (n == "ambient_light") {
       out_.ambient_light = color();
+    } else if (n == "radiosity") {
+      // POV-Ray's radiosity gathers the light surfaces throw at each other (and, in 3.7, takes
+      // finishes' ambient as emitted light): strahl computes that light by path tracing, and
+      // draws no ambient term (render.integrator: path).
+      out_.radiosity = true;
+      warn(loc(t), "radiosity is drawn by path tracing (integrator: path): its settings are not used, "
+                   "finishes' ambient adds no light, and the image wants many samples (--spp)");
+      skip_block();
     } else if (n == "adc_bailout" || n == "number_of_waves" || n == "noise_generator" || n == "charset" ||
                n == "irid_wavelength" || n == "max_intersections") {
       if (n == "charset") next();

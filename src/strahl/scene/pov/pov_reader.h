@@ -131,6 +131,7 @@ struct Parsed {
   Color background{};
   Color ambient_light{1, 1, 1, 0, 0};
   int max_trace_level = 5;
+  bool radiosity = false;  // global_settings { radiosity { … } }: drawn by path tracing
   Texture default_texture;
 };
 

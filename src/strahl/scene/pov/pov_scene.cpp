@@ -108,6 +108,7 @@ class Writer {
     std::string s = "render: {width: " + std::to_string(options_.width) + ", height: " + std::to_string(options_.height) +
                     ", max_depth: " + std::to_string(depth) + ", ambient_light: " + rgb(p_.ambient_light) +
                     ", background: " + rgb(p_.background);
+    if (p_.radiosity) s += ", integrator: path";
     if (p_.camera.aperture > 0 && p_.camera.blur_samples > 0)
       s += ", sampler: stratified, spp: " + std::to_string(p_.camera.blur_samples);
     line(s + "}", {});
