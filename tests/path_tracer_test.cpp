@@ -69,10 +69,13 @@ TEST(PathTracer, ConvexSphereUnderAUniformSkyReflectsKdCTimesTheSkyExactly) {
 // The inside of a diffuse sphere (albedo ρ, radius 2) with a point light of intensity 1 at its
 // centre: every hit gets direct light ρ·(N·L) = ρ, and every bounce meets the sphere again, so a
 // path of D hits brings ρ·(1 + ρ + … + ρ^(D−1)).
-Scene lit_cavity(Real rho, int max_depth) {
+// (`glow`: the sphere's emission, without the light.)
+Scene lit_cavity(Real rho, int max_depth, const Vec3& glow = Vec3(0)) {
   Scene s;
-  s.add(Sphere({0, 0, 0}, 2, matte(Vec3(1), rho)));
-  s.add(point_light({0, 0, 0}));
+  Material m = matte(Vec3(1), rho);
+  m.emission = glow;
+  s.add(Sphere({0, 0, 0}, 2, m));
+  if (is_black(glow)) s.add(point_light({0, 0, 0}));
   look(s, {0.3, -0.2, 0.5}, {0.5, 0.1, -1}, 50, 16, 16);
   s.settings.integrator = IntegratorKind::Path;
   s.settings.max_depth = max_depth;
@@ -90,6 +93,24 @@ TEST(PathTracer, LitCavityUpToThreeHitsIsTheGeometricSeriesExactly) {
     for (int k = 0; k < depth; ++k, term *= rho) expected += term;
     for (const auto& [x, row] : {std::pair{0, 0}, std::pair{7, 9}, std::pair{15, 15}})
       EXPECT_TRUE(vec_near(pixel_mean(rs, x, row), Vec3(expected), 1e-12)) << "max_depth " << depth;
+  }
+}
+
+TEST(PathTracer, AGlowingCavityIsTheGeometricSeriesOfItsEmission) {
+  // No lights: the inside of a sphere of albedo ρ emitting E. Every hit adds E, and every bounce
+  // meets the sphere again: D hits bring E·(1 + ρ + … + ρ^(D−1)). Whitted's integrator shows E
+  // and the ambient term only.
+  const Real rho = 0.7;
+  const Vec3 e{0.5, 1, 2};
+  for (int depth = 1; depth <= 3; ++depth) {
+    Scene s = lit_cavity(rho, depth, e);
+    s.settings.sampling.spp = 4;
+    const RenderScene rs = compile(s);
+    Real series = 0, term = 1;
+    for (int k = 0; k < depth; ++k, term *= rho) series += term;
+    EXPECT_TRUE(vec_near(pixel_mean(rs, 3, 5), e * series, 1e-12)) << "max_depth " << depth;
+    s.settings.integrator = IntegratorKind::Whitted;
+    EXPECT_TRUE(vec_near(pixel_mean(compile(s), 3, 5), e + Vec3(0.5), 1e-14)) << "max_depth " << depth;
   }
 }
 

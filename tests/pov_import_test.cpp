@@ -404,6 +404,14 @@ TEST(PovImport, RadiosityIsDrawnByPathTracing) {
   EXPECT_EQ(pov_scene("#version 3.7;\n" + body).settings.integrator, IntegratorKind::Whitted);
 }
 
+// finish { emission e }: the pigment's colour times e, as POV-Ray adds it.
+TEST(PovImport, EmissionIsThePigmentsColourTimesIt) {
+  const std::string yaml = yaml_of("sphere { 0, 1 pigment { color rgb <1, 0.5, 0.25> } finish { emission 0.5 } }\n"
+                                   "sphere { 0, 1 pigment { color rgb 1 } finish { emission rgb <0, 1, 2> } }\n");
+  EXPECT_NE(yaml.find("emission: [0.5, 0.25, 0.125]"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("emission: [0, 1, 2]"), std::string::npos) << yaml;
+}
+
 // image_map: the picture, its mapping and lookup as the scene file's `image` keys; the pigment's
 // transforms and the object's after the pigment (not those before it) place it, as in POV-Ray,
 // and the left-handed camera's mirror too. bench/pov/imagemap.pov renders as POV-Ray renders it

@@ -86,6 +86,7 @@ TEST(SceneWriter, EveryKindOfObjectLightAndCamera) {
   checker.checker_color = Vec3(1, 0.85, 0.1);
   checker.specular = Vec3(0.1, 0.2, 0.3);
   checker.shininess = 7;
+  checker.emission = Vec3(0.25, 0, 3);
   s.add(Plane(Vec3(0, 2, 0.1), 0.5, checker));
   s.add(Sphere(Vec3(0.1, 0.2, 0.3), 0.7, glass)).motion = Motion::linear(Vec3(0.1, 0, 0));
   s.add(Triangle(Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0.1), Vec3(0.2, 0.3, 0.4)));

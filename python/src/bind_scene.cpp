@@ -55,7 +55,7 @@ void bind_material(py::module_& m) {
       .def(py::init([](const py::object& color, double ambient, double diffuse, const py::object& specular,
                        double shininess, double reflectivity, double transparency, const py::object& ior, bool fresnel,
                        bool filter, double roughness, double checker_size, const py::object& checker_color,
-                       std::optional<std::uint32_t> texture) {
+                       std::optional<std::uint32_t> texture, const py::object& emission) {
              Material mat;
              mat.color = color_arg(color, "color");
              mat.ambient = ambient;
@@ -70,6 +70,7 @@ void bind_material(py::module_& m) {
              mat.roughness = roughness;
              mat.checker_size = checker_size;
              mat.checker_color = color_arg(checker_color, "checker_color");
+             mat.emission = color_arg(emission, "emission");
              if (texture) {
                if (*texture == kNoTexture) throw Error("texture must be an index Scene.add_texture returned");
                mat.texture = *texture;
@@ -85,7 +86,7 @@ void bind_material(py::module_& m) {
            py::arg("transparency") = d.transparency, py::arg("ior") = d.ior, py::arg("fresnel") = d.fresnel,
            py::arg("filter") = d.filter, py::arg("roughness") = d.roughness, py::arg("checker_size") = d.checker_size,
            py::arg("checker_color") = py::make_tuple(d.checker_color.x, d.checker_color.y, d.checker_color.z),
-           py::arg("texture") = py::none())
+           py::arg("texture") = py::none(), py::arg("emission") = py::make_tuple(0.0, 0.0, 0.0))
       .def_readwrite("color", &Material::color)
       .def_readwrite("ambient", &Material::ambient)
       .def_readwrite("diffuse", &Material::diffuse)
@@ -101,6 +102,7 @@ void bind_material(py::module_& m) {
       .def_readwrite("roughness", &Material::roughness)
       .def_readwrite("checker_size", &Material::checker_size)
       .def_readwrite("checker_color", &Material::checker_color)
+      .def_readwrite("emission", &Material::emission)
       .def_property(
           "texture", [](const Material& mat) -> py::object {
             return mat.texture == kNoTexture ? py::none() : py::cast(mat.texture);

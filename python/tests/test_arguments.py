@@ -21,6 +21,7 @@ nan, inf = math.nan, math.inf
     (lambda: strahl.Material(reflectivity=2), r"reflectivity must lie in \[0, 1\] \(got 2\)"),
     (lambda: strahl.Material(ior="unobtainium"), "unknown ior 'unobtainium'"),
     (lambda: strahl.Material(ior=0), "ior must be positive"),
+    (lambda: strahl.Material(emission=(0, -1, 0)), "emission must not have negative"),
     (lambda: strahl.PointLight((0, inf, 0)), "light position must have finite components"),
     (lambda: strahl.PointLight((0, 1, 0), intensity=-1), "intensity must not be negative"),
     (lambda: strahl.RectLight((0, 1, 0), (1, 0, 0), (1, 1, 0)), "rect light edges must be perpendicular"),
@@ -133,4 +134,5 @@ def test_the_scene_api_reads_back():
     with pytest.raises(strahl.Error):
         scene.settings.sampler = "nope"
     assert strahl.Material(ior="water").ior == 1.333
+    assert tuple(strahl.Material(emission=(0.5, 1, 2)).emission) == (0.5, 1, 2)
     assert repr(strahl.Sphere((0, 1, 0), 0.5)).startswith("strahl.Sphere((0, 1, 0), 0.5")

@@ -240,6 +240,7 @@ int main(int argc, char** argv) {
     dump_render(dir + "/scenes/instances.yaml", 40, 30);  // the two-level hierarchy the GPU walks too
     // The path tracer (render/path_tracer.h), whose area light samples go one by one on the GPU.
     dump_render(dir + "/scenes/cornell-box-path.yaml", 40, 30, AccelKind::Bvh, 16);
+    dump_render(dir + "/scenes/glow.yaml", 40, 30, AccelKind::Bvh, 4);  // emitting materials
     dump_film();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -82,6 +82,10 @@ class Explainer {
     const Vec3 view = -ray_direction_;
     Vec3 sum = ambient_term(s_, m, c);
     line(d, "    ambient (1 − T)·k_a·C·ambient_light = " + vec(sum));
+    if (!is_black(m.emission)) {
+      sum += m.emission;  // unlit_term()'s sum
+      line(d, "    emission E = " + vec(m.emission));
+    }
     bool sampled = false;
     RayCounters scratch;
     for (std::uint32_t i = 0; i < s_.light_count; ++i) {
@@ -141,7 +145,7 @@ class Explainer {
     }
     // Without area lights the shares above are local's own terms, added in its order.
     if (sampled) line(d, "    the area lights' samples add local − the terms above = " + vec(local - sum));
-    line(d, std::string("    local = ") + (!sampled && sum == local ? "ambient + lights = " : "") + vec(local));
+    line(d, std::string("    local = ") + (!sampled && sum == local ? (is_black(m.emission) ? "ambient + lights = " : "ambient + E + lights = ") : "") + vec(local));
   }
 
   void split(Real kr, Real kt, bool reflects, Real n1, Real n2) {

@@ -43,7 +43,7 @@ STRAHL_HOST_DEVICE inline LocalTerms local_terms(const Material& material, const
   LocalTerms t;
   t.c = surface_color(material, texcoord, textures);
   const Real opacity = 1 - material.transparency;
-  t.ambient = t.c * ambient_light * (material.ambient * opacity);
+  t.ambient = t.c * ambient_light * (material.ambient * opacity) + material.emission;  // unlit_term()
   t.kd = material.diffuse * (1 - material.transparency);
   t.ks = material.specular;
   t.shiny = is_black(material.specular) ? 0 : 1;

@@ -5,7 +5,7 @@
 // camera sample follows one path: at each hit
 //   – the direct light (render/whitted.h add_direct_light: Lambert + Blinn-Phong of every
 //     unshadowed point light, area lights sampled — n×n at the first hit, one sample deeper),
-//     the same arithmetic as Whitted's local colour without its ambient term;
+//     plus the material's emission E: Whitted's local colour without its ambient term;
 //   – then one way on, chosen at random among the three the material's light takes: the
 //     diffuse bounce (weight w_d = k_d·(1 − T)·C, a cosine-distributed direction), the mirror
 //     ray (w_r = k_r) and the refracted ray (w_t = T·tint), k_r and T after total internal
@@ -16,6 +16,9 @@
 // diffuse bounce's weight is k_d·C: incoming radiance L over the hemisphere gives k_d·C·L, the
 // convention area lights already follow (shading/area_light.h: a point light of intensity I at
 // normal incidence lights a surface as a hemisphere of radiance I).
+//
+// Emitting materials (Material::emission E) add E at every hit — they are not sampled as lights,
+// so a bounce that meets one is the only way their light arrives.
 //
 // Light is counted once: the area lights' surfaces show to camera, mirror and refracted rays
 // (as in Whitted's images) but not to a ray after a diffuse bounce, whose point sampled them
@@ -68,7 +71,7 @@ STRAHL_HOST_DEVICE inline Vec3 trace_path(const SceneView& s, Ray ray, RayCounte
     const bool front = dot(ray.direction, sp.geometric_normal) < 0;  // normals then face the viewer
     const Vec3 n = front ? sp.normal : -sp.normal;
     const Vec3 c = surface_color(m, sp.texcoord, s.textures);
-    Vec3 direct{0};
+    Vec3 direct = m.emission;  // (no ambient term)
     add_direct_light(s, sp, n, -ray.direction, c, m, counters, rng, direct, nullptr, depth > 1);
     radiance += beta * direct;
     if (depth >= max_depth) return radiance;

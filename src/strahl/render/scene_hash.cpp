@@ -44,7 +44,7 @@ void Hasher::add_all(const std::vector<T, A>& items) {
 static_assert(sizeof(kernel::Sphere) == 40 && sizeof(kernel::Plane) == 88 && sizeof(kernel::Triangle) == 88 &&
                   sizeof(kernel::VertexNormals) == 72 && sizeof(kernel::VertexTexcoords) == 48 &&
                   sizeof(kernel::MovingSphere) == 72 &&
-                  sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 144 && sizeof(Light) == 224 &&
+                  sizeof(kernel::MovingTriangle) == 160 && sizeof(Material) == 168 && sizeof(Light) == 224 &&
                   sizeof(kernel::ImageTexture) == 120 &&
                   sizeof(Camera) == 176 && sizeof(TraceSettings) == 80 && sizeof(SamplingSettings) == 48,
               "a kernel struct changed: hash its new fields in scene_hash.cpp and update the size here");
@@ -77,6 +77,7 @@ void hash(Hasher& h, const Material& m) {
   h.add(m.checker_size);
   h.add(m.checker_color);
   h.add(m.texture);
+  h.add(m.emission);
 }
 
 void hash(Hasher& h, const kernel::ImageTexture& t) {

@@ -8,7 +8,7 @@
 // Colour at a hit with material m, colour C, shading normal N (towards the viewer), view
 // direction V, and per light the unit vector L, half vector H = (L + V)/|L + V|, radiance I and
 // shadow-ray transmittance S:
-//   local = (1 − T)·k_a·C·ambient_light
+//   local = (1 − T)·k_a·C·ambient_light + E
 //         + Σ_lights S·I·[ (1 − T)·k_d·C·max(0, N·L) + k_s·max(0, N·H)^shininess ]   (when N·L > 0)
 //   colour = local + k_r·trace(reflected) + T·tint·trace(refracted)
 // with T the transparency. Total internal reflection moves T into k_r; with Fresnel enabled a
@@ -221,13 +221,19 @@ STRAHL_HOST_DEVICE inline void add_direct_light(const SceneView& s, const Surfac
   }
 }
 
-// The local colour: the ambient term, then each light's (add_direct_light; `known` as there).
+// The local colour's terms that need no light: the ambient term and the material's emission E.
+STRAHL_HOST_DEVICE inline Vec3 unlit_term(const SceneView& s, const Material& m, const Vec3& c) {
+  return ambient_term(s, m, c) + m.emission;
+}
+
+// The local colour: the ambient term and the emission, then each light's (add_direct_light;
+// `known` as there).
 STRAHL_HOST_DEVICE inline Vec3 local_illumination(const SceneView& s, const SurfacePoint& sp, const Vec3& n,
                                                   const Vec3& view, RayCounters& counters, SampleStream& rng,
                                                   const KnownLight* known = nullptr) {
   const Material& m = s.materials[sp.material];
   const Vec3 c = surface_color(m, sp.texcoord, s.textures);
-  Vec3 result = ambient_term(s, m, c);
+  Vec3 result = unlit_term(s, m, c);
   add_direct_light(s, sp, n, view, c, m, counters, rng, result, known);
   return result;
 }

@@ -111,6 +111,7 @@ std::string material_map(const Material& m, const TextureFiles& tx) {
                   ", transparency: " + W::num(m.transparency, "transparency") + ", ior: " + W::num(m.ior, "ior") +
                   ", fresnel: " + W::boolean(m.fresnel) + ", filter: " + W::boolean(m.filter) +
                   ", roughness: " + W::num(m.roughness, "roughness");
+  if (!is_black(m.emission)) s += ", emission: " + W::vec(m.emission, "emission");
   // (checker_color without a checker has no effect and no key; it is not written.)
   if (m.checker_size > 0)
     s += ", checker: {size: " + W::num(m.checker_size, "checker size") +

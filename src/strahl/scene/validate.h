@@ -119,6 +119,7 @@ inline void material(const Material& m, std::size_t textures, const FileLoc& loc
   non_negative(m.checker_size, loc, "checker size");
   if (m.checker_size > 0) length(m.checker_size, loc, "checker size");
   non_negative(m.checker_color, loc, "checker colour");
+  non_negative(m.emission, loc, "emission");
   if (m.texture != kNoTexture && m.texture >= textures)
     throw Error(loc, "material texture " + std::to_string(m.texture) + " does not exist (the scene has " +
                          std::to_string(textures) + ")");

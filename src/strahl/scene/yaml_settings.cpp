@@ -124,7 +124,7 @@ void YamlReader::camera(const YAML::Node& n, CameraDescription& c) const {
 Material YamlReader::material(const YAML::Node& n) const {
   map(n, "material");
   keys(n, {"color", "ambient", "diffuse", "specular", "shininess", "reflectivity", "transparency", "ior", "fresnel",
-           "filter", "checker", "roughness", "image"},
+           "filter", "checker", "roughness", "image", "emission"},
        "material");
   Material m;
   if (const auto v = n["color"]) m.color = color(v, "color");
@@ -138,6 +138,7 @@ Material YamlReader::material(const YAML::Node& n) const {
   if (const auto v = n["fresnel"]) m.fresnel = boolean(v, "fresnel");
   if (const auto v = n["filter"]) m.filter = boolean(v, "filter");
   if (const auto v = n["roughness"]) m.roughness = unit(v, "roughness");
+  if (const auto v = n["emission"]) m.emission = color(v, "emission");
   if (const auto c = n["checker"]) {
     map(c, "checker");
     keys(c, {"size", "color"}, "checker");

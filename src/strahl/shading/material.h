@@ -1,6 +1,6 @@
 #pragma once
 // The lecture's surface description: colour, ambient, Lambert diffuse, Blinn-Phong specular,
-// mirror reflection and transparency/refraction. Defaults are the finish of the benchmark scene
+// mirror reflection and transparency/refraction, and emitted light. Defaults are the finish of the benchmark scene
 // (POV-Ray `finish { ambient 0.1 diffuse 0.7 specular 0.6 roughness 0.01 }`).
 
 #include <cmath>
@@ -31,6 +31,10 @@ struct Material {
   // (0 = no checkerboard). Planes use their own 2D frame, other shapes a 3D (solid) checker.
   Real checker_size = 0;
   Vec3 checker_color{0.1};
+  // Light the surface gives off by itself (POV-Ray's finish `emission`, as the material's colour
+  // times it): radiance E added to the local colour whatever lights the surface. The path tracer
+  // (render/path_tracer.h) carries it to other surfaces; Whitted's integrator only shows it.
+  Vec3 emission{0};
 };
 
 // Is floor(a) odd? Computed in floating point: a cell index past the range of an integer type

@@ -367,9 +367,10 @@ void Parser::finish_item(Finish& f) {
     } else {
       f.reflection = grey(finish_color(), loc(t), "reflection");
     }
-  } else if (n == "brilliance" || n == "metallic" || n == "crand" || n == "emission") {
-    if (n == "emission") finish_color();
-    else if (n != "metallic" || starts_value(peek())) real();
+  } else if (n == "emission") {
+    f.emission = finish_color();
+  } else if (n == "brilliance" || n == "metallic" || n == "crand") {
+    if (n != "metallic" || starts_value(peek())) real();
     note(loc(t), n + " is left out");
   } else if (n == "conserve_energy") {
   } else {

@@ -68,6 +68,7 @@ struct Pigment {
 struct Finish {
   double ambient = 0.1, diffuse = 0.6, specular = 0, roughness = 0.05, reflection = 0;
   double phong = 0, phong_size = 40;
+  Color emission{};  // times the pigment's colour
   bool fresnel = false;
 };
 

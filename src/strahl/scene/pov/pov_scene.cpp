@@ -125,6 +125,8 @@ class Writer {
                     ", specular: " + yaml_number(phong ? f.phong : f.specular) +
                     ", shininess: " + yaml_number(phong ? 4 * f.phong_size : 1 / f.roughness);
     if (f.reflection != 0) s += ", reflectivity: " + yaml_number(f.reflection);
+    if (f.emission[0] != 0 || f.emission[1] != 0 || f.emission[2] != 0)  // POV-Ray: emission × the pigment's colour
+      s += ", emission: " + yaml_vector({f.emission[0] * p.color[0], f.emission[1] * p.color[1], f.emission[2] * p.color[2]});
     const double filter = p.color[3], transmit = p.color[4];
     if (filter + transmit != 0) {
       s += ", transparency: " + yaml_number(filter + transmit);
