@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # POV-Ray scenes read by strahl (docs/pov-import.md) against POV-Ray 3.7 rendering the same file:
 # each FILE.pov (default: scenes/lecture.pov, bench/shapes.pov, bench/csg.pov, bench/plate.pov,
-# bench/pov/language.pov, bench/pov/spotlights.pov, bench/pov/imagemap.pov and bench/pov/uvmap.pov)
+# bench/pov/language.pov, bench/pov/spotlights.pov, bench/pov/imagemap.pov, bench/pov/uvmap.pov and
+# bench/pov/emission.pov)
 # at WIDTHxHEIGHT (default 480x270), no anti-aliasing, linear 16-bit output; prints strahl-diff's agreement line (RMSE on 0..1 values) for each.
 #   bench/povray-import.sh [build-dir] [FILE.pov …]      (needs: apt-get install povray)
 set -euo pipefail
@@ -11,7 +12,7 @@ shift || true
 files=("$@")
 [ ${#files[@]} -gt 0 ] || files=("$root/scenes/lecture.pov" "$root/bench/shapes.pov" "$root/bench/csg.pov" "$root/bench/plate.pov"
                                   "$root/bench/pov/language.pov" "$root/bench/pov/spotlights.pov" "$root/bench/pov/imagemap.pov"
-                                  "$root/bench/pov/uvmap.pov")
+                                  "$root/bench/pov/uvmap.pov" "$root/bench/pov/emission.pov")
 width=${WIDTH:-480}
 height=${HEIGHT:-270}
 command -v povray >/dev/null || { echo "povray is not installed (apt-get install povray)" >&2; exit 2; }
