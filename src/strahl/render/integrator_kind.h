@@ -1,6 +1,6 @@
 #pragma once
 // Which integrator computes a camera sample's radiance (the scene's render.integrator,
-// docs/scene-format.md "Integrator"): Whitted's recursive ray tracing with the lecture's ambient
+// docs/scene-format.md "Path tracing"): Whitted's recursive ray tracing with the lecture's ambient
 // term (render/whitted.h), or path tracing (render/path_tracer.h), which computes the
 // interreflected light the ambient term stands in for.
 
