@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "strahl/render/explain.h"
+#include "strahl/render/pixel.h"
 #include "strahl/render/render_scene.h"
 #include "strahl/render/scene_hash.h"
 #include "strahl/scene/expression_ast.h"
@@ -89,9 +90,17 @@ inline Outcome read_scene(const Scene& scene) {
   } catch (const Error&) {
     return Outcome::Refused;
   }
-  // One camera sample through the integrator, its ray tree explained (render/explain.h): the
-  // centre pixel's.
-  (void)explain_pixel(compiled, compiled.camera.nx / 2, compiled.camera.ny / 2);
+  // One camera sample through the integrator, the centre pixel's: Whitted's with its ray tree
+  // explained (render/explain.h), a path tracer's as rendered (it has no ray tree).
+  const int x = compiled.camera.nx / 2, row = compiled.camera.ny / 2;
+  if (compiled.settings.integrator == IntegratorKind::Whitted) {
+    (void)explain_pixel(compiled, x, row);
+  } else {
+    const SceneView view = compiled.view();
+    CameraSample cs;
+    RayCounters counters;
+    (void)pixel_sample(view, pixel_sequence(view, make_pixel_sampler(compiled.sampling), x, row), 0, cs, counters);
+  }
   // (A mesh is written to a file of its own beside the scene: no round trip in memory.)
   for (const auto& o : scene.objects())
     if (dynamic_cast<const Mesh*>(o.get())) return Outcome::Accepted;
