@@ -173,8 +173,8 @@ void Viewer::explain_under_cursor() {
   SceneView view = scene_->view();
   view.settings.max_depth = settings_.max_depth;
   view.settings.integrator = settings_.integrator;
-  if (view.settings.integrator != IntegratorKind::Whitted) {
-    note_ = "explain shows Whitted's ray tree; this scene renders with integrator: path";
+  if (const std::string why = explain_refusal(view); !why.empty()) {
+    note_ = why;
     note_time_ = Clock::now();
     redraw_ = true;
     return;

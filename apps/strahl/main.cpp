@@ -52,9 +52,8 @@ int explain_sample(const strahl::cli::Options& o) {
   const int nx = render_scene.camera.nx, ny = render_scene.camera.ny;
   const int spp = effective_spp(render_scene.sampling.sampler, render_scene.sampling.spp);
   const int sample = explain.size() > 2 ? explain[2] : 0;
-  if (render_scene.settings.integrator == IntegratorKind::Path) {
-    strahl::console::err("strahl: error: --explain shows Whitted's ray tree; this scene renders with integrator: path "
-                         "(add --integrator whitted to explain the Whitted image)\n");
+  if (const std::string why = explain_refusal(render_scene.view()); !why.empty()) {
+    strahl::console::err("strahl: error: --{} (add --integrator whitted to explain the Whitted image)\n", why);
     return 1;
   }
   if (explain[0] >= nx || explain[1] >= ny || sample >= spp) {

@@ -93,10 +93,10 @@ inline Outcome read_scene(const Scene& scene) {
   // One camera sample through the integrator, the centre pixel's: Whitted's with its ray tree
   // explained (render/explain.h), a path tracer's as rendered (it has no ray tree).
   const int x = compiled.camera.nx / 2, row = compiled.camera.ny / 2;
-  if (compiled.settings.integrator == IntegratorKind::Whitted) {
+  const SceneView view = compiled.view();
+  if (explain_refusal(view).empty()) {
     (void)explain_pixel(compiled, x, row);
   } else {
-    const SceneView view = compiled.view();
     CameraSample cs;
     RayCounters counters;
     (void)pixel_sample(view, pixel_sequence(view, make_pixel_sampler(compiled.sampling), x, row), 0, cs, counters);

@@ -258,6 +258,12 @@ class Explainer {
 
 }  // namespace
 
+std::string explain_refusal(const SceneView& s) {
+  if (s.settings.integrator == IntegratorKind::Whitted) return {};
+  return std::string("explain shows Whitted's ray tree; this scene renders with integrator: ") +
+         integrator_name(s.settings.integrator);
+}
+
 PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index) {
   return explain_pixel(scene, scene.view(), scene.sampling, x, row, index);
 }
@@ -268,9 +274,7 @@ PixelExplanation explain_pixel(const RenderScene& scene, const SceneView& s, con
   if (x < 0 || x >= cam.nx || row < 0 || row >= cam.ny)
     throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(row) + ") is outside the image of " +
                 std::to_string(cam.nx) + "×" + std::to_string(cam.ny) + " pixels");
-  if (s.settings.integrator != IntegratorKind::Whitted)
-    throw Error("explain shows Whitted's ray tree; the scene renders with integrator: " +
-                std::string(integrator_name(s.settings.integrator)));
+  if (const std::string why = explain_refusal(s); !why.empty()) throw Error(why);
   PixelExplanation out;
   // The sample as the renderer takes it (render/pixel.h), its ray tree told to the Explainer.
   std::string tree;

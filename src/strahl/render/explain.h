@@ -7,7 +7,7 @@
 // renders the image walks the tree (trace()'s observer, render/whitted.h), so the explanation's
 // radiance is the renderer's for that sample, bit for bit (`strahl --explain`, docs/cli.md).
 // Whitted's integrator only: a scene that renders with integrator: path (render/path_tracer.h)
-// has no ray tree; explain_pixel() throws for it.
+// has no ray tree; explain_pixel() throws for it, with explain_refusal()'s reason.
 
 #include <cstdint>
 #include <string>
@@ -31,6 +31,8 @@ struct PixelExplanation {
 // in the image (throws strahl::Error otherwise). The scene as compiled, or a view `s` of it with
 // its own camera and settings and the sampling it renders with (the viewer's).
 PixelExplanation explain_pixel(const RenderScene& scene, int x, int row, std::uint32_t index = 0);
+// Why the samples of view `s` cannot be explained (a path-traced scene), or "" where they can.
+std::string explain_refusal(const SceneView& s);
 PixelExplanation explain_pixel(const RenderScene& scene, const SceneView& s, const SamplingSettings& sampling, int x,
                                int row, std::uint32_t index = 0);
 

@@ -82,7 +82,7 @@ STRAHL_HOST_DEVICE inline Vec3 trace_path(const SceneView& s, Ray ray, RayCounte
     split_at(m, ray.direction, n, front, media, kr, kt, refracted_dir);
     const Vec3 wd = c * (m.diffuse * (1 - m.transparency));
     const Vec3 wt = transmission_tint(m) * kt;
-    const Real ad = max_component(wd), ar = kr > 0 ? kr : Real(0), at = max_component(wt);
+    const Real ad = max_component(wd), ar = kr, at = max_component(wt);
     const Real total = ad + ar + at;
     if (!(total > 0) || !spend(budget, counters)) return radiance;
     // Way 0, 1 or 2 for pick in [0, a_d), [a_d, a_d + a_r), [a_d + a_r, Σa); the last way with a

@@ -1,7 +1,7 @@
 #pragma once
 // The lecture's surface description: colour, ambient, Lambert diffuse, Blinn-Phong specular,
-// mirror reflection and transparency/refraction, and emitted light. Defaults are the finish of the benchmark scene
-// (POV-Ray `finish { ambient 0.1 diffuse 0.7 specular 0.6 roughness 0.01 }`).
+// mirror reflection and transparency/refraction, and emitted light. Defaults are the finish of
+// the benchmark scene (POV-Ray `finish { ambient 0.1 diffuse 0.7 specular 0.6 roughness 0.01 }`).
 
 #include <cmath>
 
